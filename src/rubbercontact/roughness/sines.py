@@ -185,5 +185,6 @@ class SineSeries:
         return hash((self.wavelengths.tobytes(), self.amplitudes.tobytes(), self.phases.tobytes()))
 
     def __repr__(self) -> str:
+        phases = np.round(self.phases, 4).tolist()
         return (f"SineSeries(wavelengths={self.wavelengths.tolist()}, "
-                f"amplitudes={self.amplitudes.tolist()}, phases={np.round(self.phases, 4).tolist()})")
+                f"amplitudes={self.amplitudes.tolist()}, phases={phases})")
