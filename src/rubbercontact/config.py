@@ -1,0 +1,264 @@
+"""Run configuration: a TOML file validated with pydantic.
+
+Every field carries its unit and allowed range; unknown keys are rejected with a
+did-you-mean suggestion, and every error names the file and the key. Paths in the
+file are resolved relative to the file itself.
+"""
+
+from __future__ import annotations
+
+import difflib
+import tomllib
+from pathlib import Path
+from typing import Annotated, Any, Literal
+
+from pydantic import BaseModel, ConfigDict, Field, ValidationError, model_validator
+
+from .errors import InputError
+
+PositiveFloat = Annotated[float, Field(gt=0)]
+
+
+class _Strict(BaseModel):
+    model_config = ConfigDict(extra="forbid", frozen=True)
+
+
+class ProfileInput(_Strict):
+    """Measured profiles to fit a sine series to (paper §2.2)."""
+
+    files: list[Path] = Field(min_length=1, description="profile files (relative to the config)")
+    format: Literal["auto", "text", "captif", "topography"] = "auto"
+    unit: Literal["mm", "um", "m"] = Field(
+        "mm", description="unit of heights and distances in the files")
+    dx: PositiveFloat | None = Field(
+        None, description="sampling interval [mm] if the file has no x column")
+    waves: int | None = Field(None, ge=1, le=40, description="number of sine waves M (octaves)")
+    lower_cutoff: PositiveFloat | None = Field(None, description="shortest wavelength [mm]")
+    upper_cutoff: PositiveFloat | None = Field(None, description="longest wavelength [mm]")
+    method: Literal["wellconditioned", "paper"] = "wellconditioned"
+    window: PositiveFloat | None = Field(None, description="NaN-free window length [mm]")
+    despike: bool = False
+
+
+class SurfaceConfig(_Strict):
+    """Rough rigid surface: a preset, an explicit sine table, or measured profiles."""
+
+    preset: Literal["section3", "asphalt_ac8", "high_slope_wave"] | None = None
+    wavelengths: list[PositiveFloat] | None = Field(None, description="[mm]")
+    amplitudes: list[Annotated[float, Field(ge=0)]] | None = Field(None, description="[mm]")
+    profiles: ProfileInput | None = None
+    m2_threshold: PositiveFloat = Field(
+        1.0, description="rms slope above which a wave is high-slope [-]")
+
+    @model_validator(mode="after")
+    def _one_source(self) -> SurfaceConfig:
+        table = self.wavelengths is not None or self.amplitudes is not None
+        given = [self.preset is not None, table, self.profiles is not None]
+        if sum(given) != 1:
+            raise ValueError("give exactly one of 'preset', 'wavelengths'+'amplitudes', 'profiles'")
+        if (self.wavelengths is None) != (self.amplitudes is None):
+            raise ValueError("'wavelengths' and 'amplitudes' go together")
+        if self.wavelengths is not None and len(self.wavelengths) != len(self.amplitudes):
+            raise ValueError(f"'wavelengths' ({len(self.wavelengths)}) and 'amplitudes' "
+                             f"({len(self.amplitudes)}) differ in length")
+        return self
+
+
+class MaterialConfig(_Strict):
+    """Generalized Maxwell material: preset, Prony table file, or inline values (MPa, s)."""
+
+    preset: Literal["sbr"] | None = "sbr"
+    file: Path | None = None
+    equilibrium_modulus: PositiveFloat | None = Field(None, description="[MPa]")
+    moduli: list[PositiveFloat] = Field(default_factory=list, description="[MPa]")
+    relaxation_times: list[PositiveFloat] = Field(default_factory=list, description="[s]")
+    nu: float = Field(0.5, ge=0.0, le=0.5, description="Poisson's ratio of the half-space [-]")
+
+
+class LoadConfig(_Strict):
+    """Applied loads: mean pressures, or target normal contact areas (pressures solved for)."""
+
+    pressures: list[PositiveFloat] | None = Field(None, description="mean pressures σ0 [MPa]")
+    contact_areas: list[Annotated[float, Field(gt=0, le=1)]] | None = Field(
+        None, description="target normalized contact areas A_c/A_0 in (0, 1]")
+
+    @model_validator(mode="after")
+    def _one_kind(self) -> LoadConfig:
+        if (self.pressures is None) == (self.contact_areas is None):
+            raise ValueError("give exactly one of 'pressures' and 'contact_areas'")
+        return self
+
+
+class HalfSpaceConfig(_Strict):
+    n: int = Field(4096, ge=64, le=2**22, description="grid points per period")
+    law: Literal["lennard-jones", "hard-wall"] = "lennard-jones"
+    tol: PositiveFloat = Field(1e-8, lt=1, description="relative residual tolerance")
+
+
+class FemConfig(_Strict):
+    mesh: tuple[Annotated[int, Field(ge=4)], Annotated[int, Field(ge=2)]] = (120, 90)
+    height_ratio: PositiveFloat = Field(0.75, description="cell height / width [-]")
+    periods: PositiveFloat = Field(3.0, description="sliding distance in periods")
+    steps_per_period: int | None = Field(None, ge=4, description="time steps per period")
+
+
+class LawConfig(_Strict):
+    """Effective interface law of the high-slope scale (paper eqs. 1–3)."""
+
+    pressures: list[PositiveFloat] | None = Field(
+        None, description="FEM pressure grid [MPa]; default spans the low-slope local pressures")
+    file: Path | None = Field(None, description="reuse a saved law (NetCDF) instead of running FEM")
+
+
+class ExecutionConfig(_Strict):
+    workers: int = Field(1, ge=1, le=4096)
+    threads_per_worker: int = Field(1, ge=1, le=256)
+    scheduler: str | None = Field(None, pattern=r"^(tcp|tls|inproc)://.+",
+                                  description="address of an existing Dask scheduler")
+    cache: Path | None = Field(None, description="result cache directory")
+
+
+class OutputConfig(_Strict):
+    directory: Path = Path("results")
+    figures: bool = True
+    overwrite: bool = False
+
+
+class RunConfig(_Strict):
+    """The whole run (see ``examples/*.toml``)."""
+
+    surface: SurfaceConfig
+    material: MaterialConfig = MaterialConfig()
+    loads: LoadConfig
+    velocities: list[Annotated[float, Field(ge=0)]] = Field(
+        min_length=1, description="sliding speeds [mm/s]")
+    realizations: int = Field(1, ge=1, le=10_000)
+    seed: int = Field(0, ge=0)
+    models: list[Literal["vhs", "hybrid", "fem"]] = Field(
+        default_factory=lambda: ["vhs", "hybrid", "fem"], min_length=1)
+    halfspace: HalfSpaceConfig = HalfSpaceConfig()
+    fem: FemConfig = FemConfig()
+    law: LawConfig = LawConfig()
+    execution: ExecutionConfig = ExecutionConfig()
+    output: OutputConfig = OutputConfig()
+
+
+def _field_names(model: type[BaseModel], loc: tuple) -> list[str]:
+    """Valid keys at the location of an error (for did-you-mean)."""
+    for part in loc[:-1]:
+        if isinstance(part, int):
+            continue
+        field = model.model_fields.get(part)
+        if field is None:
+            return []
+        ann = field.annotation
+        for cand in getattr(ann, "__args__", (ann,)):
+            if isinstance(cand, type) and issubclass(cand, BaseModel):
+                model = cand
+                break
+        else:
+            return []
+    return list(model.model_fields)
+
+
+def _format_error(err: dict, source: str) -> str:
+    loc = tuple(err["loc"])
+    key = ".".join(str(p) for p in loc) or "(top level)"
+    if err["type"] == "extra_forbidden":
+        names = _field_names(RunConfig, loc)
+        guess = difflib.get_close_matches(str(loc[-1]), names, n=1)
+        hint = f"; did you mean '{guess[0]}'?" if guess else (
+            f"; allowed: {', '.join(names)}" if names else "")
+        return f"{source}: unknown key '{key}'{hint}"
+    msg = err["msg"].removeprefix("Value error, ")
+    field_desc = ""
+    try:
+        names = RunConfig
+        for part in loc:
+            if isinstance(part, int):
+                continue
+            f = names.model_fields[part]
+            field_desc = f.description or ""
+            ann = f.annotation
+            nxt = [c for c in getattr(ann, "__args__", (ann,))
+                   if isinstance(c, type) and issubclass(c, BaseModel)]
+            names = nxt[0] if nxt else names
+    except (KeyError, AttributeError):
+        field_desc = ""
+    unit = f" ({field_desc})" if field_desc else ""
+    got = f", got {err['input']!r}" if "input" in err and not isinstance(err["input"], dict) else ""
+    return f"{source}: key '{key}'{unit}: {msg}{got}"
+
+
+def _resolve_paths(cfg: RunConfig, base: Path) -> RunConfig:
+    def fix(p: Path | None) -> Path | None:
+        return None if p is None else (p if p.is_absolute() else (base / p).resolve())
+
+    upd: dict[str, Any] = {}
+    if cfg.surface.profiles is not None:
+        prof = cfg.surface.profiles.model_copy(update={"files": [fix(f) for f in
+                                                                 cfg.surface.profiles.files]})
+        missing = [str(f) for f in prof.files if not f.is_file()]
+        if missing:
+            raise InputError(f"surface.profiles.files: file(s) not found: {', '.join(missing)}")
+        upd["surface"] = cfg.surface.model_copy(update={"profiles": prof})
+    if cfg.material.file is not None:
+        if not fix(cfg.material.file).is_file():
+            raise InputError(f"material.file: not found: {fix(cfg.material.file)}")
+        upd["material"] = cfg.material.model_copy(update={"file": fix(cfg.material.file)})
+    if cfg.law.file is not None:
+        if not fix(cfg.law.file).is_file():
+            raise InputError(f"law.file: not found: {fix(cfg.law.file)}")
+        upd["law"] = cfg.law.model_copy(update={"file": fix(cfg.law.file)})
+    upd["output"] = cfg.output.model_copy(update={"directory": fix(cfg.output.directory)})
+    if cfg.execution.cache is not None:
+        upd["execution"] = cfg.execution.model_copy(update={"cache": fix(cfg.execution.cache)})
+    return cfg.model_copy(update=upd)
+
+
+def parse_config(data: dict, source: str = "<config>", base_dir: Path | None = None) -> RunConfig:
+    """Validate a config mapping; raise :class:`InputError` with one line per problem."""
+    if not isinstance(data, dict):
+        raise InputError(f"{source}: expected a table of keys, got {type(data).__name__}")
+    try:
+        cfg = RunConfig.model_validate(data)
+    except ValidationError as exc:
+        lines = [_format_error(e, source) for e in exc.errors()]
+        raise InputError("; ".join(lines)) from None
+    return _resolve_paths(cfg, base_dir or Path.cwd())
+
+
+def load_config(path: str | Path) -> RunConfig:
+    """Read and validate a TOML run configuration."""
+    path = Path(path)
+    if not path.is_file():
+        raise InputError(f"config file {path}: not found")
+    try:
+        text = path.read_text(encoding="utf-8")
+        data = tomllib.loads(text)
+    except UnicodeDecodeError:
+        raise InputError(f"{path}: not a UTF-8 text file") from None
+    except tomllib.TOMLDecodeError as exc:
+        raise InputError(f"{path}: invalid TOML: {exc}") from None
+    return parse_config(data, source=str(path), base_dir=path.resolve().parent)
+
+
+def default_config() -> RunConfig:
+    """Built-in default of ``rubbercontact run``: a reduced paper §3 case, all three models."""
+    return parse_config(DEFAULT_CONFIG, source="<built-in default>")
+
+
+#: Reduced section 3 validation (paper §3): three waves, coarse FEM, two realizations.
+DEFAULT_CONFIG: dict = {
+    "surface": {"preset": "section3"},
+    "material": {"preset": "sbr"},
+    "loads": {"pressures": [0.3, 0.6, 1.0]},
+    "velocities": [10.0],
+    "realizations": 2,
+    "seed": 1,
+    "models": ["vhs", "hybrid", "fem"],
+    "halfspace": {"n": 2048},
+    "fem": {"mesh": [60, 45], "periods": 2.0},
+    "law": {"pressures": [0.25, 0.5, 1.0, 2.0, 4.0]},
+    "output": {"directory": "results"},
+}
