@@ -1,0 +1,197 @@
+"""The effective interface law of the high-slope scale (paper eqs. 1–3).
+
+FEM sliding tests on the high-slope surface ``z_hs`` over a grid of mean pressures
+``p̄`` and speeds ``v`` give, per test, the mean separation ``ū``, the contact
+fraction ``α_hs`` and the viscoelastic shear stress ``Δτ_hs = μ_hs p̄``. Read at a
+fixed speed as functions of ``ū`` they are the law ``σ_hs(ū)``, ``α_hs(ū)``,
+``Δτ_hs(ū)`` that the half-space solver applies locally to the low-slope scale.
+
+The law table is an ``xarray.Dataset`` (dims ``velocity``, ``pressure``). Computing it
+is the expensive part of the method; once saved it serves any surface that shares
+the same high-slope scale and material.
+"""
+
+from __future__ import annotations
+
+import warnings
+from collections.abc import Sequence
+
+import numpy as np
+import xarray as xr
+
+from .._validation import finite_array
+from ..errors import InputError
+from ..materials import GeneralizedMaxwell
+from ..roughness import SineSeries
+
+
+class LawWarning(UserWarning):
+    """The law table has failed or non-monotone points, or is being extrapolated."""
+
+
+def effective_law(hs_surface: SineSeries, material: GeneralizedMaxwell,
+                  pressures: Sequence[float], velocities: Sequence[float], *,
+                  mesh: tuple[int, int] = (120, 90), height_ratio: float = 0.75,
+                  periods: float = 3.0, steps_per_period: int | None = None,
+                  runner=None) -> xr.Dataset:
+    """Run the FEM sliding test over ``pressures × velocities`` and tabulate the law.
+
+    Parameters
+    ----------
+    hs_surface
+        High-slope surface ``z_hs`` (cell width = its longest wavelength).
+    material
+        Rubber.
+    pressures
+        Mean pressures ``p̄`` [MPa], > 0. They should span the local pressures of the
+        low-slope solve (checked later by :func:`check_coverage`).
+    velocities
+        Sliding speeds ``v`` [mm/s], >= 0.
+    mesh, height_ratio, periods, steps_per_period
+        FEM options (see :func:`rubbercontact.fem.sliding_test`).
+    runner
+        Callable ``runner(tasks) -> list[xr.Dataset | None]`` executing
+        :class:`~rubbercontact.sweep.Task` objects (failed tasks give ``None`` or a
+        dataset with ``status != "ok"``); default: the package's sweep executor
+        without cache.
+
+    Returns
+    -------
+    xarray.Dataset
+        Variables ``mean_separation`` [mm], ``contact_fraction`` [-], ``shear_stress``
+        [MPa], ``friction`` [-], ``status`` (``"ok"`` or the failure message), dims
+        ``(velocity, pressure)``; the surface and material in ``attrs``.
+    """
+    p = np.sort(finite_array("pressures", pressures, ndim=1))
+    v = np.sort(finite_array("velocities", velocities, ndim=1))
+    if np.any(p <= 0):
+        raise InputError(f"pressures: must be > 0 MPa, got {p.tolist()}")
+    if np.any(v < 0):
+        raise InputError(f"velocities: must be >= 0 mm/s, got {v.tolist()}")
+    if hs_surface.size == 0:
+        raise InputError("hs_surface: the high-slope surface is empty; no law is needed")
+    from ..sweep import Task
+
+    fem_opts = {"mesh": [int(m) for m in mesh], "height_ratio": float(height_ratio),
+                "periods": float(periods), "steps_per_period": steps_per_period}
+    tasks = [Task(function="rubbercontact.hybrid.tasks:fem_task",
+                  kwargs={"surface": hs_surface.as_dict(), "material": material.as_dict(),
+                          "velocity": float(vi), "mean_pressure": float(pi), **fem_opts},
+                  label=f"law FEM v={vi:g} mm/s p={pi:g} MPa")
+             for vi in v for pi in p]
+    results = (runner or _default_runner)(tasks)
+    return assemble_law(results, p, v, hs_surface, material, fem_opts)
+
+
+def _default_runner(tasks):
+    from ..sweep import run_sweep
+
+    return run_sweep(tasks, cache=None).datasets
+
+
+def assemble_law(results, pressures, velocities, hs_surface: SineSeries,
+                 material: GeneralizedMaxwell, fem_options: dict) -> xr.Dataset:
+    """Stack per-test datasets (row-major over velocity, pressure) into the law table."""
+    names = ("mean_separation", "contact_fraction", "shear_stress", "friction", "wall_time")
+    shape = (len(velocities), len(pressures))
+    data = {k: np.full(shape, np.nan) for k in names}
+    status = np.full(shape, "ok", dtype=object)
+    for idx, ds in enumerate(results):
+        i, j = divmod(idx, len(pressures))
+        st = "missing result" if ds is None else str(ds.attrs.get("status", "ok"))
+        if ds is None or st != "ok":
+            status[i, j] = st if ds is None else str(ds.attrs.get("message", st))
+            continue
+        for k in names:
+            data[k][i, j] = float(ds[k])
+    units = {"mean_separation": "mm", "contact_fraction": "1", "shear_stress": "MPa",
+             "friction": "1", "wall_time": "s"}
+    law = xr.Dataset(
+        {k: (("velocity", "pressure"), data[k], {"units": units[k]}) for k in names},
+        coords={"velocity": ("velocity", np.asarray(velocities, float), {"units": "mm/s"}),
+                "pressure": ("pressure", np.asarray(pressures, float), {"units": "MPa"})},
+    )
+    law["status"] = (("velocity", "pressure"), status.astype(str))
+    law.attrs.update({
+        "title": "effective interface law of the high-slope scale (paper eqs. 1-3)",
+        "hs_wavelengths_mm": hs_surface.wavelengths.tolist(),
+        "hs_amplitudes_mm": hs_surface.amplitudes.tolist(),
+        "hs_phases_rad": hs_surface.phases.tolist(),
+        "hs_max_height_mm": float(max_height(hs_surface)),
+        "material": repr(material.as_dict()),
+        "fem_options": repr(fem_options),
+    })
+    return law
+
+
+def max_height(surface: SineSeries, n: int = 8192) -> float:
+    """Highest point of ``surface`` [mm] (a sampled maximum refined by the exact slope root)."""
+    from scipy.optimize import brentq
+
+    if surface.size == 0:
+        return 0.0
+    x, z = surface.grid(n)
+    k = int(np.argmax(z))
+    dx = x[1] - x[0]
+    a, b = x[k] - dx, x[k] + dx
+    if surface.slopes(a) > 0 > surface.slopes(b):
+        return float(surface.heights(brentq(surface.slopes, a, b, xtol=1e-14)))
+    return float(z[k])
+
+
+def law_at_velocity(law: xr.Dataset, velocity: float) -> dict:
+    """The law at one speed as plain data: ``u`` [mm] ascending, ``sigma``, ``alpha``, ``tau``.
+
+    Failed FEM points are dropped and reported (:class:`LawWarning`); the zero-load
+    anchor ``(ū = max z_hs, σ = α = Δτ = 0)`` is added — at vanishing load the rubber
+    touches only the highest peak, so its mean height equals that peak's height.
+    A table that is not monotone (pressure not decreasing with ``ū``) is an error: the
+    FEM points disagree with each other and must be inspected, not smoothed.
+    """
+    speeds = law["velocity"].values
+    match = np.flatnonzero(np.isclose(speeds, velocity, rtol=1e-9, atol=1e-12))
+    if match.size == 0:
+        raise InputError(f"velocity: {velocity} mm/s is not in the law table "
+                         f"(available: {speeds.tolist()} mm/s)")
+    row = law.isel(velocity=int(match[0]))
+    ok = (row["status"].values == "ok") & np.isfinite(row["mean_separation"].values)
+    if not ok.all():
+        bad = row["pressure"].values[~ok].tolist()
+        warnings.warn(f"law at v={velocity} mm/s: FEM points at p={bad} MPa failed and are "
+                      f"left out", LawWarning, stacklevel=2)
+    if ok.sum() < 2:
+        raise InputError(f"law at v={velocity} mm/s: fewer than 2 successful FEM points")
+    u = row["mean_separation"].values[ok]
+    sigma = row["pressure"].values[ok]
+    alpha = row["contact_fraction"].values[ok]
+    tau = row["shear_stress"].values[ok]
+    order = np.argsort(u)
+    u, sigma, alpha, tau = u[order], sigma[order], alpha[order], tau[order]
+    if np.any(np.diff(sigma) >= 0):
+        raise InputError(f"law at v={velocity} mm/s: pressure does not decrease with mean "
+                         f"separation (u={u.tolist()} mm, p={sigma.tolist()} MPa); the FEM "
+                         f"points are inconsistent (check convergence and averaging)")
+    u0 = float(law.attrs["hs_max_height_mm"])
+    if u0 > u[-1]:
+        u = np.append(u, u0)
+        sigma, alpha, tau = (np.append(a, 0.0) for a in (sigma, alpha, tau))
+    return {"separation": u.tolist(), "pressure": sigma.tolist(),
+            "contact_fraction": alpha.tolist(), "shear_stress": tau.tolist()}
+
+
+def tabulated_law_from_dict(table: dict):
+    """Build the half-space solver's tabulated law from :func:`law_at_velocity` output."""
+    from ..halfspace import TabulatedLaw
+
+    return TabulatedLaw(np.asarray(table["separation"]), np.asarray(table["pressure"]),
+                        contact_fraction=np.asarray(table["contact_fraction"]),
+                        shear_stress=np.asarray(table["shear_stress"]))
+
+
+def check_coverage(law: xr.Dataset, velocity: float, max_local_pressure: float) -> None:
+    """Warn when the low-slope solve reached pressures beyond the law's FEM range."""
+    pmax = float(law["pressure"].max())
+    if max_local_pressure > pmax:
+        warnings.warn(f"law at v={velocity} mm/s is extrapolated: local low-slope pressure "
+                      f"reaches {max_local_pressure:.3g} MPa, the FEM table ends at {pmax:.3g} "
+                      f"MPa; add higher law pressures", LawWarning, stacklevel=2)

@@ -1,0 +1,369 @@
+"""The hybrid multiscale pipeline and its two reference models (paper §2.1, §3, §4).
+
+``run(config)`` builds the surface (preset, sine table, or a fit of measured
+profiles), draws random-phase realizations, partitions each into high- and
+low-slope parts, computes the effective law of the high-slope scale with the FEM,
+and runs, on the same loads:
+
+- ``vhs``: the viscoelastic half-space on the whole surface;
+- ``hybrid``: the half-space on ``z_ls`` with the integrated-LJ + ``σ_hs`` law,
+  ``μ = μ_ls + μ_hs`` (eqs. 5–7) and ``A_c`` by eq. 8;
+- ``fem``: the FEM sliding test on the whole surface (cell width = longest wavelength).
+
+The result is one ``xarray.Dataset`` with dims ``model, velocity, realization,
+pressure`` (and ``contact_area`` when loads are given as target areas), the law
+table (``law_*`` variables), and provenance in ``attrs``.
+"""
+
+from __future__ import annotations
+
+import json
+import time
+import warnings
+from collections.abc import Callable
+from pathlib import Path
+
+import numpy as np
+import xarray as xr
+
+from ..config import RunConfig
+from ..errors import InputError
+from ..materials import GeneralizedMaxwell, sbr
+from ..roughness import SineSeries, presets
+from .law import check_coverage, effective_law, law_at_velocity
+from .metrics import interpolate_at_areas, mean_relative_error
+
+Runner = Callable[[list], list]
+
+#: Result variables produced per (model, velocity, realization, pressure).
+RESULT_VARIABLES = {
+    "friction": ("1", "total hysteretic friction coefficient mu"),
+    "friction_ls": ("1", "low-slope part mu_ls (eq. 7); equals mu for vhs and fem"),
+    "friction_hs": ("1", "high-slope part mu_hs (eq. 6); 0 for vhs and fem"),
+    "contact_fraction": ("1", "normalized real contact area A_c/A_0 (eq. 8 for hybrid)"),
+    "mean_separation": ("mm", "mean interface separation"),
+    "wall_time": ("s", "wall time of the solve"),
+}
+
+
+def build_material(cfg: RunConfig) -> GeneralizedMaxwell:
+    m = cfg.material
+    if m.file is not None:
+        return GeneralizedMaxwell.from_file(m.file)
+    if m.equilibrium_modulus is not None:
+        return GeneralizedMaxwell(m.equilibrium_modulus, m.moduli, m.relaxation_times,
+                                  name="config")
+    if m.preset == "sbr":
+        return sbr()
+    raise InputError("material: give 'preset', 'file' or 'equilibrium_modulus'")
+
+
+def build_surface(cfg: RunConfig) -> tuple[SineSeries, dict]:
+    """The base sine series and a description of where it came from."""
+    s = cfg.surface
+    if s.preset is not None:
+        return getattr(presets, s.preset)(), {"source": f"preset:{s.preset}"}
+    if s.wavelengths is not None:
+        return SineSeries(s.wavelengths, s.amplitudes), {"source": "sine table"}
+    from ..io.profiles import read_profiles
+    from ..roughness.fit import fit_hdc
+
+    p = s.profiles
+    profiles = read_profiles(p.files, format=p.format, unit=p.unit, dx=p.dx,
+                             window=p.window, despike=p.despike)
+    fit_kwargs = {k: v for k, v in {"waves": p.waves, "lower_cutoff": p.lower_cutoff,
+                                    "upper_cutoff": p.upper_cutoff}.items() if v is not None}
+    series = fit_hdc(profiles, method=p.method, **fit_kwargs)
+    info = {"source": "fit of measured profiles", "files": [str(f) for f in p.files],
+            "sha256": list(getattr(profiles, "sha256", []) or []), "fit_method": p.method}
+    return series, info
+
+
+def _sequential_runner(tasks: list) -> list:
+    """Run tasks in this process, recording failures as ``None`` (used without Dask)."""
+    import importlib
+
+    out = []
+    for t in tasks:
+        module, name = t.function.split(":")
+        out.append(getattr(importlib.import_module(module), name)(**t.kwargs))
+    return out
+
+
+def make_runner(cfg: RunConfig, progress: bool | str = "auto") -> Runner:
+    """A runner backed by the sweep executor and result cache of the config."""
+    from ..sweep import ExecutorConfig, ResultCache, run_sweep
+
+    ex = cfg.execution
+    cache = ResultCache(ex.cache) if ex.cache is not None else ResultCache.default()
+    executor = ExecutorConfig(workers=ex.workers, threads_per_worker=ex.threads_per_worker,
+                              scheduler=ex.scheduler)
+
+    def runner(tasks: list) -> list:
+        result = run_sweep(tasks, cache=cache, executor=executor, progress=progress)
+        return result.datasets
+
+    return runner
+
+
+def _pressure_grid_for_areas(cfg: RunConfig, surfaces: list[SineSeries],
+                             material: GeneralizedMaxwell) -> np.ndarray:
+    """Pressures spanning the target contact areas, estimated with the VHS model.
+
+    The hybrid and FEM contact areas differ from the VHS ones, so the grid extends a
+    factor 2 beyond the VHS estimate on either side and is interpolated afterwards.
+    """
+    from scipy.optimize import brentq
+
+    from .. import halfspace
+
+    targets = np.asarray(cfg.loads.contact_areas)
+    v = max(cfg.velocities)
+    s0 = surfaces[0]
+    n = min(cfg.halfspace.n, 2048)
+
+    def area(logp: float) -> float:
+        res = halfspace.solve_sliding(s0, s0.period, material, v, float(np.exp(logp)), n=n,
+                                      nu=cfg.material.nu)
+        return res.contact_fraction
+
+    e_scale = float(abs(material.reduced_modulus(0.0, cfg.material.nu))) * s0.rms_slope
+    lo, hi = np.log(1e-6 * e_scale), np.log(2.0 * e_scale)
+    bounds = []
+    for a in (targets.min(), targets.max()):
+        bounds.append(brentq(lambda lp, a=a: area(lp) - a, lo, hi, xtol=1e-3))
+    n_p = max(8, 2 * targets.size)
+    return np.geomspace(np.exp(bounds[0]) / 2, np.exp(bounds[1]) * 2, n_p)
+
+
+def run(config: RunConfig | dict | str | Path, *, runner: Runner | None = None,
+        law: xr.Dataset | None = None, progress: bool | str = "auto") -> xr.Dataset:
+    """Run the models of a configuration and return the results dataset.
+
+    Parameters
+    ----------
+    config
+        A validated :class:`~rubbercontact.config.RunConfig`, a plain mapping with the
+        same keys, or the path of a TOML file.
+    runner
+        Executes lists of sweep tasks; default: Dask executor + result cache from
+        ``config.execution``.
+    law
+        A precomputed law table (skips the FEM on the high-slope scale).
+    progress
+        Progress display of the sweeps (``"auto"``, True, False).
+    """
+    cfg = _as_config(config)
+    t_start = time.perf_counter()
+    timings: dict[str, float] = {}
+    runner = runner or make_runner(cfg, progress)
+    material = build_material(cfg)
+    base, surface_info = build_surface(cfg)
+    realizations = base.realizations(cfg.realizations, seed=cfg.seed)
+    parts = [r.partition(cfg.surface.m2_threshold) for r in realizations]
+    hs0 = parts[0][0]
+    period = base.period
+    velocities = np.asarray(cfg.velocities, float)
+    models = list(dict.fromkeys(cfg.models))
+
+    if cfg.loads.pressures is not None:
+        pressures = np.sort(np.asarray(cfg.loads.pressures, float))
+    else:
+        pressures = _pressure_grid_for_areas(cfg, realizations, material)
+
+    # -- effective law of the high-slope scale ---------------------------------------
+    law_tables: dict[float, dict | None] = {float(v): None for v in velocities}
+    if "hybrid" in models and hs0.size:
+        if law is None and cfg.law.file is not None:
+            law = xr.load_dataset(cfg.law.file)
+        if law is None:
+            law_p = (np.asarray(cfg.law.pressures, float) if cfg.law.pressures is not None
+                     else np.geomspace(pressures.min() / 2, pressures.max() * 8, 8))
+            t0 = time.perf_counter()
+            law = effective_law(hs0, material, law_p, velocities, mesh=cfg.fem.mesh,
+                                height_ratio=cfg.fem.height_ratio, periods=cfg.fem.periods,
+                                steps_per_period=cfg.fem.steps_per_period, runner=runner)
+            timings["law"] = time.perf_counter() - t0
+        for v in velocities:
+            law_tables[float(v)] = law_at_velocity(law, float(v))
+
+    # -- one task per (model, velocity, realization, pressure) ------------------------
+    from ..sweep import Task
+
+    hsc = cfg.halfspace
+    index, tasks = [], []
+    for m in models:
+        for iv, v in enumerate(velocities):
+            for ir, (real, (_hs, ls)) in enumerate(zip(realizations, parts, strict=True)):
+                for ip, p in enumerate(pressures):
+                    common = {"material": material.as_dict(), "velocity": float(v),
+                              "mean_pressure": float(p)}
+                    keep = ir == 0
+                    if m == "fem":
+                        kw = {"surface": real.as_dict(), **common,
+                              "mesh": list(cfg.fem.mesh), "height_ratio": cfg.fem.height_ratio,
+                              "periods": cfg.fem.periods,
+                              "steps_per_period": cfg.fem.steps_per_period}
+                        fn = "rubbercontact.hybrid.tasks:fem_task"
+                    else:
+                        surf = real if (m == "vhs" or not _hs.size) else ls
+                        kw = {"surface": surf.as_dict(), "period": period, **common,
+                              "n": hsc.n, "nu": cfg.material.nu, "law": hsc.law,
+                              "interface_law": law_tables[float(v)] if m == "hybrid" else None,
+                              "keep_profile": keep}
+                        fn = "rubbercontact.hybrid.tasks:halfspace_task"
+                    tasks.append(Task(function=fn, kwargs=kw,
+                                      label=f"{m} v={v:g} r={ir} p={p:.4g}"))
+                    index.append((m, iv, ir, ip))
+    t0 = time.perf_counter()
+    results = runner(tasks)
+    timings["models"] = time.perf_counter() - t0
+
+    ds = _assemble(models, velocities, realizations, pressures, index, results)
+    ds = _add_profiles(ds, index, results)
+    per_model_time = {m: float(ds["wall_time"].sel(model=m).sum()) for m in models}
+    if law is not None:
+        for k in ("mean_separation", "contact_fraction", "shear_stress", "friction", "status"):
+            ds[f"law_{k}"] = law[k].rename(pressure="law_pressure")
+        ds = ds.assign_coords(law_pressure=("law_pressure", law["pressure"].values,
+                                            {"units": "MPa"}))
+        per_model_time["law (FEM, counted once)"] = float(np.nansum(law["wall_time"].values))
+        if "hybrid" in models:
+            for v in velocities:
+                check_coverage(law, float(v), float(ds["max_local_pressure"].sel(
+                    model="hybrid", velocity=v).max()))
+    if cfg.loads.contact_areas is not None:
+        ds = _at_areas(ds, np.asarray(cfg.loads.contact_areas, float))
+    ds = _add_errors(ds)
+
+    # -- realization geometry and provenance ------------------------------------------
+    ds["wavelength"] = ("wave", base.wavelengths, {"units": "mm"})
+    ds["amplitude"] = ("wave", base.amplitudes, {"units": "mm"})
+    ds["m2"] = ("wave", base.rms_slopes(), {"units": "1", "long_name": "rms slope per wave"})
+    ds["phase"] = (("realization", "wave"), np.array([r.phases for r in realizations]),
+                   {"units": "rad"})
+    ds["high_slope"] = ("wave", (base.rms_slopes() > cfg.surface.m2_threshold).astype(int))
+    timings["total"] = time.perf_counter() - t_start
+    from .. import __version__
+
+    ds.attrs.update({
+        "title": "rubbercontact hybrid multiscale results",
+        "rubbercontact_version": __version__,
+        "config": cfg.model_dump_json(),
+        "surface": json.dumps(surface_info),
+        "material": json.dumps(material.as_dict()),
+        "period_mm": period,
+        "timings_s": json.dumps(timings),
+        "model_cpu_time_s": json.dumps(per_model_time),
+    })
+    return ds
+
+
+def _as_config(config) -> RunConfig:
+    from ..config import load_config, parse_config
+
+    if isinstance(config, RunConfig):
+        return config
+    if isinstance(config, dict):
+        return parse_config(config)
+    return load_config(config)
+
+
+def _assemble(models, velocities, realizations, pressures, index, results) -> xr.Dataset:
+    shape = (len(models), len(velocities), len(realizations), len(pressures))
+    names = list(RESULT_VARIABLES) + ["max_local_pressure"]
+    data = {k: np.full(shape, np.nan) for k in names}
+    status = np.full(shape, "ok", dtype=object)
+    for (m, iv, ir, ip), res in zip(index, results, strict=True):
+        im = models.index(m)
+        if res is None or str(res.attrs.get("status", "ok")) != "ok":
+            status[im, iv, ir, ip] = ("missing" if res is None
+                                      else str(res.attrs.get("message", "failed")))
+            continue
+        for k in names:
+            if k in res:
+                data[k][im, iv, ir, ip] = float(res[k])
+        if m != "hybrid":
+            data["friction_ls"][im, iv, ir, ip] = float(res["friction"])
+            data["friction_hs"][im, iv, ir, ip] = 0.0
+    dims = ("model", "velocity", "realization", "pressure")
+    ds = xr.Dataset(
+        {k: (dims, data[k], {"units": RESULT_VARIABLES.get(k, ("MPa", ""))[0],
+                             "long_name": RESULT_VARIABLES.get(k, ("", "max local pressure"))[1]})
+         for k in names},
+        coords={"model": list(models),
+                "velocity": ("velocity", velocities, {"units": "mm/s"}),
+                "realization": np.arange(len(realizations)),
+                "pressure": ("pressure", pressures, {"units": "MPa",
+                                                     "long_name": "mean pressure sigma0"})},
+    )
+    ds["status"] = (dims, status.astype(str))
+    n_failed = int((status != "ok").sum())
+    if n_failed:
+        warnings.warn(f"{n_failed} of {status.size} solves failed; see the 'status' variable",
+                      RuntimeWarning, stacklevel=3)
+    for k in ("friction", "contact_fraction", "mean_separation"):
+        ds[f"{k}_mean"] = ds[k].mean("realization")
+        ds[f"{k}_std"] = ds[k].std("realization")
+        ds[f"{k}_mean"].attrs["units"] = ds[f"{k}_std"].attrs["units"] = ds[k].attrs["units"]
+    return ds
+
+
+def _add_profiles(ds: xr.Dataset, index, results) -> xr.Dataset:
+    """Pressure along the surface for realization 0 (paper Fig. 8)."""
+    profiles: dict[str, np.ndarray] = {}
+    for (m, iv, ir, ip), res in zip(index, results, strict=True):
+        if res is None or ir != 0 or "pressure_profile" not in res or m == "fem":
+            continue
+        arr = profiles.setdefault(m, np.full((ds.sizes["velocity"], ds.sizes["pressure"],
+                                              res.sizes["x"]), np.nan))
+        arr[iv, ip] = res["pressure_profile"].values
+        ds = ds.assign_coords(x=("x", res["x"].values, {"units": "mm"}))
+        if "heights" not in ds and m == "vhs":
+            ds["heights"] = ("x", res["heights_profile"].values, {"units": "mm"})
+    for m, arr in profiles.items():
+        ds[f"pressure_profile_{m}"] = (("velocity", "pressure", "x"), arr,
+                                       {"units": "MPa", "long_name": f"{m} contact pressure, "
+                                                                     f"realization 0"})
+    return ds
+
+
+def _at_areas(ds: xr.Dataset, targets: np.ndarray) -> xr.Dataset:
+    """Friction at the target contact areas, per realization, by load-sweep interpolation."""
+    out = np.full((ds.sizes["model"], ds.sizes["velocity"], ds.sizes["realization"],
+                   targets.size), np.nan)
+    for im in range(ds.sizes["model"]):
+        for iv in range(ds.sizes["velocity"]):
+            for ir in range(ds.sizes["realization"]):
+                sel = ds.isel(model=im, velocity=iv, realization=ir)
+                a, mu = sel["contact_fraction"].values, sel["friction"].values
+                ok = np.isfinite(a) & np.isfinite(mu)
+                if ok.sum() >= 2:
+                    out[im, iv, ir] = interpolate_at_areas(a[ok], mu[ok], targets)
+    ds = ds.assign_coords(contact_area=("contact_area", targets,
+                                        {"units": "1", "long_name": "target A_c/A_0"}))
+    dims = ("model", "velocity", "realization", "contact_area")
+    ds["friction_at_area"] = (dims, out, {"units": "1"})
+    ds["friction_at_area_mean"] = ds["friction_at_area"].mean("realization")
+    return ds
+
+
+def _add_errors(ds: xr.Dataset) -> xr.Dataset:
+    """Eq. 28 error of each model against FEM, over the comparison points."""
+    if "fem" not in ds["model"].values:
+        return ds
+    key, dim = (("friction_at_area_mean", "contact_area") if "friction_at_area_mean" in ds
+                else ("friction_mean", "pressure"))
+    others = [m for m in ds["model"].values if m != "fem"]
+    err = np.full((len(others), ds.sizes["velocity"]), np.nan)
+    for i, m in enumerate(others):
+        for iv in range(ds.sizes["velocity"]):
+            ref = ds[key].sel(model="fem").isel(velocity=iv).values
+            cand = ds[key].sel(model=m).isel(velocity=iv).values
+            ok = np.isfinite(ref) & np.isfinite(cand) & (ref != 0)
+            if ok.any():
+                err[i, iv] = mean_relative_error(ref[ok], cand[ok])
+    ds["error_vs_fem"] = (("compared_model", "velocity"), err,
+                          {"units": "1", "long_name": f"eq. 28 mean relative error vs FEM "
+                                                      f"over {dim}"})
+    return ds.assign_coords(compared_model=others)

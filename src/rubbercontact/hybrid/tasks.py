@@ -1,0 +1,111 @@
+"""Pure task functions of the pipeline: plain-data keyword arguments in, ``xarray.Dataset`` out.
+
+They are what the sweep executor ships to workers and what the result cache keys on,
+so they take only serialisable inputs (dicts of numbers) and rebuild the objects here.
+"""
+
+from __future__ import annotations
+
+import time
+
+import numpy as np
+import xarray as xr
+
+from ..materials import GeneralizedMaxwell
+from ..roughness import SineSeries
+
+#: Bump when a change in these task functions changes their answers (part of the cache key).
+TASKS_VERSION = 1
+
+_UNITS = {
+    "friction": "1", "friction_ls": "1", "friction_hs": "1", "contact_fraction": "1",
+    "mean_separation": "mm", "mean_pressure": "MPa", "velocity": "mm/s", "shear_stress": "MPa",
+    "max_local_pressure": "MPa", "wall_time": "s",
+}
+
+
+def _material(material: dict) -> GeneralizedMaxwell:
+    return GeneralizedMaxwell(**material)
+
+
+def _surface(surface: dict) -> SineSeries:
+    return SineSeries(surface["wavelengths"], surface["amplitudes"], surface.get("phases"))
+
+
+def _scalars(values: dict, attrs: dict) -> xr.Dataset:
+    ds = xr.Dataset({k: ((), float(v)) for k, v in values.items()}, attrs=attrs)
+    for k in ds.data_vars:
+        ds[k].attrs["units"] = _UNITS.get(k, "1")
+    return ds
+
+
+def halfspace_law(kind: str, interface_law: dict | None = None, velocity: float | None = None):
+    """The interaction law of a half-space solve.
+
+    ``kind`` is ``"hard-wall"`` (exact complementarity) or ``"lennard-jones"``;
+    ``interface_law`` (a law table as plain data, see :func:`..law.law_table_to_dict`)
+    adds the high-slope law σ_hs(u) with its α_hs(u) and Δτ_hs(u).
+    """
+    from .. import halfspace
+
+    base = None if kind == "hard-wall" else halfspace.LennardJonesRepulsion()
+    if interface_law is None:
+        return base
+    from .law import tabulated_law_from_dict
+
+    table = tabulated_law_from_dict(interface_law)
+    return table if base is None else base + table
+
+
+def halfspace_task(surface: dict, period: float, material: dict, velocity: float,
+                   mean_pressure: float, n: int = 4096, nu: float = 0.5,
+                   law: str = "lennard-jones", interface_law: dict | None = None,
+                   keep_profile: bool = False) -> xr.Dataset:
+    """One steady-sliding half-space solve (VHS model, or the low-slope part of the hybrid)."""
+    from .. import halfspace
+
+    t0 = time.perf_counter()
+    res = halfspace.solve_sliding(_surface(surface), period, _material(material), velocity,
+                                  mean_pressure, law=halfspace_law(law, interface_law, velocity),
+                                  n=n, nu=nu)
+    values = {
+        "friction": res.friction, "friction_ls": res.friction_ls,
+        "friction_hs": res.friction_hs, "contact_fraction": res.contact_fraction,
+        "mean_separation": res.mean_separation, "mean_pressure": mean_pressure,
+        "velocity": velocity, "max_local_pressure": float(np.max(res.pressure)),
+        "iterations": res.iterations, "wall_time": time.perf_counter() - t0,
+    }
+    ds = _scalars(values, {"model": "halfspace", "law": law,
+                           "hybrid": int(interface_law is not None)})
+    if keep_profile:
+        ds["x"] = ("x", np.asarray(res.x), {"units": "mm"})
+        ds["pressure_profile"] = ("x", np.asarray(res.pressure), {"units": "MPa"})
+        ds["heights_profile"] = ("x", np.asarray(res.heights), {"units": "mm"})
+        ds["separation_profile"] = ("x", np.asarray(res.separation), {"units": "mm"})
+    return ds
+
+
+def fem_task(surface: dict, material: dict, velocity: float, mean_pressure: float,
+             mesh: list[int] | tuple[int, int] = (120, 90), height_ratio: float = 0.75,
+             periods: float = 3.0, steps_per_period: int | None = None) -> xr.Dataset:
+    """One FEM micromechanical sliding test (paper §2.4), reduced to its time averages."""
+    from .. import fem
+
+    t0 = time.perf_counter()
+    kwargs = {"mesh": tuple(mesh), "height_ratio": height_ratio, "periods": periods}
+    if steps_per_period is not None:
+        kwargs["steps_per_period"] = steps_per_period
+    out = fem.sliding_test(_surface(surface), _material(material), mean_pressure, velocity,
+                           **kwargs)
+    values = {
+        "friction": out.friction, "shear_stress": out.shear_stress,
+        "contact_fraction": out.contact_fraction, "mean_separation": out.mean_separation,
+        "mean_pressure": mean_pressure, "velocity": velocity,
+        "wall_time": time.perf_counter() - t0,
+    }
+    ds = _scalars(values, {"model": "fem"})
+    prof = out.pressure_profile
+    px, pp = (prof if isinstance(prof, tuple) else (prof["x"], prof["pressure"]))
+    ds["x_fem"] = ("x_fem", np.asarray(px), {"units": "mm"})
+    ds["pressure_profile"] = ("x_fem", np.asarray(pp), {"units": "MPa"})
+    return ds
