@@ -186,6 +186,7 @@ def run(config: RunConfig | dict | str | Path, *, runner: Runner | None = None,
             timings["law"] = time.perf_counter() - t0
         for v in velocities:
             law_tables[float(v)] = law_at_velocity(law, float(v))
+        law = _law_with_vhs(law, hs0, material, cfg, runner)
 
     # -- one task per (model, velocity, realization, pressure) ------------------------
     from ..sweep import Task
@@ -223,7 +224,10 @@ def run(config: RunConfig | dict | str | Path, *, runner: Runner | None = None,
     ds = _add_profiles(ds, index, results)
     per_model_time = {m: float(ds["wall_time"].sel(model=m).sum()) for m in models}
     if law is not None:
-        for k in ("mean_separation", "contact_fraction", "shear_stress", "friction", "status"):
+        for k in ("mean_separation", "contact_fraction", "shear_stress", "friction", "status",
+                  "vhs_friction", "vhs_contact_fraction"):
+            if k not in law:
+                continue
             ds[f"law_{k}"] = law[k].rename(pressure="law_pressure")
         ds = ds.assign_coords(law_pressure=("law_pressure", law["pressure"].values,
                                             {"units": "MPa"}))
@@ -267,6 +271,31 @@ def _as_config(config) -> RunConfig:
     if isinstance(config, dict):
         return parse_config(config)
     return load_config(config)
+
+
+def _law_with_vhs(law: xr.Dataset, hs: SineSeries, material: GeneralizedMaxwell,
+                  cfg: RunConfig, runner: Runner) -> xr.Dataset:
+    """Add the VHS friction of the high-slope wave alone at the law's pressures (Fig. 7)."""
+    from ..sweep import Task
+
+    tasks = [Task(function="rubbercontact.hybrid.tasks:halfspace_task",
+                  kwargs={"surface": hs.as_dict(), "period": hs.period,
+                          "material": material.as_dict(), "velocity": float(v),
+                          "mean_pressure": float(p), "n": min(cfg.halfspace.n, 4096),
+                          "nu": cfg.material.nu, "law": cfg.halfspace.law},
+                  label=f"vhs on z_hs v={v:g} p={p:.4g}")
+             for v in law["velocity"].values for p in law["pressure"].values]
+    res = runner(tasks)
+    mu = np.full((law.sizes["velocity"], law.sizes["pressure"]), np.nan)
+    area = np.full_like(mu, np.nan)
+    for k, r in enumerate(res):
+        if r is not None and str(r.attrs.get("status", "ok")) == "ok":
+            mu.flat[k], area.flat[k] = float(r["friction"]), float(r["contact_fraction"])
+    law = law.copy()
+    law["vhs_friction"] = (("velocity", "pressure"), mu,
+                           {"units": "1", "long_name": "VHS friction on z_hs alone"})
+    law["vhs_contact_fraction"] = (("velocity", "pressure"), area, {"units": "1"})
+    return law
 
 
 def _assemble(models, velocities, realizations, pressures, index, results) -> xr.Dataset:
