@@ -1,0 +1,282 @@
+"""Content-addressed result cache: one NetCDF file per task result.
+
+Layout under the cache directory::
+
+    <dir>/sweep-v1/<key[:2]>/<key>.nc          successful result
+    <dir>/sweep-v1/<key[:2]>/<key>.failed.nc   recorded failure (no data variables)
+
+``key`` is the task's SHA-256 key (:func:`~rubbercontact.sweep.tasks.task_key`).
+Each file carries, as global attributes prefixed ``rc_cache_``: the key, the task
+description (canonical JSON), the status, the wall time of the computation, the
+numerics version, the creation time and a SHA-256 checksum of all its variables
+(names, dimensions, dtypes and values). Files are written atomically
+(:func:`~rubbercontact.io.atomic.write_netcdf_atomic`). On reading, an
+unreadable file, a key that does not match the file name or a checksum
+mismatch marks the entry as corrupt: it is deleted and the task recomputed,
+never returned as a result. No pickle anywhere.
+
+The directory is, in order of precedence: the ``directory`` argument (``--cache
+DIR``), the environment variable ``RUBBERCONTACT_CACHE``, or
+``platformdirs.user_cache_dir("rubbercontact")``.
+"""
+
+from __future__ import annotations
+
+import contextlib
+import hashlib
+import json
+import logging
+import os
+import time
+from dataclasses import dataclass
+from pathlib import Path
+from typing import Any
+
+import numpy as np
+import xarray as xr
+
+from ..errors import InputError
+from ..io.atomic import TEMP_SUFFIX, write_netcdf_atomic
+from .results import TaskFailure
+from .tasks import NUMERICS_VERSION, Task
+
+__all__ = ["CacheEntry", "CacheInfo", "ResultCache", "dataset_checksum", "default_cache_dir"]
+
+log = logging.getLogger(__name__)
+
+ENV_CACHE = "RUBBERCONTACT_CACHE"
+_FORMAT_DIR = "sweep-v1"
+_PREFIX = "rc_cache_"
+_FAILED_SUFFIX = ".failed.nc"
+
+
+def default_cache_dir() -> Path:
+    """``$RUBBERCONTACT_CACHE`` if set, else the platform's user cache directory."""
+    env = os.environ.get(ENV_CACHE)
+    if env:
+        return Path(env).expanduser()
+    import platformdirs
+
+    return Path(platformdirs.user_cache_dir("rubbercontact"))
+
+
+def dataset_checksum(dataset: xr.Dataset) -> str:
+    """SHA-256 over every variable (data and coordinates) of ``dataset``.
+
+    Covers names, dimensions, dtypes, shapes and values; not attributes (NetCDF
+    changes their Python types on a round trip). Strings are hashed as text so
+    that ``<U`` and ``object`` arrays of the same strings agree; NaNs are
+    canonicalised so their bit payload does not matter.
+    """
+    h = hashlib.sha256()
+    for name in sorted(map(str, dataset.variables)):
+        var = dataset.variables[name]
+        values = np.asarray(var.values)
+        h.update(json.dumps([name, list(map(str, var.dims)), list(values.shape)]).encode())
+        if values.dtype.kind in "OUS":
+            h.update(b"str")
+            h.update(json.dumps([str(v) for v in values.ravel().tolist()]).encode())
+        else:
+            h.update(values.dtype.str.encode())
+            data = np.ascontiguousarray(values)
+            if data.dtype.kind in "fc":
+                data = np.where(np.isnan(data), np.nan, data).astype(values.dtype)
+            h.update(data.tobytes())
+    return h.hexdigest()
+
+
+@dataclass
+class CacheEntry:
+    """A valid entry read from the cache."""
+
+    key: str
+    status: str  # "ok" or "failed"
+    result: xr.Dataset | TaskFailure
+    wall_time: float
+    path: Path
+
+
+@dataclass
+class CacheInfo:
+    """Summary of a cache directory (``rubbercontact cache info``)."""
+
+    location: Path
+    n_entries: int
+    n_failed: int
+    n_temporary: int
+    size_bytes: int
+
+    def __str__(self) -> str:
+        return (f"location:  {self.location}\n"
+                f"entries:   {self.n_entries} ({self.n_entries - self.n_failed} ok, "
+                f"{self.n_failed} failed)\n"
+                f"size:      {self.size_bytes / 1e6:.2f} MB\n"
+                f"temporary: {self.n_temporary} (interrupted writes; removed by clear)")
+
+
+class ResultCache:
+    """Content-addressed store of task results.
+
+    Parameters
+    ----------
+    directory
+        Cache root; default ``$RUBBERCONTACT_CACHE`` or the user cache directory.
+        Created on first write.
+    """
+
+    def __init__(self, directory: str | os.PathLike[str] | None = None) -> None:
+        root = default_cache_dir() if directory is None else Path(directory).expanduser()
+        if root.exists() and not root.is_dir():
+            raise InputError(f"cache: {str(root)!r} exists and is not a directory")
+        self.directory = root
+        #: Entries found corrupt (and deleted) by this object so far.
+        self.n_corrupt = 0
+
+    def __repr__(self) -> str:
+        return f"ResultCache({str(self.directory)!r})"
+
+    # -- paths ------------------------------------------------------------------------
+    @property
+    def _root(self) -> Path:
+        return self.directory / _FORMAT_DIR
+
+    def path_for(self, key: str, failed: bool = False) -> Path:
+        """File of the entry ``key`` (successful or failed variant)."""
+        return self._root / key[:2] / (key + (_FAILED_SUFFIX if failed else ".nc"))
+
+    def _files(self) -> list[Path]:
+        if not self._root.is_dir():
+            return []
+        return [p for p in self._root.glob("*/*.nc") if not p.name.startswith(".")]
+
+    def _temporaries(self) -> list[Path]:
+        if not self._root.is_dir():
+            return []
+        return list(self._root.glob(f"*/.*{TEMP_SUFFIX}"))
+
+    # -- read -------------------------------------------------------------------------
+    def load(self, key: str) -> CacheEntry | None:
+        """The valid entry for ``key``, or None (missing, or corrupt and now deleted)."""
+        for failed in (False, True):
+            path = self.path_for(key, failed)
+            if not path.exists():
+                continue
+            entry = self._read(key, path)
+            if entry is not None:
+                return entry
+        return None
+
+    def _read(self, key: str, path: Path) -> CacheEntry | None:
+        try:
+            ds = xr.load_dataset(path, engine="netcdf4")
+            attrs = ds.attrs
+            problem = None
+            if attrs.get(_PREFIX + "key") != key:
+                problem = f"key attribute {attrs.get(_PREFIX + 'key')!r} does not match"
+            elif attrs.get(_PREFIX + "status") not in ("ok", "failed"):
+                problem = f"unknown status {attrs.get(_PREFIX + 'status')!r}"
+            elif attrs.get(_PREFIX + "checksum") != dataset_checksum(ds):
+                problem = "checksum mismatch"
+        except Exception as exc:  # noqa: BLE001 - any unreadable file is a corrupt entry
+            problem = f"unreadable ({type(exc).__name__}: {exc})"
+        if problem is not None:
+            self._discard(path, problem)
+            return None
+        status = str(attrs[_PREFIX + "status"])
+        wall_time = float(attrs.get(_PREFIX + "wall_time_s", 0.0))
+        if status == "failed":
+            try:
+                diagnostics = json.loads(str(attrs.get(_PREFIX + "diagnostics", "{}")))
+            except json.JSONDecodeError:
+                diagnostics = {"raw": str(attrs.get(_PREFIX + "diagnostics"))}
+            result: xr.Dataset | TaskFailure = TaskFailure(
+                message=str(attrs.get(_PREFIX + "message", "")),
+                error_type=str(attrs.get(_PREFIX + "error_type", "Exception")),
+                diagnostics=diagnostics,
+                traceback=str(attrs.get(_PREFIX + "traceback", "")),
+                wall_time=wall_time, cached=True)
+        else:
+            ds.attrs = {k: v for k, v in ds.attrs.items() if not k.startswith(_PREFIX)}
+            result = ds
+        return CacheEntry(key, status, result, wall_time, path)
+
+    def _discard(self, path: Path, problem: str) -> None:
+        self.n_corrupt += 1
+        log.warning("cache entry %s is corrupt (%s): deleted, will be recomputed", path, problem)
+        with contextlib.suppress(FileNotFoundError):
+            path.unlink()
+
+    def __contains__(self, key: str) -> bool:
+        return self.load(key) is not None
+
+    # -- write ------------------------------------------------------------------------
+    def store(self, key: str, task: Task, result: xr.Dataset | TaskFailure,
+              wall_time: float) -> Path:
+        """Write the entry for ``key`` atomically and return its path.
+
+        A successful result replaces a recorded failure of the same key and vice
+        versa. Raises whatever NetCDF raises if ``result`` cannot be stored
+        (e.g. complex variables or ``bool`` attributes).
+        """
+        failed = isinstance(result, TaskFailure)
+        if failed:
+            ds = xr.Dataset()
+            extra: dict[str, Any] = {_PREFIX + k: v for k, v in result.to_attrs().items()}
+        elif isinstance(result, xr.Dataset):
+            ds = result.copy(deep=False)
+            extra = {}
+        else:
+            raise TypeError(f"result: expected xarray.Dataset or TaskFailure, "
+                            f"got {type(result).__name__}")
+        ds.attrs = {**ds.attrs, **extra,
+                    _PREFIX + "key": key,
+                    _PREFIX + "status": "failed" if failed else "ok",
+                    _PREFIX + "task": task.describe(),
+                    _PREFIX + "label": task.label,
+                    _PREFIX + "wall_time_s": float(wall_time),
+                    _PREFIX + "numerics_version": NUMERICS_VERSION,
+                    _PREFIX + "created": time.strftime("%Y-%m-%dT%H:%M:%SZ", time.gmtime()),
+                    _PREFIX + "checksum": dataset_checksum(ds)}
+        path = self.path_for(key, failed)
+        path.parent.mkdir(parents=True, exist_ok=True)
+        # Overwrite: the same key means the same answer, whichever concurrent writer wins.
+        write_netcdf_atomic(ds, path, overwrite=True)
+        with contextlib.suppress(FileNotFoundError):
+            self.path_for(key, not failed).unlink()
+        return path
+
+    # -- maintenance ------------------------------------------------------------------
+    def info(self) -> CacheInfo:
+        """Location, number of entries (and failed ones), size on disk, stray temp files."""
+        files = self._files()
+        temps = self._temporaries()
+        size = 0
+        for p in files + temps:
+            with contextlib.suppress(FileNotFoundError):
+                size += p.stat().st_size
+        n_failed = sum(p.name.endswith(_FAILED_SUFFIX) for p in files)
+        return CacheInfo(self.directory, len(files), n_failed, len(temps), size)
+
+    def clear(self, failed_only: bool = False) -> int:
+        """Delete entries (only recorded failures if ``failed_only``) and stray temp files.
+
+        Returns
+        -------
+        int
+            Number of entries deleted (temporary files not counted).
+        """
+        n = 0
+        for p in self._files():
+            if failed_only and not p.name.endswith(_FAILED_SUFFIX):
+                continue
+            with contextlib.suppress(FileNotFoundError):
+                p.unlink()
+                n += 1
+        for p in self._temporaries():
+            with contextlib.suppress(FileNotFoundError):
+                p.unlink()
+        if self._root.is_dir():
+            for sub in self._root.iterdir():
+                with contextlib.suppress(OSError):
+                    sub.rmdir()  # only succeeds when empty
+        return n

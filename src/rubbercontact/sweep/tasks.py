@@ -1,0 +1,214 @@
+"""Task descriptions and their content-addressed keys.
+
+A :class:`Task` names a pure function by import path (``"package.module:function"``)
+and gives its keyword arguments as plain data, so a task can be sent to any
+Dask worker that has rubbercontact installed and stored next to its result.
+
+Cache key
+---------
+``key = SHA-256( canonical JSON of {"function", "kwargs", "numerics_version",
+"function_version"} )`` where
+
+* ``function`` is the import path string;
+* ``kwargs`` is canonicalised (:func:`canonical`): dict keys are sorted, tuples
+  and numpy arrays become lists, numpy scalars become Python numbers, and every
+  number is written with a type tag so that the key distinguishes ``1``
+  (int), ``1.0`` (float) and ``True`` (bool). Floats are written with
+  ``repr`` (shortest round-trip form), so two floats give the same key exactly
+  when they are the same IEEE double (``0.0`` and ``-0.0`` differ; all NaNs are
+  equal). *Why not fold ints into floats?* A false cache hit silently returns
+  a wrong answer, while a spurious miss only costs one recomputation; configs
+  coerced by pydantic have consistent types anyway.
+* ``numerics_version`` is :data:`NUMERICS_VERSION`: bump it whenever a change
+  in the package changes computed answers, so every old entry becomes a miss.
+* ``function_version`` is the task function's optional ``cache_version``
+  attribute (``my_kernel.cache_version = "2"``): bump it when only that kernel
+  changes.
+
+Whatever is *not* in the key must not change the answer: task functions must
+treat a tuple and a list alike, and must not read files, clocks or globals
+that are not in their arguments.
+"""
+
+from __future__ import annotations
+
+import hashlib
+import importlib
+import json
+import math
+import re
+from collections.abc import Callable, Mapping
+from dataclasses import dataclass, field
+from typing import Any
+
+import numpy as np
+
+from ..errors import InputError
+
+__all__ = ["NUMERICS_VERSION", "Task", "canonical", "canonical_json", "resolve_function",
+           "task_key"]
+
+#: Version of the package's numerics. Bump it (and say why in the commit) whenever a change
+#: makes any computed answer differ; every cache entry then becomes a miss.
+NUMERICS_VERSION = "1"
+
+_PATH_RE = re.compile(r"^[A-Za-z_][\w.]*:[A-Za-z_]\w*$")
+
+
+def canonical(value: Any, where: str = "kwargs") -> Any:
+    """Plain-data value in canonical, type-tagged, JSON-ready form.
+
+    Parameters
+    ----------
+    value
+        ``None``, bool, int, float, str, numpy scalar or array, list/tuple, or a
+        dict with string keys, nested arbitrarily.
+    where
+        Name of the field, used in error messages (``kwargs['surface'][2]``).
+
+    Returns
+    -------
+    Any
+        ``None``/str unchanged; numbers as ``{"b": ...}``, ``{"i": "..."}`` or
+        ``{"f": repr}``; sequences as lists; dicts as dicts (sorted on dump).
+
+    Raises
+    ------
+    InputError
+        A value that is not plain data (object, set, complex, bytes, ...) or a
+        dict key that is not a string.
+    """
+    if value is None or isinstance(value, str):
+        return value
+    if isinstance(value, (bool, np.bool_)):
+        return {"b": bool(value)}
+    if isinstance(value, (int, np.integer)):
+        # A string keeps arbitrary-size ints exact (JSON readers may round big numbers).
+        return {"i": str(int(value))}
+    if isinstance(value, (float, np.floating)):
+        x = float(value)
+        return {"f": "nan" if math.isnan(x) else repr(x)}
+    if isinstance(value, np.ndarray):
+        if value.dtype.kind not in "biufU":
+            raise InputError(f"{where}: numpy arrays of dtype {value.dtype} are not "
+                             f"supported in task arguments (use real numbers or strings)")
+        return [canonical(v, f"{where}[{i}]") for i, v in enumerate(value.tolist())]
+    if isinstance(value, (list, tuple)):
+        return [canonical(v, f"{where}[{i}]") for i, v in enumerate(value)]
+    if isinstance(value, Mapping):
+        out = {}
+        for k, v in value.items():
+            if not isinstance(k, str):
+                raise InputError(f"{where}: dict keys must be strings, got {k!r} "
+                                 f"({type(k).__name__})")
+            out[k] = canonical(v, f"{where}[{k!r}]")
+        return out
+    raise InputError(f"{where}: {type(value).__name__} value {value!r:.80} is not plain data; "
+                     f"task arguments must be numbers, strings, None, lists or dicts")
+
+
+def canonical_json(value: Any) -> str:
+    """Canonical JSON text of ``value`` (see :func:`canonical`): sorted keys, no spaces."""
+    return json.dumps(canonical(value), sort_keys=True, separators=(",", ":"),
+                      ensure_ascii=True, allow_nan=False)
+
+
+def resolve_function(path: str) -> Callable[..., Any]:
+    """Import ``"package.module:function"`` and return the function.
+
+    Raises
+    ------
+    InputError
+        Malformed path, missing module or missing attribute.
+    """
+    if not isinstance(path, str) or not _PATH_RE.match(path):
+        raise InputError(f"function: expected 'package.module:function', got {path!r}")
+    module_name, func_name = path.split(":")
+    try:
+        module = importlib.import_module(module_name)
+    except ModuleNotFoundError as exc:
+        raise InputError(f"function: cannot import module {module_name!r} of {path!r}: "
+                         f"{exc}") from exc
+    func = getattr(module, func_name, None)
+    if func is None or not callable(func):
+        raise InputError(f"function: module {module_name!r} has no function {func_name!r}")
+    return func
+
+
+def task_key(function: str, kwargs: Mapping[str, Any], *,
+             numerics_version: str = NUMERICS_VERSION,
+             function_version: str | None = None) -> str:
+    """SHA-256 hex digest identifying the answer of ``function(**kwargs)``.
+
+    Parameters
+    ----------
+    function
+        Import path ``"package.module:function"``.
+    kwargs
+        Keyword arguments (plain data).
+    numerics_version
+        Package numerics version (default :data:`NUMERICS_VERSION`).
+    function_version
+        Optional per-function version (the function's ``cache_version``).
+    """
+    payload = {
+        "function": function,
+        "kwargs": kwargs,
+        "numerics_version": str(numerics_version),
+        "function_version": None if function_version is None else str(function_version),
+    }
+    return hashlib.sha256(canonical_json(payload).encode("ascii")).hexdigest()
+
+
+@dataclass(frozen=True)
+class Task:
+    """One unit of work: ``function(**kwargs)`` returning an ``xarray.Dataset``.
+
+    Parameters
+    ----------
+    function
+        Import path ``"package.module:function"`` of a pure function taking
+        keyword arguments and returning an :class:`xarray.Dataset`.
+    kwargs
+        Keyword arguments as plain data (numbers, strings, None, lists/tuples,
+        numpy arrays of numbers, dicts with string keys).
+    label
+        Human-readable name for progress and failure reports (not in the key).
+
+    Raises
+    ------
+    InputError
+        Malformed function path or non-plain-data arguments.
+    """
+
+    function: str
+    kwargs: Mapping[str, Any] = field(default_factory=dict)
+    label: str = ""
+
+    def __post_init__(self) -> None:
+        if not isinstance(self.function, str) or not _PATH_RE.match(self.function):
+            raise InputError(f"function: expected 'package.module:function', "
+                             f"got {self.function!r}")
+        if not isinstance(self.kwargs, Mapping):
+            raise InputError(f"kwargs: expected a dict of keyword arguments, "
+                             f"got {type(self.kwargs).__name__}")
+        canonical(self.kwargs)  # fail early, with the field named, on non-plain data
+        if not isinstance(self.label, str):
+            raise InputError(f"label: expected a string, got {self.label!r}")
+
+    def key(self, numerics_version: str = NUMERICS_VERSION) -> str:
+        """Content-addressed cache key (imports the function to read ``cache_version``)."""
+        func = resolve_function(self.function)
+        version = getattr(func, "cache_version", None)
+        return task_key(self.function, self.kwargs, numerics_version=numerics_version,
+                        function_version=version)
+
+    def describe(self) -> str:
+        """Canonical JSON description stored with the cached result."""
+        return json.dumps({"function": self.function, "kwargs": canonical(self.kwargs),
+                           "label": self.label}, sort_keys=True, separators=(",", ":"))
+
+    @property
+    def name(self) -> str:
+        """The label, or the function name when there is none."""
+        return self.label or self.function.split(":")[1]
