@@ -132,6 +132,11 @@ class ResultCache:
         #: Entries found corrupt (and deleted) by this object so far.
         self.n_corrupt = 0
 
+    @classmethod
+    def default(cls) -> ResultCache:
+        """The cache in ``$RUBBERCONTACT_CACHE`` or the user cache directory."""
+        return cls(None)
+
     def __repr__(self) -> str:
         return f"ResultCache({str(self.directory)!r})"
 

@@ -44,7 +44,7 @@ from ..errors import ConvergenceError, InputError
 from .cache import ResultCache
 from .progress import make_reporter
 from .results import SweepResult, TaskFailure, jsonable
-from .tasks import Task, resolve_function, task_key
+from .tasks import Task, function_version, resolve_function, task_key
 
 __all__ = ["ENV_SCHEDULER", "THREAD_ENV", "ExecutorConfig", "run_sweep"]
 
@@ -243,7 +243,7 @@ def run_sweep(tasks: Sequence[Task], cache: ResultCache | None = None,
     keys = []
     for t in tasks:
         if t.function not in versions:
-            versions[t.function] = getattr(resolve_function(t.function), "cache_version", None)
+            versions[t.function] = function_version(t.function)
         keys.append(task_key(t.function, t.kwargs, function_version=versions[t.function]))
     result = SweepResult._empty(tasks, keys)
     first: dict[str, int] = {}  # key -> index of the first task with that key

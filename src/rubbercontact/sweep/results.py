@@ -132,9 +132,10 @@ class SweepResult:
         return [(t, r) for t, r in zip(self.tasks, self.results, strict=True)
                 if isinstance(r, TaskFailure)]
 
-    def datasets(self) -> list[xr.Dataset]:
-        """The successful results only, in task order."""
-        return [r for r in self.results if isinstance(r, xr.Dataset)]
+    @property
+    def datasets(self) -> list[xr.Dataset | None]:
+        """Per task its dataset, or None where it failed (aligned with ``tasks``)."""
+        return [r if isinstance(r, xr.Dataset) else None for r in self.results]
 
     def summary(self) -> str:
         """Multi-line human-readable summary listing each failure."""

@@ -22,8 +22,8 @@ Cache key
 * ``numerics_version`` is :data:`NUMERICS_VERSION`: bump it whenever a change
   in the package changes computed answers, so every old entry becomes a miss.
 * ``function_version`` is the task function's optional ``cache_version``
-  attribute (``my_kernel.cache_version = "2"``): bump it when only that kernel
-  changes.
+  attribute (``my_kernel.cache_version = "2"``), else its module's
+  ``CACHE_VERSION`` constant, else None: bump it when only that kernel changes.
 
 Whatever is *not* in the key must not change the answer: task functions must
 treat a tuple and a list alike, and must not read files, clocks or globals
@@ -45,8 +45,8 @@ import numpy as np
 
 from ..errors import InputError
 
-__all__ = ["NUMERICS_VERSION", "Task", "canonical", "canonical_json", "resolve_function",
-           "task_key"]
+__all__ = ["NUMERICS_VERSION", "Task", "canonical", "canonical_json", "function_version",
+           "resolve_function", "task_key"]
 
 #: Version of the package's numerics. Bump it (and say why in the commit) whenever a change
 #: makes any computed answer differ; every cache entry then becomes a miss.
@@ -135,6 +135,16 @@ def resolve_function(path: str) -> Callable[..., Any]:
     return func
 
 
+def function_version(path: str) -> str | None:
+    """Per-function version of ``path``: its ``cache_version`` attribute, else its
+    module's ``CACHE_VERSION``, else None (imports the function)."""
+    func = resolve_function(path)
+    version = getattr(func, "cache_version", None)
+    if version is None:
+        version = getattr(importlib.import_module(path.split(":")[0]), "CACHE_VERSION", None)
+    return None if version is None else str(version)
+
+
 def task_key(function: str, kwargs: Mapping[str, Any], *,
              numerics_version: str = NUMERICS_VERSION,
              function_version: str | None = None) -> str:
@@ -198,10 +208,8 @@ class Task:
 
     def key(self, numerics_version: str = NUMERICS_VERSION) -> str:
         """Content-addressed cache key (imports the function to read ``cache_version``)."""
-        func = resolve_function(self.function)
-        version = getattr(func, "cache_version", None)
         return task_key(self.function, self.kwargs, numerics_version=numerics_version,
-                        function_version=version)
+                        function_version=function_version(self.function))
 
     def describe(self) -> str:
         """Canonical JSON description stored with the cached result."""

@@ -1,0 +1,47 @@
+"""``rubbercontact cache info|clear``: inspect or empty the sweep result cache."""
+
+from __future__ import annotations
+
+from pathlib import Path
+
+import typer
+
+app = typer.Typer(no_args_is_help=True, add_completion=False,
+                  help="Inspect or clear the result cache.")
+
+_CACHE_HELP = ("Cache directory (default: $RUBBERCONTACT_CACHE, else the user cache "
+               "directory).")
+
+
+def _cache(directory: Path | None):
+    from ..sweep.cache import ResultCache
+
+    return ResultCache(directory)
+
+
+@app.command("info")
+def info(cache: Path | None = typer.Option(None, "--cache", help=_CACHE_HELP)) -> None:
+    """Location, number of entries (ok / failed), size on disk, interrupted writes."""
+    typer.echo(str(_cache(cache).info()))
+
+
+@app.command("clear")
+def clear(cache: Path | None = typer.Option(None, "--cache", help=_CACHE_HELP),
+          failed_only: bool = typer.Option(False, "--failed-only",
+                                           help="Delete only recorded failures, so that the "
+                                                "next run recomputes them."),
+          yes: bool = typer.Option(False, "--yes", "-y", help="Do not ask for confirmation.")
+          ) -> None:
+    """Delete cached results (all, or only failed ones) and interrupted writes."""
+    store = _cache(cache)
+    info = store.info()
+    n = info.n_failed if failed_only else info.n_entries
+    what = "failed entries" if failed_only else "entries"
+    if n == 0 and info.n_temporary == 0:
+        typer.echo(f"nothing to delete in {store.directory}")
+        return
+    if not yes and not typer.confirm(f"delete {n} {what} from {store.directory}?"):
+        typer.echo("aborted; nothing deleted")
+        raise typer.Exit(1)
+    deleted = store.clear(failed_only=failed_only)
+    typer.echo(f"deleted {deleted} {what} from {store.directory}")
