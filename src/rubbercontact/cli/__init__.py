@@ -69,6 +69,17 @@ def _register() -> None:
 _register()
 
 
+def _write_crash_report(exc: BaseException) -> str:
+    """Save the traceback of an internal failure; return where it went."""
+    import tempfile
+    import traceback
+
+    fd, path = tempfile.mkstemp(prefix="rubbercontact-crash-", suffix=".log")
+    with open(fd, "w") as fh:
+        fh.write("".join(traceback.format_exception(exc)))
+    return path
+
+
 def main(argv: list[str] | None = None) -> int:
     """Console-script entry point; returns the process exit code."""
     debug = "--debug" in (argv if argv is not None else sys.argv[1:])
@@ -89,20 +100,20 @@ def main(argv: list[str] | None = None) -> int:
     except KeyboardInterrupt:
         typer.echo("interrupted", err=True)
         return 130
-    except Exception as exc:  # noqa: BLE001 - click usage errors and internal failures
-        import click
-
-        if isinstance(exc, click.exceptions.Exit):
-            return exc.exit_code
-        if isinstance(exc, click.ClickException):
+    except Exception as exc:  # noqa: BLE001 - usage errors and internal failures
+        # typer vendors its own click: recognise its exceptions by behaviour, not by class.
+        if type(exc).__name__ == "Exit" and hasattr(exc, "exit_code"):
+            return int(exc.exit_code)
+        if hasattr(exc, "show") and hasattr(exc, "exit_code"):
             exc.show()
-            return 2
-        if isinstance(exc, click.exceptions.Abort):
+            return int(exc.exit_code)
+        if type(exc).__name__ == "Abort":
             return 1
         if debug:
             raise
-        typer.echo(f"error: internal failure: {type(exc).__name__}: {exc} "
-                   f"(re-run with --debug for the traceback)", err=True)
+        log = _write_crash_report(exc)
+        typer.echo(f"error: internal failure: {type(exc).__name__}: {exc} (details: {log}; "
+                   f"re-run with --debug for the traceback)", err=True)
         return 1
     return 0
 
