@@ -50,10 +50,9 @@ def effective_law(hs_surface: SineSeries, material: GeneralizedMaxwell,
     mesh, height_ratio, periods, steps_per_period
         FEM options (see :func:`rubbercontact.fem.sliding_test`).
     runner
-        Callable ``runner(tasks) -> list[xr.Dataset | None]`` executing
-        :class:`~rubbercontact.sweep.Task` objects (failed tasks give ``None`` or a
-        dataset with ``status != "ok"``); default: the package's sweep executor
-        without cache.
+        Callable ``runner(tasks) -> list`` executing :class:`~rubbercontact.sweep.Task`
+        objects, returning per task an ``xr.Dataset`` or a failure record;
+        default: the package's sweep executor without cache.
 
     Returns
     -------
@@ -86,7 +85,7 @@ def effective_law(hs_surface: SineSeries, material: GeneralizedMaxwell,
 def _default_runner(tasks):
     from ..sweep import run_sweep
 
-    return run_sweep(tasks, cache=None).datasets
+    return run_sweep(tasks, cache=None).results
 
 
 def assemble_law(results, pressures, velocities, hs_surface: SineSeries,
@@ -98,9 +97,8 @@ def assemble_law(results, pressures, velocities, hs_surface: SineSeries,
     status = np.full(shape, "ok", dtype=object)
     for idx, ds in enumerate(results):
         i, j = divmod(idx, len(pressures))
-        st = "missing result" if ds is None else str(ds.attrs.get("status", "ok"))
-        if ds is None or st != "ok":
-            status[i, j] = st if ds is None else str(ds.attrs.get("message", st))
+        if not isinstance(ds, xr.Dataset):
+            status[i, j] = "missing result" if ds is None else str(ds)
             continue
         for k in names:
             data[k][i, j] = float(ds[k])

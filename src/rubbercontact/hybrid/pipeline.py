@@ -33,7 +33,15 @@ from ..roughness import SineSeries, presets
 from .law import check_coverage, effective_law, law_at_velocity
 from .metrics import interpolate_at_areas, mean_relative_error
 
+#: Executes a list of sweep tasks; returns per task an ``xr.Dataset`` or a failure record.
 Runner = Callable[[list], list]
+
+
+def failure_message(res) -> str | None:
+    """``None`` for a successful task result, else why it failed (one line)."""
+    if isinstance(res, xr.Dataset):
+        return None
+    return "missing result" if res is None else str(res)
 
 #: Result variables produced per (model, velocity, realization, pressure).
 RESULT_VARIABLES = {
@@ -79,17 +87,6 @@ def build_surface(cfg: RunConfig) -> tuple[SineSeries, dict]:
     return series, info
 
 
-def _sequential_runner(tasks: list) -> list:
-    """Run tasks in this process, recording failures as ``None`` (used without Dask)."""
-    import importlib
-
-    out = []
-    for t in tasks:
-        module, name = t.function.split(":")
-        out.append(getattr(importlib.import_module(module), name)(**t.kwargs))
-    return out
-
-
 def make_runner(cfg: RunConfig, progress: bool | str = "auto") -> Runner:
     """A runner backed by the sweep executor and result cache of the config."""
     from ..sweep import ExecutorConfig, ResultCache, run_sweep
@@ -100,8 +97,7 @@ def make_runner(cfg: RunConfig, progress: bool | str = "auto") -> Runner:
                               scheduler=ex.scheduler)
 
     def runner(tasks: list) -> list:
-        result = run_sweep(tasks, cache=cache, executor=executor, progress=progress)
-        return result.datasets
+        return run_sweep(tasks, cache=cache, executor=executor, progress=progress).results
 
     return runner
 
@@ -289,7 +285,7 @@ def _law_with_vhs(law: xr.Dataset, hs: SineSeries, material: GeneralizedMaxwell,
     mu = np.full((law.sizes["velocity"], law.sizes["pressure"]), np.nan)
     area = np.full_like(mu, np.nan)
     for k, r in enumerate(res):
-        if r is not None and str(r.attrs.get("status", "ok")) == "ok":
+        if failure_message(r) is None:
             mu.flat[k], area.flat[k] = float(r["friction"]), float(r["contact_fraction"])
     law = law.copy()
     law["vhs_friction"] = (("velocity", "pressure"), mu,
@@ -305,9 +301,9 @@ def _assemble(models, velocities, realizations, pressures, index, results) -> xr
     status = np.full(shape, "ok", dtype=object)
     for (m, iv, ir, ip), res in zip(index, results, strict=True):
         im = models.index(m)
-        if res is None or str(res.attrs.get("status", "ok")) != "ok":
-            status[im, iv, ir, ip] = ("missing" if res is None
-                                      else str(res.attrs.get("message", "failed")))
+        msg = failure_message(res)
+        if msg is not None:
+            status[im, iv, ir, ip] = msg
             continue
         for k in names:
             if k in res:
@@ -342,7 +338,7 @@ def _add_profiles(ds: xr.Dataset, index, results) -> xr.Dataset:
     """Pressure along the surface for realization 0 (paper Fig. 8)."""
     profiles: dict[str, np.ndarray] = {}
     for (m, iv, ir, ip), res in zip(index, results, strict=True):
-        if res is None or ir != 0 or "pressure_profile" not in res or m == "fem":
+        if failure_message(res) or ir != 0 or "pressure_profile" not in res or m == "fem":
             continue
         arr = profiles.setdefault(m, np.full((ds.sizes["velocity"], ds.sizes["pressure"],
                                               res.sizes["x"]), np.nan))
