@@ -1,0 +1,103 @@
+"""FFT surface response of a linear (visco)elastic half-space: plain functions on arrays.
+
+Conventions (shared with :mod:`rubbercontact.halfspace.solver`): a periodic field ``f`` sampled on
+``n`` points per axis is expanded as ``f(x) = Σ_q f(q) exp(+i q·x)`` (numpy/scipy ``irfftn``), the
+last axis is the sliding direction ``x``. The half-space surface response is
+
+``w(q) = M(q) σ(q)``, ``M(q) = 2 / (|q| E_r(q_x v))``, ``E_r = E(ω)/(1 − ν²)``,
+
+and the ``q = 0`` entry of every kernel is 0 (the mean separation carries the mean). All arrays
+live on the ``rfftn`` half-grid, where ``q_x >= 0``.
+"""
+
+from __future__ import annotations
+
+import numpy as np
+import scipy.fft as sfft
+
+from ..materials.maxwell import GeneralizedMaxwell
+
+__all__ = ["wavevectors", "response_kernel", "stiffness_kernel", "apply_kernel", "forward",
+           "inverse", "derivative_x"]
+
+
+def forward(field: np.ndarray) -> np.ndarray:
+    """Real-to-complex FFT over all axes (``rfftn``, one thread)."""
+    return sfft.rfftn(field, workers=1)
+
+
+def inverse(spectrum: np.ndarray, shape: tuple[int, ...]) -> np.ndarray:
+    """Inverse of :func:`forward` back to a real field of ``shape``."""
+    return sfft.irfftn(spectrum, s=shape, workers=1)
+
+
+def wavevectors(shape: tuple[int, ...], lengths: tuple[float, ...]) -> tuple[np.ndarray,
+                                                                              np.ndarray]:
+    """Wavevector magnitude ``|q|`` and sliding component ``q_x`` [1/mm] on the rfft half-grid.
+
+    Parameters
+    ----------
+    shape
+        Grid shape ``(n,)`` or ``(ny, nx)``; ``x`` is the last axis.
+    lengths
+        Periodic lengths [mm], one per axis.
+    """
+    qs = []
+    for i, (n, length) in enumerate(zip(shape, lengths, strict=True)):
+        d = length / n
+        if i == len(shape) - 1:
+            qs.append(2 * np.pi * sfft.rfftfreq(n, d))
+        else:
+            qs.append(2 * np.pi * sfft.fftfreq(n, d))
+    grids = np.meshgrid(*qs, indexing="ij")
+    qabs = np.sqrt(sum(g**2 for g in grids))
+    return qabs, grids[-1]
+
+
+def response_kernel(material: GeneralizedMaxwell, shape: tuple[int, ...],
+                    lengths: tuple[float, ...], velocity: float, nu: float = 0.5) -> np.ndarray:
+    """Surface compliance ``M(q) = 2/(|q| E_r(q_x v))`` [mm/MPa] on the rfft half-grid.
+
+    ``ω = +q_x v`` follows from steady sliding: a rubber material point moving with ``+v``
+    relative to the rigid surface sees the mode ``exp(i q x)`` as ``exp(i q v t)``, and the
+    material convention is ``σ(t) = E(ω) ε`` for ``ε ∝ exp(iωt)``. With ``v > 0`` the pressure
+    then leads on the flanks with ``dz/dx > 0`` and the hysteretic friction is positive.
+    Returned array is complex (real for an elastic material); entry ``q = 0`` is 0.
+    """
+    qabs, qx = wavevectors(shape, lengths)
+    er = np.asarray(material.reduced_modulus(qx * velocity, nu), dtype=complex)
+    kernel = np.zeros(qabs.shape, dtype=complex)
+    nz = qabs > 0
+    kernel[nz] = 2.0 / (qabs[nz] * er[nz])
+    if material.is_elastic or velocity == 0.0:
+        return kernel.real.copy()
+    return kernel
+
+
+def stiffness_kernel(compliance: np.ndarray, shift: float = 0.0) -> np.ndarray:
+    """``1/(M(q) + shift)`` with the ``q = 0`` entry set to 0 [MPa/mm].
+
+    With ``shift = 0`` this is the exact inverse ``|q| E_r/2`` of the response on zero-mean
+    fields; a positive ``shift`` (a uniform local compliance) regularises it.
+    """
+    out = np.zeros_like(compliance)
+    nz = np.abs(compliance) > 0
+    out[nz] = 1.0 / (compliance[nz] + shift)
+    return out
+
+
+def apply_kernel(kernel: np.ndarray, field: np.ndarray) -> np.ndarray:
+    """Real-space convolution ``irfftn(kernel · rfftn(field))``."""
+    return inverse(kernel * forward(field), field.shape)
+
+
+def derivative_x(field: np.ndarray, length: float) -> np.ndarray:
+    """Exact spectral derivative along the last axis of a periodic field [per mm]."""
+    shape = field.shape
+    nx = shape[-1]
+    qx = 2 * np.pi * sfft.rfftfreq(nx, length / nx)
+    spec = forward(field)
+    factor = 1j * qx
+    if nx % 2 == 0:
+        factor[-1] = 0.0  # the Nyquist mode has no well-defined derivative of a real field
+    return inverse(spec * factor, shape)

@@ -1,0 +1,74 @@
+"""Right-preconditioned restarted GMRES on real vectors (small, allocation-light).
+
+Used for the contact-set systems of the half-space solver, whose operator (the restriction of the
+surface compliance ``M`` to the contact set plus a diagonal) is non-symmetric for a viscoelastic
+material. With the stiffness-kernel preconditioner the iteration count stays at a handful and does
+not grow with the grid size, so orthogonalisation cost is negligible next to the FFTs.
+"""
+
+from __future__ import annotations
+
+from collections.abc import Callable
+
+import numpy as np
+
+__all__ = ["gmres"]
+
+
+def gmres(matvec: Callable[[np.ndarray], np.ndarray], psolve: Callable[[np.ndarray], np.ndarray],
+          b: np.ndarray, x0: np.ndarray | None = None, rtol: float = 1e-10, restart: int = 40,
+          maxiter: int = 400) -> tuple[np.ndarray, int, float]:
+    """Solve ``A x = b`` with right preconditioning ``A P y = b``, ``x = P y``.
+
+    Returns
+    -------
+    x, iterations (matrix–vector products), relative residual ``|b − A x| / |b|``.
+    """
+    bnorm = float(np.linalg.norm(b))
+    x = np.zeros_like(b) if x0 is None else x0.copy()
+    if bnorm == 0.0:
+        return np.zeros_like(b), 0, 0.0
+    r = b - matvec(x) if x0 is not None else b.copy()
+    beta = float(np.linalg.norm(r))
+    its = 0
+    while beta > rtol * bnorm and its < maxiter:
+        m = min(restart, maxiter - its)
+        v = np.empty((m + 1, b.size))
+        z = np.empty((m, b.size))
+        h = np.zeros((m + 1, m))
+        cs = np.zeros(m)
+        sn = np.zeros(m)
+        g = np.zeros(m + 1)
+        g[0] = beta
+        v[0] = r / beta
+        k = 0
+        for k in range(m):
+            z[k] = psolve(v[k])
+            w = matvec(z[k])
+            its += 1
+            for i in range(k + 1):  # modified Gram-Schmidt
+                h[i, k] = w @ v[i]
+                w -= h[i, k] * v[i]
+            h[k + 1, k] = np.linalg.norm(w)
+            if h[k + 1, k] > 0:
+                v[k + 1] = w / h[k + 1, k]
+            for i in range(k):  # apply previous Givens rotations
+                t = cs[i] * h[i, k] + sn[i] * h[i + 1, k]
+                h[i + 1, k] = -sn[i] * h[i, k] + cs[i] * h[i + 1, k]
+                h[i, k] = t
+            d = np.hypot(h[k, k], h[k + 1, k])
+            cs[k], sn[k] = (1.0, 0.0) if d == 0 else (h[k, k] / d, h[k + 1, k] / d)
+            h[k, k] = d
+            h[k + 1, k] = 0.0
+            g[k + 1] = -sn[k] * g[k]
+            g[k] = cs[k] * g[k]
+            if abs(g[k + 1]) <= rtol * bnorm or h[k + 1, k] == 0 and d == 0:
+                break
+        kk = k + 1
+        y = np.linalg.solve(np.triu(h[:kk, :kk]), g[:kk]) if kk else np.zeros(0)
+        x += y @ z[:kk]
+        r = b - matvec(x)
+        beta = float(np.linalg.norm(r))
+        if abs(g[kk]) <= rtol * bnorm and beta > 10 * rtol * bnorm and its >= maxiter:
+            break
+    return x, its, beta / bnorm

@@ -1,0 +1,370 @@
+"""Local interaction laws ``σ = f(u)`` between the rubber and the rigid surface (paper eq. 24).
+
+Every law maps the local separation ``u`` [mm] to a compressive pressure ``σ`` [MPa] that is
+>= 0 and non-increasing in ``u``, and gives its stiffness ``k(u) = −dσ/du >= 0`` [MPa/mm]. A law
+may also carry the high-slope companion quantities of the hybrid method: the contact fraction
+``α(u)`` (eq. 8) and the shear stress ``Δτ(u)`` [MPa] (eq. 6).
+
+Laws compose: ``LennardJonesRepulsion() + TabulatedLaw(...)`` is a :class:`SumLaw` whose pressure
+and stiffness are the sums, and whose ``α`` and ``Δτ`` come from the one member that carries them.
+"""
+
+from __future__ import annotations
+
+from dataclasses import dataclass, field
+
+import numpy as np
+from scipy.interpolate import PchipInterpolator
+
+from .._validation import finite_array, positive_scalar
+from ..errors import InputError
+
+__all__ = ["InteractionLaw", "LennardJonesRepulsion", "TabulatedLaw", "SumLaw"]
+
+
+class InteractionLaw:
+    """Base class: subclasses implement :meth:`pressure` and :meth:`stiffness`."""
+
+    def pressure(self, u: np.ndarray) -> np.ndarray:  # pragma: no cover - abstract
+        """Pressure ``σ(u)`` [MPa], >= 0, non-increasing."""
+        raise NotImplementedError
+
+    def stiffness(self, u: np.ndarray) -> np.ndarray:  # pragma: no cover - abstract
+        """Stiffness ``k(u) = −dσ/du`` [MPa/mm], >= 0."""
+        raise NotImplementedError
+
+    def contact_fraction(self, u: np.ndarray) -> np.ndarray | None:
+        """Local contact fraction ``α(u)`` in [0, 1], or ``None`` when the law carries none."""
+        return None
+
+    def shear_stress(self, u: np.ndarray) -> np.ndarray | None:
+        """Local hysteretic shear stress ``Δτ(u)`` [MPa], or ``None``."""
+        return None
+
+    def in_contact(self, u: np.ndarray) -> np.ndarray:
+        """Boolean mask: where the law is in its repulsive "contact" range."""
+        return self.pressure(u) > 0
+
+    def resolve(self, length_scale: float, pressure_scale: float) -> InteractionLaw:
+        """Return the law with parameters left as ``None`` filled from the problem's scales."""
+        return self
+
+    def describe(self) -> dict:
+        """Plain-data description (for result attributes)."""
+        return {"law": type(self).__name__}
+
+    def __add__(self, other: InteractionLaw) -> SumLaw:
+        if not isinstance(other, InteractionLaw):
+            return NotImplemented
+        return SumLaw(self, other)
+
+
+@dataclass(frozen=True)
+class LennardJonesRepulsion(InteractionLaw):
+    """Adhesionless integrated Lennard-Jones wall–wall repulsion ``σ = p_ref (ℓ/u)⁹``.
+
+    Integrating the repulsive ``r⁻¹²`` term of the Lennard-Jones potential over two half-spaces
+    gives a wall–wall pressure ``∝ u⁻⁹``. Here it is used as a smooth, very stiff stand-in for a
+    hard wall: ``σ`` rises by a factor 2 every time ``u`` shrinks by 8 %, so in contact the gap is
+    ``u ≈ ℓ`` whatever the pressure.
+
+    Parameters
+    ----------
+    length
+        ``ℓ`` [mm], the separation at which ``σ = p_ref``. ``None`` (default): ``ℓ =
+        relative_length × rms height of the surface`` (set by the solver), i.e. a hard wall at the
+        scale of the roughness.
+    reference_pressure
+        ``p_ref`` [MPa]. ``None`` (default): the imposed mean pressure ``σ0``.
+    relative_length
+        ``ℓ / h_rms`` used when ``length`` is ``None``; default ``1e-5`` (the contact edge is then
+        blurred over ~``(1e-5)^(2/3) ≈ 5e-4`` of a wavelength, below a grid step at N = 4096).
+
+    Notes
+    -----
+    Below ``u_min = ℓ/4`` (``σ = 4⁹ p_ref``) the law continues linearly with the slope at
+    ``u_min``, so it is finite for any ``u`` (Newton trial steps may overshoot into ``u <= 0``).
+    "In contact" means ``u < 2ℓ`` (``σ > p_ref/512``).
+    """
+
+    length: float | None = None
+    reference_pressure: float | None = None
+    relative_length: float = 1e-5
+
+    def __post_init__(self) -> None:
+        if self.length is not None:
+            positive_scalar("length", self.length, unit="mm")
+        if self.reference_pressure is not None:
+            positive_scalar("reference_pressure", self.reference_pressure, unit="MPa")
+        positive_scalar("relative_length", self.relative_length)
+
+    def resolve(self, length_scale: float, pressure_scale: float) -> LennardJonesRepulsion:
+        length = self.length if self.length is not None else self.relative_length * length_scale
+        pref = self.reference_pressure if self.reference_pressure is not None else pressure_scale
+        return LennardJonesRepulsion(float(length), float(pref), self.relative_length)
+
+    def _params(self) -> tuple[float, float]:
+        if self.length is None or self.reference_pressure is None:
+            raise InputError("law: LennardJonesRepulsion parameters are unresolved; pass length= "
+                             "and reference_pressure= or let solve_sliding resolve them")
+        return self.length, self.reference_pressure
+
+    def pressure(self, u):
+        ell, p = self._params()
+        u = np.asarray(u, dtype=float)
+        umin = 0.25 * ell
+        us = np.maximum(u, umin)
+        sig = p * (ell / us) ** 9
+        below = u < umin
+        if np.any(below):
+            s_min = p * 4.0**9
+            k_min = 9.0 * s_min / umin
+            sig = np.where(below, s_min + k_min * (umin - u), sig)
+        return sig
+
+    def stiffness(self, u):
+        ell, p = self._params()
+        u = np.asarray(u, dtype=float)
+        us = np.maximum(u, 0.25 * ell)
+        return 9.0 * p * (ell / us) ** 9 / us
+
+    def in_contact(self, u):
+        ell, _ = self._params()
+        return np.asarray(u) < 2.0 * ell
+
+    def describe(self) -> dict:
+        return {"law": "LennardJonesRepulsion", "length": self.length,
+                "reference_pressure": self.reference_pressure}
+
+
+def _pchip_with_slopes(x: np.ndarray, y: np.ndarray) -> PchipInterpolator:
+    return PchipInterpolator(x, y, extrapolate=False)
+
+
+@dataclass(frozen=True, eq=False)
+class TabulatedLaw(InteractionLaw):
+    """Law interpolated from monotone samples ``(u_j, σ_j)`` (e.g. the FEM high-slope law).
+
+    Parameters
+    ----------
+    separation
+        ``u_j`` [mm], strictly increasing, at least 2 samples.
+    pressure
+        ``σ_j`` [MPa], >= 0 and non-increasing in ``u``.
+    contact_fraction, shear_stress
+        Optional companion tables ``α_j`` (in [0, 1]) and ``Δτ_j`` [MPa] at the same ``u_j``.
+
+    Notes
+    -----
+    Interpolation (monotone by construction, so ``k = −dσ/du >= 0`` everywhere):
+
+    * where ``σ_j > 0``: PCHIP (Fritsch–Carlson, shape preserving) in ``log σ``, which is
+      exact for exponential laws and keeps ``σ > 0``;
+    * from the last positive sample to the first zero sample: PCHIP in ``σ`` on that segment
+      (monotone, reaches 0); ``σ = 0`` (and ``k = 0``) beyond the first ``u_j`` with ``σ_j = 0``;
+    * below ``u_0``: stiff continuation, ``log σ`` extended linearly with the end slope of the
+      log-PCHIP, but at least as steep as ``d log σ/du = −9/u_0`` when that slope is flatter —
+      pressure keeps rising, never a plateau;
+    * above the last sample when the table never reaches 0: ``log σ`` extended linearly with
+      the end slope (exponential decay; constant only if the table ends flat).
+
+    Companion tables use PCHIP in linear space (no overshoot), are held at their first value
+    below ``u_0`` and at their last value above the table, and are 0 where ``σ = 0``.
+    """
+
+    separation: np.ndarray
+    pressure_table: np.ndarray
+    contact_fraction_table: np.ndarray | None = None
+    shear_stress_table: np.ndarray | None = None
+    _cache: dict = field(default_factory=dict, repr=False, compare=False)
+
+    def __init__(self, separation, pressure, contact_fraction=None, shear_stress=None) -> None:
+        u = finite_array("separation", separation, ndim=1, min_size=2)
+        s = finite_array("pressure", pressure, ndim=1, min_size=2)
+        if s.shape != u.shape:
+            raise InputError(f"pressure: expected {u.size} values like separation, got {s.size}")
+        du = np.diff(u)
+        if np.any(du <= 0):
+            i = int(np.argmax(du <= 0))
+            raise InputError(f"separation: must be strictly increasing, got u[{i}]={u[i]} >= "
+                             f"u[{i + 1}]={u[i + 1]}")
+        if np.any(s < 0):
+            i = int(np.argmax(s < 0))
+            raise InputError(f"pressure: must be >= 0 MPa, got pressure[{i}]={s[i]}")
+        ds = np.diff(s)
+        if np.any(ds > 0):
+            i = int(np.argmax(ds > 0))
+            raise InputError(f"pressure: must be non-increasing in separation, got "
+                             f"pressure[{i}]={s[i]} < pressure[{i + 1}]={s[i + 1]}")
+        if s[0] <= 0:
+            raise InputError("pressure: the first sample must be > 0 MPa")
+        tables = {}
+        for name, tab in (("contact_fraction", contact_fraction), ("shear_stress", shear_stress)):
+            if tab is None:
+                tables[name] = None
+                continue
+            t = finite_array(name, tab, ndim=1, min_size=2)
+            if t.shape != u.shape:
+                raise InputError(f"{name}: expected {u.size} values like separation, got {t.size}")
+            if name == "contact_fraction" and (np.any(t < 0) or np.any(t > 1)):
+                raise InputError(f"{name}: values must lie in [0, 1], got {t.min()}..{t.max()}")
+            tables[name] = t
+        object.__setattr__(self, "separation", u)
+        object.__setattr__(self, "pressure_table", s)
+        object.__setattr__(self, "contact_fraction_table", tables["contact_fraction"])
+        object.__setattr__(self, "shear_stress_table", tables["shear_stress"])
+        object.__setattr__(self, "_cache", {})
+        self._build()
+
+    def _build(self) -> None:
+        u, s = self.separation, self.pressure_table
+        zero = np.flatnonzero(s == 0)
+        npos = int(zero[0]) if zero.size else u.size
+        c = self._cache
+        c["npos"] = npos
+        c["u_zero"] = float(u[npos]) if zero.size else np.inf
+        if npos >= 2:
+            logp = _pchip_with_slopes(u[:npos], np.log(s[:npos]))
+            d0 = float(logp.derivative()(u[0]))
+            d1 = float(logp.derivative()(u[npos - 1]))
+        else:
+            logp = None
+            d0 = d1 = 0.0
+        c["logp"] = logp
+        # stiff continuation below the table: never flatter than the first secant nor than
+        # one e-fold over the table's span (a strictly rising pressure, no plateau)
+        secant = (np.log(s[1]) - np.log(s[0])) / (u[1] - u[0]) if s[1] > 0 else 0.0
+        c["slope_lo"] = min(d0, secant, -1.0 / (u[-1] - u[0]))
+        c["slope_hi"] = min(d1, 0.0)
+        # last segment (last positive sample -> first zero sample), linear-space PCHIP
+        c["tail"] = (_pchip_with_slopes(u[npos - 1:npos + 1], s[npos - 1:npos + 1])
+                     if zero.size else None)
+        c["companions"] = {}
+        for name, tab in (("alpha", self.contact_fraction_table),
+                          ("tau", self.shear_stress_table)):
+            c["companions"][name] = None if tab is None else _pchip_with_slopes(u, tab)
+
+    # -- evaluation ----------------------------------------------------------------
+    def _eval(self, u: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
+        c = self._cache
+        tab_u, tab_s = self.separation, self.pressure_table
+        npos = c["npos"]
+        u = np.asarray(u, dtype=float)
+        sig = np.zeros(u.shape)
+        k = np.zeros(u.shape)
+        u0, s0 = tab_u[0], tab_s[0]
+        lo = u < u0
+        if np.any(lo):
+            sig[lo] = s0 * np.exp(c["slope_lo"] * (u[lo] - u0))
+            k[lo] = -c["slope_lo"] * sig[lo]
+        upos = tab_u[npos - 1]
+        mid = (u >= u0) & (u <= upos)
+        if np.any(mid) and c["logp"] is not None:
+            lp = c["logp"](u[mid])
+            sig[mid] = np.exp(lp)
+            k[mid] = -c["logp"].derivative()(u[mid]) * sig[mid]
+        elif np.any(mid):  # single positive sample: only u == u0 can land here
+            sig[mid] = s0
+        if c["tail"] is not None:
+            seg = (u > upos) & (u < c["u_zero"])
+            if np.any(seg):
+                sig[seg] = c["tail"](u[seg])
+                k[seg] = -c["tail"].derivative()(u[seg])
+        else:
+            hi = u > upos
+            if np.any(hi):
+                sig[hi] = tab_s[npos - 1] * np.exp(c["slope_hi"] * (u[hi] - upos))
+                k[hi] = -c["slope_hi"] * sig[hi]
+        return np.maximum(sig, 0.0), np.maximum(k, 0.0)
+
+    def pressure(self, u):
+        return self._eval(u)[0]
+
+    def stiffness(self, u):
+        return self._eval(u)[1]
+
+    def _companion(self, name: str, u) -> np.ndarray | None:
+        interp = self._cache["companions"][name]
+        if interp is None:
+            return None
+        u = np.asarray(u, dtype=float)
+        tab = self.contact_fraction_table if name == "alpha" else self.shear_stress_table
+        uc = np.clip(u, self.separation[0], self.separation[-1])
+        out = interp(uc)
+        out = np.where(u < self.separation[0], tab[0], out)
+        out = np.where(u > self.separation[-1], tab[-1], out)
+        out = np.where(u >= self._cache["u_zero"], 0.0, out)
+        if name == "alpha":
+            out = np.clip(out, 0.0, 1.0)
+        return out
+
+    def contact_fraction(self, u):
+        return self._companion("alpha", u)
+
+    def shear_stress(self, u):
+        return self._companion("tau", u)
+
+    def in_contact(self, u):
+        return self.pressure(u) > 0
+
+    def describe(self) -> dict:
+        return {"law": "TabulatedLaw", "samples": int(self.separation.size),
+                "separation_range": [float(self.separation[0]), float(self.separation[-1])],
+                "has_contact_fraction": self.contact_fraction_table is not None,
+                "has_shear_stress": self.shear_stress_table is not None}
+
+
+class SumLaw(InteractionLaw):
+    """Sum of laws: pressures and stiffnesses add; ``α``/``Δτ`` come from the member carrying them.
+
+    "In contact" is where any member is in contact.
+    """
+
+    def __init__(self, *laws: InteractionLaw) -> None:
+        flat: list[InteractionLaw] = []
+        for law in laws:
+            if not isinstance(law, InteractionLaw):
+                raise InputError(f"law: expected interaction laws, got {law!r}")
+            flat.extend(law.laws if isinstance(law, SumLaw) else [law])
+        if not flat:
+            raise InputError("law: SumLaw needs at least one law")
+        for name in ("contact_fraction", "shear_stress"):
+            n = sum(1 for law in flat if isinstance(law, TabulatedLaw)
+                    and getattr(law, f"{name}_table") is not None)
+            if n > 1:
+                raise InputError(f"law: {n} members carry {name}; at most one may")
+        self.laws = tuple(flat)
+
+    def pressure(self, u):
+        return sum(law.pressure(u) for law in self.laws)
+
+    def stiffness(self, u):
+        return sum(law.stiffness(u) for law in self.laws)
+
+    def _first(self, name: str, u):
+        for law in self.laws:
+            out = getattr(law, name)(u)
+            if out is not None:
+                return out
+        return None
+
+    def contact_fraction(self, u):
+        return self._first("contact_fraction", u)
+
+    def shear_stress(self, u):
+        return self._first("shear_stress", u)
+
+    def in_contact(self, u):
+        mask = np.zeros(np.shape(u), dtype=bool)
+        for law in self.laws:
+            mask |= law.in_contact(u)
+        return mask
+
+    def resolve(self, length_scale: float, pressure_scale: float) -> SumLaw:
+        return SumLaw(*(law.resolve(length_scale, pressure_scale) for law in self.laws))
+
+    def describe(self) -> dict:
+        return {"law": "SumLaw", "members": [law.describe() for law in self.laws]}
+
+    def __repr__(self) -> str:
+        return "SumLaw(" + ", ".join(repr(law) for law in self.laws) + ")"
