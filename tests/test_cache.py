@@ -1,0 +1,187 @@
+"""Result cache: atomic writes, corruption detection, info/clear and the CLI group."""
+
+from __future__ import annotations
+
+import os
+
+import numpy as np
+import pytest
+import xarray as xr
+from typer.testing import CliRunner
+
+from rubbercontact.io.atomic import write_netcdf_atomic
+from rubbercontact.sweep import ExecutorConfig, ResultCache, Task, TaskFailure, run_sweep
+from rubbercontact.sweep.examples import toy_kernel
+
+FN = "rubbercontact.sweep.examples:toy_kernel"
+SYNC = ExecutorConfig(workers=1)
+
+
+def _task(v=10.0, p=0.2, **extra):
+    return Task(FN, {"velocity": v, "pressure": p, **extra}, label=f"v={v},p={p}")
+
+
+# -- atomic writes --------------------------------------------------------------------------
+def _ds():
+    return xr.Dataset({"a": ("x", np.arange(4.0))}, coords={"x": [1, 2, 3, 4]})
+
+
+def test_atomic_write_refuses_to_overwrite_unless_asked(tmp_path):
+    path = tmp_path / "out.nc"
+    write_netcdf_atomic(_ds(), path)
+    with pytest.raises(FileExistsError, match="already exists.*overwrite=True"):
+        write_netcdf_atomic(_ds() * 2, path)
+    xr.testing.assert_identical(xr.load_dataset(path), _ds())  # untouched
+    write_netcdf_atomic(_ds() * 2, path, overwrite=True)
+    xr.testing.assert_identical(xr.load_dataset(path), _ds() * 2)
+    assert sorted(p.name for p in tmp_path.iterdir()) == ["out.nc"]  # no temp files left
+
+
+def test_atomic_write_failure_leaves_nothing(tmp_path):
+    bad = xr.Dataset({"z": ("x", np.array([1j, 2j]))})  # complex: not storable in NetCDF-4
+    with pytest.raises(Exception):  # noqa: B017 - whatever the netCDF backend raises
+        write_netcdf_atomic(bad, tmp_path / "bad.nc")
+    assert list(tmp_path.iterdir()) == []
+
+
+def test_atomic_write_needs_existing_directory(tmp_path):
+    with pytest.raises(FileNotFoundError, match="does not exist"):
+        write_netcdf_atomic(_ds(), tmp_path / "missing" / "out.nc")
+
+
+# -- corruption ---------------------------------------------------------------------------
+def _entry_path(cache, task):
+    return cache.path_for(task.key())
+
+
+def _fresh(task):
+    return toy_kernel(**task.kwargs)
+
+
+def test_entry_round_trip_is_identical(tmp_path):
+    cache = ResultCache(tmp_path)
+    task = _task()
+    run_sweep([task], cache=cache, executor=SYNC, progress=False)
+    entry = cache.load(task.key())
+    assert entry is not None and entry.status == "ok" and entry.wall_time >= 0
+    xr.testing.assert_identical(entry.result, _fresh(task))
+
+
+def _corrupt_truncate(path):
+    data = path.read_bytes()
+    path.write_bytes(data[: len(data) // 2])
+
+
+def _corrupt_garbage(path):
+    path.write_bytes(b"\x89HDF\r\n\x1a\n" + os.urandom(500))
+
+
+def _corrupt_flip_value(path):
+    # Silent bit rot inside the data: flip one byte of the stored friction array.
+    friction = xr.load_dataset(path)["friction"].values.astype("<f8").tobytes()
+    data = bytearray(path.read_bytes())
+    at = bytes(data).find(friction)
+    assert at >= 0, "friction array not found verbatim in the file"
+    data[at + 3] ^= 0xFF
+    path.write_bytes(bytes(data))
+
+
+def _corrupt_rewrite_value(path):
+    # A valid NetCDF file whose values no longer match the stored checksum.
+    ds = xr.load_dataset(path)
+    ds["friction"] = ds["friction"] * 1.001
+    ds.to_netcdf(path)
+
+
+def _corrupt_wrong_key(path):
+    # A valid entry of another task copied under this task's name.
+    other = ResultCache(path.parents[2])
+    other_task = _task(v=99.0)
+    run_sweep([other_task], cache=other, executor=SYNC, progress=False)
+    path.write_bytes(other.path_for(other_task.key()).read_bytes())
+
+
+@pytest.mark.parametrize("corrupt", [_corrupt_truncate, _corrupt_garbage, _corrupt_flip_value,
+                                     _corrupt_rewrite_value, _corrupt_wrong_key])
+def test_corrupted_entry_is_detected_and_recomputed(tmp_path, corrupt):
+    cache = ResultCache(tmp_path)
+    task = _task(calls_log=str(tmp_path / "calls.txt"))
+    run_sweep([task], cache=cache, executor=SYNC, progress=False)
+    path = _entry_path(cache, task)
+    corrupt(path)
+    assert cache.load(task.key()) is None  # never read as a result
+    assert not path.exists() and cache.n_corrupt == 1
+    res = run_sweep([task], cache=cache, executor=SYNC, progress=False)
+    assert (res.n_computed, res.n_cached) == (1, 0)
+    assert (tmp_path / "calls.txt").read_text().count("\n") == 2  # ran again
+    xr.testing.assert_identical(res[0], _fresh(task))
+    assert cache.load(task.key()) is not None  # healthy again
+
+
+def test_interrupted_write_leftovers_are_ignored_and_cleared(tmp_path):
+    cache = ResultCache(tmp_path)
+    task = _task()
+    run_sweep([task], cache=cache, executor=SYNC, progress=False)
+    path = _entry_path(cache, task)
+    stray = path.parent / f".{path.name}.abc123.tmp"
+    stray.write_bytes(path.read_bytes()[:100])
+    info = cache.info()
+    assert (info.n_entries, info.n_temporary) == (1, 1)
+    res = run_sweep([task], cache=cache, executor=SYNC, progress=False)
+    assert res.n_cached == 1
+    cache.clear()
+    assert not stray.exists() and cache.info().n_entries == 0
+
+
+# -- info / clear / CLI -------------------------------------------------------------------
+def _populate(directory):
+    cache = ResultCache(directory)
+    tasks = [_task(p=0.1), _task(p=0.2), _task(p=0.3, fail=True)]
+    res = run_sweep(tasks, cache=cache, executor=SYNC, progress=False)
+    assert res.n_failed == 1
+    return cache, tasks
+
+
+def test_info_and_clear_failed_only(tmp_path):
+    cache, tasks = _populate(tmp_path)
+    info = cache.info()
+    assert (info.n_entries, info.n_failed) == (3, 1) and info.size_bytes > 0
+    assert isinstance(cache.load(tasks[2].key()).result, TaskFailure)
+    assert cache.clear(failed_only=True) == 1
+    assert (cache.info().n_entries, cache.info().n_failed) == (2, 0)
+    assert cache.clear() == 2 and cache.info().n_entries == 0
+
+
+def test_default_directory_from_environment(tmp_path, monkeypatch):
+    monkeypatch.setenv("RUBBERCONTACT_CACHE", str(tmp_path / "envcache"))
+    assert ResultCache().directory == tmp_path / "envcache"
+    assert ResultCache.default().directory == tmp_path / "envcache"
+    monkeypatch.delenv("RUBBERCONTACT_CACHE")
+    assert "rubbercontact" in str(ResultCache().directory)
+
+
+def test_cli_cache_info_and_clear(tmp_path):
+    from rubbercontact.cli import app
+
+    _populate(tmp_path)
+    runner = CliRunner()
+    out = runner.invoke(app, ["cache", "info", "--cache", str(tmp_path)])
+    assert out.exit_code == 0, out.output
+    assert str(tmp_path) in out.output and "3 (2 ok, 1 failed)" in out.output
+    out = runner.invoke(app, ["cache", "clear", "--cache", str(tmp_path)], input="n\n")
+    assert out.exit_code == 1 and ResultCache(tmp_path).info().n_entries == 3
+    out = runner.invoke(app, ["cache", "clear", "--failed-only", "--yes", "--cache",
+                              str(tmp_path)])
+    assert out.exit_code == 0 and "deleted 1 failed entries" in out.output
+    assert ResultCache(tmp_path).info().n_entries == 2
+    out = runner.invoke(app, ["cache", "clear", "--cache", str(tmp_path)], input="y\n")
+    assert out.exit_code == 0 and ResultCache(tmp_path).info().n_entries == 0
+
+
+def test_cli_cache_uses_environment_default(tmp_path, monkeypatch):
+    from rubbercontact.cli import main
+
+    monkeypatch.setenv("RUBBERCONTACT_CACHE", str(tmp_path))
+    _populate(tmp_path)
+    assert main(["cache", "clear", "--yes"]) == 0
+    assert ResultCache(tmp_path).info().n_entries == 0
