@@ -1,0 +1,132 @@
+"""The discretized micromechanical test cell: periodic rubber, rigid plate, contact.
+
+Unknowns: the displacements of all nodes below the top edge (left/right edges
+tied by the periodic mesh) plus one rigid-plate DOF, the common vertical
+displacement of the top edge. The top edge's horizontal displacement is held at 0:
+the rubber is at rest and the rigid surface moves in −x beneath it (sliding
+distance ``s``, surface ``y = z(x + s)``), which is the same as the rubber moving
+in +x over a fixed surface. The plate carries the load ``p̄ L0`` (force per unit
+depth [N/mm]) pushing the rubber down.
+"""
+
+from __future__ import annotations
+
+from dataclasses import dataclass
+
+import numpy as np
+
+from ..roughness.sines import SineSeries
+from .assembly import Assembler
+from .constitutive import MaterialParameters, ViscousState
+from .contact import ContactState, evaluate_contact
+from .element import ElementOutput
+from .mesh import PeriodicCell
+
+
+@dataclass
+class Evaluation:
+    """Everything computed at one trial state (kept for the converged one)."""
+
+    elements: ElementOutput
+    contact: ContactState
+    u_full: np.ndarray
+
+
+class CellModel:
+    """Residual and tangent of the test cell.
+
+    Parameters
+    ----------
+    cell
+        The periodic mesh; its contact face (row 0) sits at ``cell.y0``.
+    surface
+        Rigid surface.
+    params
+        Material parameters.
+    penalty
+        Contact penalty ``ε`` [MPa/mm].
+    """
+
+    def __init__(self, cell: PeriodicCell, surface: SineSeries, params: MaterialParameters,
+                 penalty: float) -> None:
+        self.cell = cell
+        self.surface = surface
+        self.params = params
+        self.penalty = float(penalty)
+        n_dofs = 2 * cell.n_nodes
+        dof_map = -np.ones(n_dofs, dtype=np.int64)
+        top = np.zeros(cell.n_nodes, bool)
+        top[cell.top_nodes] = True
+        free_nodes = np.flatnonzero(~top)
+        dof_map[2 * free_nodes] = 2 * np.arange(free_nodes.size)
+        dof_map[2 * free_nodes + 1] = 2 * np.arange(free_nodes.size) + 1
+        self.plate = 2 * free_nodes.size
+        dof_map[2 * cell.top_nodes + 1] = self.plate
+        self.n = self.plate + 1
+        self.dof_map = dof_map
+        bottom = cell.bottom_nodes
+        self.bx = dof_map[2 * bottom]
+        self.by = dof_map[2 * bottom + 1]
+        self.asm = Assembler(cell, dof_map, self.n)
+        rows = np.stack([self.bx, self.bx, self.by, self.by], axis=1)
+        cols = np.stack([self.bx, self.by, self.bx, self.by], axis=1)
+        self._cpos = self.asm.positions(rows.ravel(), cols.ravel()).reshape(-1, 4)
+        self.face_weight = np.full(cell.nx, cell.hx)
+        self.X_face = cell.X[bottom]
+
+    def new_state(self) -> ViscousState:
+        return ViscousState.zeros((self.cell.n_elements, 4), self.params.n_branches)
+
+    def face_positions(self, u_full: np.ndarray) -> np.ndarray:
+        """Current positions of the contact-face nodes ``(nx, 2)`` [mm]."""
+        b = self.cell.bottom_nodes
+        return self.X_face + np.column_stack([u_full[2 * b], u_full[2 * b + 1]])
+
+    def evaluate(self, U: np.ndarray, state: ViscousState, dt: float, shift: float,
+                 load: float, tangent: bool = True):
+        """``(r, K, Evaluation)`` at unknowns ``U``.
+
+        ``load`` is the plate force per unit depth [N/mm] pushing down; ``shift`` the
+        sliding distance [mm]; ``dt`` the step [s] for the viscous update.
+        """
+        u_full = self.asm.full_displacement(U)
+        with np.errstate(invalid="ignore", divide="ignore"):
+            out = self.asm.element_output(self.params, u_full, state, dt, tangent)
+        r = self.asm.vector(out.fe)
+        cs = evaluate_contact(self.surface, shift, self.face_positions(u_full),
+                              self.face_weight, self.penalty)
+        # Residual = ∂Π/∂u: the contact force acts ON the rubber, so subtract it.
+        r[self.bx] -= cs.force[:, 0]   # face DOFs are distinct unknowns
+        r[self.by] -= cs.force[:, 1]
+        r[self.plate] += load
+        if np.any(out.theta <= 0) or np.any(~np.isfinite(out.fe)):
+            r[:] = np.nan
+        K = None
+        if tangent:
+            data = self.asm.matrix_data(out.ke)
+            k = cs.stiffness.reshape(-1, 4)
+            data[self._cpos.ravel()] += k.ravel()  # distinct positions
+            K = self.asm.csr(data)
+        return r, K, Evaluation(out, cs, u_full)
+
+    def shift_field(self, U: np.ndarray, ds: float) -> np.ndarray:
+        """Predictor: the nodal field translated with the surface, ``u(X) ← u(X + ds)``.
+
+        In steady sliding the field is a function of ``X + s``; columns are periodic and
+        uniformly spaced, so the shift is a periodic linear interpolation in the column
+        index (an exact roll when ``ds`` is a whole number of elements).
+        """
+        cell = self.cell
+        u_full = self.asm.full_displacement(U).reshape(cell.ny + 1, cell.nx, 2)
+        c = ds / cell.hx
+        k = int(np.floor(c))
+        f = c - k
+        a = np.roll(u_full, -k, axis=1)
+        if f > 1e-12:
+            a = (1 - f) * a + f * np.roll(u_full, -(k + 1), axis=1)
+        a = a.reshape(-1)
+        V = U.copy()
+        free = self.dof_map >= 0
+        free[2 * cell.top_nodes + 1] = False     # the plate keeps its value
+        V[self.dof_map[free]] = a[free]
+        return V
