@@ -34,6 +34,7 @@ import os
 import re
 import time
 import traceback
+import warnings
 from collections.abc import Iterator, Sequence
 from dataclasses import dataclass
 from typing import Any
@@ -176,7 +177,10 @@ def _dask_client(mode: str, address: str | None, workers: int,
             yield client
         return
     # The nanny sets these in each worker process before it imports numpy.
-    with dask.config.set({"distributed.nanny.pre-spawn-environ": THREAD_ENV}):
+    with dask.config.set({"distributed.nanny.pre-spawn-environ": THREAD_ENV}), \
+            warnings.catch_warnings():
+        # The scheduler's HTTP (metrics) server falls back to a free port when 8787 is taken.
+        warnings.filterwarnings("ignore", message="Port .* is already in use")
         cluster = LocalCluster(n_workers=workers, threads_per_worker=config.threads_per_worker,
                                processes=config.processes, dashboard_address=None,
                                silence_logs=40)  # logging.ERROR: no worker chatter

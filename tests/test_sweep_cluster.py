@@ -1,0 +1,77 @@
+"""The same sweep on the synchronous executor, the managed local cluster and an external
+``distributed.LocalCluster`` reached over TCP gives identical results."""
+
+from __future__ import annotations
+
+import pytest
+import xarray as xr
+
+from rubbercontact.sweep import ExecutorConfig, ResultCache, Task, TaskFailure, run_sweep
+
+FN = "rubbercontact.sweep.examples:toy_kernel"
+
+
+def _tasks():
+    # Some real FFT work per task so both workers get tasks; one forced failure.
+    return [Task(FN, {"velocity": v, "pressure": p, "work": 30, "fail": (v, p) == (50.0, 0.4)},
+                 label=f"v={v},p={p}")
+            for v in (10.0, 50.0) for p in (0.1, 0.2, 0.4)]
+
+
+def _assert_same(a, b):
+    assert len(a) == len(b)
+    for x, y in zip(a, b, strict=True):
+        if isinstance(x, TaskFailure):
+            assert isinstance(y, TaskFailure)
+            assert (x.error_type, x.message, x.diagnostics) == (y.error_type, y.message,
+                                                                 y.diagnostics)
+        else:
+            xr.testing.assert_identical(x, y)
+
+
+@pytest.fixture(scope="module")
+def tcp_cluster():
+    from distributed import LocalCluster
+
+    cluster = LocalCluster(n_workers=2, threads_per_worker=1, processes=True, host="127.0.0.1",
+                           dashboard_address=None, silence_logs=40)
+    try:
+        yield cluster
+    finally:
+        cluster.close()
+
+
+def test_sync_managed_and_external_cluster_agree(tcp_cluster, tmp_path, monkeypatch):
+    monkeypatch.delenv("RUBBERCONTACT_SCHEDULER", raising=False)
+    reference = run_sweep(_tasks(), executor=ExecutorConfig(workers=1), progress=False)
+    assert reference.n_failed == 1
+
+    address = tcp_cluster.scheduler_address
+    assert address.startswith("tcp://127.0.0.1:")
+    remote = run_sweep(_tasks(), executor=ExecutorConfig(scheduler=address), progress=False)
+    _assert_same(reference, remote)
+    assert remote.n_computed == 6 and remote.n_failed == 1
+
+    # The worker processes really ran tasks (not the client), with BLAS pinned to 1 thread
+    # by the environment that the nanny sets before the worker imports numpy.
+    from distributed import Client
+
+    with Client(address) as client:
+        envs = client.run(lambda: __import__("os").environ.get("OMP_NUM_THREADS"))
+    assert len(envs) == 2 and set(envs.values()) == {"1"}
+
+    # The environment variable selects the same cluster; results go through the cache.
+    monkeypatch.setenv("RUBBERCONTACT_SCHEDULER", address)
+    cache = ResultCache(tmp_path)
+    via_env = run_sweep(_tasks(), cache=cache, executor=ExecutorConfig(), progress=False)
+    _assert_same(reference, via_env)
+    again = run_sweep(_tasks(), cache=cache, executor=ExecutorConfig(), progress=False)
+    assert (again.n_computed, again.n_cached) == (0, 6)
+    _assert_same(reference, again)
+
+
+def test_managed_local_cluster_agrees_with_sync(monkeypatch):
+    monkeypatch.delenv("RUBBERCONTACT_SCHEDULER", raising=False)
+    reference = run_sweep(_tasks(), executor=ExecutorConfig(workers=1), progress=False)
+    local = run_sweep(_tasks(), executor=ExecutorConfig(workers=2), progress=False)
+    _assert_same(reference, local)
