@@ -74,12 +74,19 @@ def response_kernel(material: GeneralizedMaxwell, shape: tuple[int, ...],
     return kernel
 
 
-def stiffness_kernel(compliance: np.ndarray, shift: float = 0.0) -> np.ndarray:
-    """``1/(M(q) + shift)`` with the ``q = 0`` entry set to 0 [MPa/mm].
+def stiffness_kernel(compliance: np.ndarray, shift: float = 0.0,
+                     hermitian: bool = True) -> np.ndarray:
+    """``1/(Re M(q) + shift)`` (or ``1/(M + shift)``) with the ``q = 0`` entry 0 [MPa/mm].
 
-    With ``shift = 0`` this is the exact inverse ``|q| E_r/2`` of the response on zero-mean
-    fields; a positive ``shift`` (a uniform local compliance) regularises it.
+    With ``shift = 0`` and an elastic material this is the exact inverse ``|q| E_r/2`` of the
+    response on zero-mean fields; a positive ``shift`` (a uniform local compliance) regularises
+    it. ``hermitian=True`` inverts only the Hermitian part ``Re M`` (symmetric positive
+    definite): used as a preconditioner for the non-symmetric viscoelastic operator it keeps
+    the preconditioned spectrum in the right half-plane (sector of the loss angle), which
+    GMRES needs; inverting the full complex ``M`` does not guarantee that on a contact set.
     """
+    if hermitian:
+        compliance = np.real(compliance)
     out = np.zeros_like(compliance)
     nz = np.abs(compliance) > 0
     out[nz] = 1.0 / (compliance[nz] + shift)

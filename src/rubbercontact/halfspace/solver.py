@@ -89,12 +89,13 @@ from ..materials.maxwell import GeneralizedMaxwell
 from ..roughness.sines import SineSeries
 from . import kernels as kn
 from .krylov import gmres
-from .laws import InteractionLaw
+from .laws import InteractionLaw, LennardJonesRepulsion, SumLaw
 
 __all__ = ["SlidingResult", "solve_sliding"]
 
 #: Smallest number of grid points per axis accepted.
 MIN_POINTS = 8
+_DEBUG = False
 #: Relative tolerance for "period is a multiple of every wavelength".
 _PERIOD_RTOL = 1e-9
 
@@ -324,9 +325,9 @@ def _contact_solve(prob: _Problem, idx: np.ndarray, rhs: np.ndarray, total: floa
 # ----------------------------------------------------------------------------------------------
 # hard wall
 # ----------------------------------------------------------------------------------------------
-def _hard_wall_active_set(prob: _Problem, tol: float, max_iter: int, sigma_init=None):
+def _hard_wall_active_set(prob: _Problem, tol: float, max_iter: int, sigma_init=None, z=None):
     n = prob.size
-    z = prob.z
+    z = prob.z if z is None else z
     k_pre = kn.stiffness_kernel(prob.compliance)
     zscale = float(np.abs(z).max()) or 1.0
     eps = 1e-12 * zscale
@@ -362,6 +363,60 @@ def _hard_wall_active_set(prob: _Problem, tol: float, max_iter: int, sigma_init=
         active = new
     return sigma, u, w, ubar, max_iter, float("nan"), False, {"linear_iterations": lin_its,
                                                             "history": history}
+
+
+def _hard_wall_viscoelastic(prob: _Problem, tol: float, max_iter: int):
+    """Exact hard-wall solution for the non-symmetric (viscoelastic) operator.
+
+    Projection method in the metric of the Hermitian part ``M_s = Re M`` (variational
+    inequality with a strongly monotone, Lipschitz operator):
+    ``σ_{k+1} = argmin_{σ >= 0, <σ> = σ0} ½ σ·M_s σ − σ·(M_s σ_k + γ (z − M σ_k))``, each step
+    an elastic-like (symmetric) contact problem solved by the active-set method, warm-started.
+    With ``θ = max |Im M|/Re M = max tan δ`` and ``γ = 1/(1 + θ²)`` the map contracts at rate
+    ``θ/√(1 + θ²) < 1`` in the ``M_s`` norm, whatever the contact set. When it has converged,
+    a few active-set iterations on the full operator polish the complementarity.
+    """
+    comp = prob.compliance
+    ms = np.real(comp)
+    nz = ms > 0
+    theta = float(np.max(np.abs(np.imag(comp[nz])) / ms[nz])) if nz.any() else 0.0
+    gamma = 1.0 / (1.0 + theta**2)
+    sym = _Problem(prob.shape, prob.lengths, prob.z, prob.slope, ms, prob.sigma0)
+    comb = ms - gamma * comp  # kernel of M_s − γ M
+    out = _hard_wall_active_set(sym, tol, max_iter)
+    sigma = out[0]
+    hist = []
+    inner = out[4]
+    ok = False
+    diff = np.inf
+    it = 0
+    next_try = 1e-3
+    info = {"theta": theta, "gamma": gamma}
+    for it in range(1, 50 * max_iter + 1):
+        z_eff = gamma * prob.z + sym.apply(comb, sigma)
+        out = _hard_wall_active_set(sym, min(tol, 1e-10), max_iter, sigma_init=sigma, z=z_eff)
+        inner += out[4]
+        diff = float(np.linalg.norm(out[0] - sigma) / np.linalg.norm(out[0]))
+        sigma = out[0]
+        hist.append(diff)
+        if diff < next_try or diff < tol:
+            # close enough for the active set to be (nearly) right: try exact polishing
+            next_try *= 0.1
+            polish = _hard_wall_active_set(prob, tol, 5, sigma_init=sigma)
+            if polish[6]:
+                prob.matvecs += sym.matvecs
+                info.update(projection_iterations=it, inner_active_set_iterations=inner,
+                            history=hist, polish_iterations=polish[4])
+                return (*polish[:4], it, polish[5], True, info)
+        if diff < tol:
+            ok = True
+            break
+    prob.matvecs += sym.matvecs
+    info.update(projection_iterations=it, inner_active_set_iterations=inner, history=hist)
+    w = prob.displacement(sigma)
+    u0 = w - prob.z
+    ubar = -float(u0[sigma > 0].mean())
+    return sigma, ubar + u0, w, ubar, it, diff, ok, info
 
 
 def _hard_wall_pk(prob: _Problem, tol: float, max_iter: int):
@@ -476,30 +531,88 @@ def _newton_law(prob: _Problem, law: InteractionLaw, tol: float, max_iter: int, 
                                                rtol=min(1e-3, max(tol, 1e-3 * rnorm / snorm)),
                                                extra_diag=~contact)
             lin_its += its
+            if _DEBUG:
+                print("newton", it, idx.size, int(contact.sum()), its, rr, rnorm / snorm)
             dsig[idx] = x
         else:
             dsig[free] += total / n
             dubar = 0.0
         dw = prob.displacement(dsig)
         du = dubar + dw
+        # merit: residual weighted to a displacement, W = 1/(k + 1/m_diag), frozen during the
+        # line search so the Newton direction is a descent direction of |W r|
+        wgt = 1.0 / (k + 1.0 / m_diag)
+        phi0 = float(np.linalg.norm(wgt * r))
         t = 1.0
         for _ in range(40):
             s_t = sigma + t * dsig
             u_t = u + t * du
             f_t = law.pressure(u_t)
             r_t = s_t - f_t
-            rn_t = float(np.linalg.norm(r_t))
-            if rn_t <= (1 - 1e-4 * t) * rnorm:
+            if float(np.linalg.norm(wgt * r_t)) <= (1 - 1e-4 * t) * phi0:
                 break
             t *= 0.5
         else:
             break  # no decrease: stop, reported as not converged
+        if _DEBUG:
+            print("  t", t)
+        rn_t = float(np.linalg.norm(r_t))
         sigma, ubar, u, w, f, r, rnorm = s_t, ubar + t * dubar, u_t, w + t * dw, f_t, r_t, rn_t
         snorm = float(np.linalg.norm(sigma)) or 1.0
         history.append(rnorm / snorm)
     res = rnorm / snorm
     return sigma, u, w, ubar, it, res, res <= tol, {"linear_iterations": lin_its,
                                                     "history": history}
+
+
+def _continuation_stages(law: InteractionLaw, hrms: float) -> list[InteractionLaw]:
+    """Laws of increasing stiffness ending with ``law``: Lennard-Jones lengths ``h_rms·10^-j``.
+
+    Newton on the stiff ``u⁻⁹`` wall from a distant guess overshoots into huge pressures; each
+    stage starts close enough to the next one's solution for the line search to cope.
+    """
+    members = law.laws if isinstance(law, SumLaw) else (law,)
+    ljs = [m for m in members if isinstance(m, LennardJonesRepulsion)]
+    if not ljs:
+        return [law]
+    target = min(m.length for m in ljs)
+    stages = []
+    ell = 0.1 * hrms
+    while ell > 3 * target:
+        scaled = [LennardJonesRepulsion(max(ell, m.length), m.reference_pressure,
+                                        m.relative_length) if isinstance(m, LennardJonesRepulsion)
+                  else m for m in members]
+        stages.append(scaled[0] if len(scaled) == 1 else SumLaw(*scaled))
+        ell *= 0.1
+    stages.append(law)
+    return stages
+
+
+def _solve_law(prob: _Problem, law: InteractionLaw, tol: float, max_iter: int, hrms: float):
+    """Newton with continuation in the Lennard-Jones length, from a uniform pressure."""
+    n = prob.size
+    sigma = np.full(n, prob.sigma0)
+    w = np.zeros(n)
+    stages = _continuation_stages(law, hrms)
+    total_its = 0
+    lin = 0
+    hist = []
+    out = None
+    for j, stage in enumerate(stages):
+        u_no_mean = w - prob.z
+        ubar = _shift_for_law(stage, u_no_mean, prob.sigma0)
+        last = j == len(stages) - 1
+        out = _newton_law(prob, stage, tol if last else max(tol, 1e-4), max_iter,
+                          (sigma, ubar))
+        total_its += out[4]
+        lin += out[7]["linear_iterations"]
+        hist.append(out[7]["history"])
+        if not out[6]:
+            break
+        sigma, w = out[0], out[2]
+    sigma, u, w, ubar, _, res, ok, info = out
+    info = {"linear_iterations": lin, "history": hist, "stages": len(stages)}
+    return sigma, u, w, ubar, total_its, res, ok, info
 
 
 # ----------------------------------------------------------------------------------------------
@@ -591,15 +704,19 @@ def solve_sliding(surface, period, material: GeneralizedMaxwell, velocity: float
                                  "velocity 0); use 'active-set'")
             out = _hard_wall_pk(prob, tol, 10 * max_iter)
             name = "polonsky-keer"
-        else:
+        elif elastic:
             out = _hard_wall_active_set(prob, tol, max_iter)
             name = "active-set"
+        else:
+            out = _hard_wall_viscoelastic(prob, tol, max_iter)
+            name = "projection+active-set"
         used_law = None
     else:
         if method == "pk":
             raise InputError("method: 'pk' is for the hard wall only (law=None)")
         used_law = law.resolve(hrms, sigma0)
-        hw = _hard_wall_active_set(prob, max(tol, 1e-8), max_iter)
+        hw = (_hard_wall_active_set(prob, max(tol, 1e-8), max_iter) if elastic
+              else _hard_wall_viscoelastic(prob, max(tol, 1e-8), max_iter))
         if not hw[6]:
             raise ConvergenceError("hard-wall initial guess did not converge",
                                    diagnostics=hw[7])
