@@ -1,0 +1,194 @@
+"""Interaction laws: LJ wall, tabulated (monotone interpolation, out-of-table), sums, and solves."""
+
+from __future__ import annotations
+
+import numpy as np
+import pytest
+from hypothesis import given, settings
+from hypothesis import strategies as st
+
+import rubbercontact as rc
+from rubbercontact.errors import InputError
+from rubbercontact.halfspace import (
+    LennardJonesRepulsion,
+    SumLaw,
+    TabulatedLaw,
+    solve_sliding,
+)
+from rubbercontact.roughness import SineSeries
+
+SBR = rc.materials.sbr()
+
+
+def fd_stiffness(law, u, h):
+    return -(law.pressure(u + h) - law.pressure(u - h)) / (2 * h)
+
+
+# --- Lennard-Jones ------------------------------------------------------------------------------
+def test_lj_power_law_and_stiffness():
+    law = LennardJonesRepulsion(1e-4, 0.5)
+    u = np.array([0.5e-4, 1e-4, 2e-4, 1e-3])
+    np.testing.assert_allclose(law.pressure(u), 0.5 * (1e-4 / u) ** 9)
+    np.testing.assert_allclose(law.stiffness(u), fd_stiffness(law, u, 1e-9), rtol=1e-5)
+    assert law.in_contact(np.array([1.9e-4, 2.1e-4])).tolist() == [True, False]
+
+
+def test_lj_continuation_is_finite_and_monotone():
+    law = LennardJonesRepulsion(1e-4, 0.5)
+    u = np.linspace(-1e-4, 1e-3, 2001)
+    s = law.pressure(u)
+    assert np.all(np.isfinite(s)) and np.all(np.diff(s) <= 0)
+    # C1 at u_min = ℓ/4
+    umin = 0.25e-4
+    assert law.pressure(umin - 1e-12) == pytest.approx(law.pressure(umin + 1e-12), rel=1e-6)
+
+
+def test_lj_unresolved_and_resolution():
+    with pytest.raises(InputError, match="unresolved"):
+        LennardJonesRepulsion().pressure(np.array([1.0]))
+    law = LennardJonesRepulsion(relative_length=1e-3).resolve(0.02, 0.4)
+    assert law.length == pytest.approx(2e-5) and law.reference_pressure == 0.4
+    with pytest.raises(InputError, match="length"):
+        LennardJonesRepulsion(length=-1.0)
+
+
+# --- tabulated ------------------------------------------------------------------------------------
+def test_tabulated_exponential_is_reproduced_exactly():
+    u = np.linspace(0.0, 0.05, 6)
+    law = TabulatedLaw(u, 2.0 * np.exp(-u / 0.01))
+    uu = np.linspace(0.0, 0.05, 101)
+    # log-PCHIP of log-linear data is exactly linear in log σ
+    np.testing.assert_allclose(law.pressure(uu), 2.0 * np.exp(-uu / 0.01), rtol=1e-12)
+    np.testing.assert_allclose(law.stiffness(uu), 200.0 * np.exp(-uu / 0.01), rtol=1e-10)
+
+
+def test_tabulated_out_of_table_behaviour():
+    u = np.array([0.01, 0.02, 0.03, 0.04])
+    s = np.array([1.0, 0.3, 0.05, 0.0])
+    law = TabulatedLaw(u, s, contact_fraction=[0.9, 0.5, 0.2, 0.0],
+                       shear_stress=[0.2, 0.1, 0.02, 0.0])
+    # zero beyond the first zero sample, together with α and Δτ
+    assert law.pressure(np.array([0.04, 0.1])).tolist() == [0.0, 0.0]
+    assert law.stiffness(np.array([0.05])).tolist() == [0.0]
+    assert law.contact_fraction(np.array([0.05]))[0] == 0.0
+    assert law.shear_stress(np.array([0.05]))[0] == 0.0
+    # stiff continuation below the table: keeps rising, at least as steep (in log) as the
+    # first secant
+    below = law.pressure(np.array([0.0, 0.005, 0.01]))
+    assert below[0] > below[1] > below[2] == pytest.approx(1.0)
+    secant = np.log(0.3 / 1.0) / 0.01
+    assert np.log(below[1] / below[2]) >= -secant * 0.005 * (1 - 1e-12)
+    # companions held at the first value below the table
+    assert law.contact_fraction(np.array([-1.0]))[0] == 0.9
+    # samples are reproduced
+    np.testing.assert_allclose(law.pressure(u), s, atol=1e-15)
+    np.testing.assert_allclose(law.contact_fraction(u), [0.9, 0.5, 0.2, 0.0], atol=1e-15)
+
+
+def test_tabulated_decaying_tail_when_table_never_reaches_zero():
+    law = TabulatedLaw([0.0, 0.01, 0.02], [1.0, 0.5, 0.25])
+    assert law.pressure(np.array([0.03]))[0] == pytest.approx(0.125)  # exponential decay
+    assert law.pressure(np.array([1.0]))[0] < 1e-20
+
+
+@pytest.mark.parametrize("args, field", [
+    (([0.0, 0.0, 1.0], [1.0, 0.5, 0.1]), "separation"),
+    (([0.0, 0.5, 1.0], [1.0, 1.5, 0.1]), "pressure"),
+    (([0.0, 0.5, 1.0], [1.0, -0.5, -1.0]), "pressure"),
+    (([0.0, 0.5, 1.0], [1.0, np.nan, 0.1]), "pressure"),
+    (([0.0, 0.5, 1.0], [1.0, 0.5]), "pressure"),
+    (([0.0], [1.0]), "separation"),
+])
+def test_tabulated_bad_tables(args, field):
+    with pytest.raises(InputError, match=field):
+        TabulatedLaw(*args)
+    with pytest.raises(InputError, match="contact_fraction"):
+        TabulatedLaw([0.0, 1.0], [1.0, 0.0], contact_fraction=[1.5, 0.0])
+
+
+@st.composite
+def monotone_tables(draw):
+    n = draw(st.integers(2, 12))
+    steps = draw(st.lists(st.floats(1e-4, 1.0), min_size=n - 1, max_size=n - 1))
+    u = np.concatenate([[draw(st.floats(-0.1, 0.1))], np.cumsum(steps)])
+    u[1:] += u[0]
+    drops = draw(st.lists(st.floats(0.0, 0.9), min_size=n - 1, max_size=n - 1))
+    s = np.concatenate([[draw(st.floats(1e-3, 1e3))], np.zeros(n - 1)])
+    for i, d in enumerate(drops):
+        s[i + 1] = s[i] * (1 - d)
+    if draw(st.booleans()):
+        s[draw(st.integers(1, n - 1)):] = 0.0  # table reaching zero
+    return u, s
+
+
+@settings(max_examples=60, deadline=None)
+@given(monotone_tables())
+def test_tabulated_interpolation_is_monotone(table):
+    u, s = table
+    law = TabulatedLaw(u, s)
+    span = u[-1] - u[0]
+    uu = np.linspace(u[0] - 0.5 * span, u[-1] + 0.5 * span, 3001)
+    p = law.pressure(uu)
+    k = law.stiffness(uu)
+    assert np.all(np.isfinite(p)) and np.all(p >= 0) and np.all(k >= 0)
+    assert np.all(np.diff(p) <= 1e-12 * p.max())  # non-increasing everywhere
+    np.testing.assert_allclose(law.pressure(u), s, rtol=1e-9, atol=1e-300)
+
+
+# --- sum ----------------------------------------------------------------------------------------
+def test_sum_law():
+    lj = LennardJonesRepulsion(1e-4, 1.0)
+    tab = TabulatedLaw([0.0, 0.01, 0.02], [1.0, 0.5, 0.0], contact_fraction=[1.0, 0.4, 0.0],
+                       shear_stress=[0.3, 0.1, 0.0])
+    law = lj + tab
+    assert isinstance(law, SumLaw)
+    u = np.array([5e-5, 0.005, 0.015, 0.5])
+    np.testing.assert_allclose(law.pressure(u), lj.pressure(u) + tab.pressure(u))
+    np.testing.assert_allclose(law.stiffness(u), lj.stiffness(u) + tab.stiffness(u))
+    np.testing.assert_allclose(law.contact_fraction(u), tab.contact_fraction(u))
+    np.testing.assert_allclose(law.shear_stress(u), tab.shear_stress(u))
+    assert len((law + lj).laws) == 3  # flattened
+    with pytest.raises(InputError, match="contact_fraction"):
+        SumLaw(tab, tab)
+    assert LennardJonesRepulsion().resolve(1.0, 1.0).contact_fraction(u) is None
+
+
+# --- solves with laws against closed forms ------------------------------------------------------
+def test_linear_tabulated_law_full_contact_closed_form():
+    """Linear spring layer σ = κ(u_c − u) in series with the half-space: σ(q) = κz(q)/(1 + κM)."""
+    lam, delta, v = 0.125, 0.001, 10.0
+    q = 2 * np.pi / lam
+    kappa, uc = 200.0, 0.02  # MPa/mm, mm
+    law = TabulatedLaw([0.0, uc], [kappa * uc, 0.0])
+    sigma0 = kappa * uc / 2  # keeps u inside the linear table range
+    res = solve_sliding(SineSeries([lam], [delta]), None, SBR, v, sigma0, n=256, law=law,
+                        tol=1e-12)
+    m = 2 / (q * complex(SBR.reduced_modulus(q * v)))
+    expected = q * delta**2 / 2 * (kappa / (1 + kappa * m)).imag / sigma0
+    assert res.friction == pytest.approx(expected, rel=1e-8)
+    assert res.mean_separation == pytest.approx(uc / 2, rel=1e-10)
+
+
+def test_companion_tables_enter_results():
+    lam, delta = 0.125, 0.002
+    tau0, alpha0 = 0.05, 0.5
+    tab = TabulatedLaw([0.0, 0.01, 1.0], [1.0, 0.1, 0.0], contact_fraction=[alpha0] * 3,
+                       shear_stress=[tau0] * 3)
+    law = LennardJonesRepulsion() + tab
+    res = solve_sliding(SineSeries([lam], [delta]), None, SBR, 10.0, 0.2, n=512, law=law)
+    # constant tables: <Δτ>/σ0 and <H(σ) α> are known (LJ keeps σ > 0 everywhere)
+    assert res.friction_hs == pytest.approx(tau0 / 0.2, rel=1e-12)
+    assert res.contact_fraction == pytest.approx(alpha0, rel=1e-12)
+    assert res.friction == pytest.approx(res.friction_ls + res.friction_hs)
+
+
+def test_steep_law_converges_to_hard_wall():
+    surf = rc.roughness.section3(phases=[0.3, 1.2, 2.5])
+    hard = solve_sliding(surf, None, SBR, 10.0, 0.3, n=2048)
+    errs = []
+    for rel in (1e-3, 1e-4, 1e-5):
+        soft = solve_sliding(surf, None, SBR, 10.0, 0.3, n=2048,
+                             law=LennardJonesRepulsion(relative_length=rel))
+        errs.append(abs(soft.friction - hard.friction) / hard.friction)
+    # the wall thickness ℓ → 0 recovers the exact complementarity solution
+    assert errs[0] > errs[1] > errs[2] and errs[2] < 1e-3
