@@ -33,6 +33,17 @@ def _fsync_directory(directory: Path) -> None:
         os.close(fd)
 
 
+def _local_write_lock() -> contextlib.AbstractContextManager[object]:
+    # With a dask.distributed client alive in this process, xarray guards NetCDF writes
+    # with a *distributed* lock (a scheduler round trip per write, ~10-40 ms). This file
+    # is private to this process until renamed, so a local lock is enough.
+    try:
+        import dask
+    except ImportError:
+        return contextlib.nullcontext()
+    return dask.config.set(scheduler="synchronous")
+
+
 def write_netcdf_atomic(dataset: xr.Dataset, path: str | os.PathLike[str],
                         overwrite: bool = False) -> Path:
     """Write ``dataset`` to ``path`` as NetCDF-4, atomically.
@@ -74,7 +85,8 @@ def write_netcdf_atomic(dataset: xr.Dataset, path: str | os.PathLike[str],
     os.close(fd)
     tmp = Path(tmp_name)
     try:
-        dataset.to_netcdf(tmp, mode="w", format="NETCDF4", engine="netcdf4")
+        with _local_write_lock():
+            dataset.to_netcdf(tmp, mode="w", format="NETCDF4", engine="netcdf4")
         # The netCDF library has closed the file; fsync forces its bytes to disk before the
         # rename publishes it, so a power cut cannot leave a renamed but empty file.
         with open(tmp, "rb+") as fh:
