@@ -1,6 +1,24 @@
 """Roughness: sine-series surfaces, statistics of measured profiles, HDC fitting."""
 
+from .analysis import analyse_default, format_table
+from .fit import (
+    HDCFit,
+    RoughnessWarning,
+    check_resolution,
+    default_wavelengths,
+    fit_hdc,
+    fit_hdc_curve,
+    fit_hdc_details,
+    octave_wavelengths,
+    wave_hdc,
+)
 from .presets import TABLE2, asphalt_ac8, high_slope_wave, section3
 from .sines import SineSeries
+from .statistics import detrend, hdc, log_lags, psd, rms_height, rms_slope
+from .synthetic import synthetic_line_scans
 
-__all__ = ["SineSeries", "TABLE2", "asphalt_ac8", "section3", "high_slope_wave"]
+__all__ = ["SineSeries", "TABLE2", "asphalt_ac8", "section3", "high_slope_wave",
+           "hdc", "psd", "rms_height", "rms_slope", "detrend", "log_lags",
+           "fit_hdc", "fit_hdc_details", "fit_hdc_curve", "HDCFit", "RoughnessWarning",
+           "octave_wavelengths", "default_wavelengths", "check_resolution", "wave_hdc",
+           "synthetic_line_scans", "analyse_default", "format_table"]
