@@ -23,7 +23,8 @@ def plot_hdc(fit: HDCFit, path: str | Path | None = None, *, title: str | None =
              m2_threshold: float = 1.0, dpi: int = 150):
     """Draw the measured HDC, the fitted sum and each wave's HDC on log–log axes.
 
-    High-slope waves (``m2 > m2_threshold``) are dashed. Returns the matplotlib Figure;
+    Each wave is drawn bold up to half its wavelength and faint beyond; high-slope waves
+    (``m2 > m2_threshold``) are dashed. Returns the matplotlib Figure;
     writes it to ``path`` (format from the extension) when given.
     """
     plt = _pyplot()
@@ -38,12 +39,17 @@ def plot_hdc(fit: HDCFit, path: str | Path | None = None, *, title: str | None =
     n = fit.series.size
     floor = float(fit.measured.min()) / 30
     for i in range(n):
-        y = waves[:, i]
-        if not np.any(y > floor):
+        y = np.where(waves[:, i] > floor, waves[:, i], np.nan)
+        if np.all(np.isnan(y)):
             continue
-        ax.loglog(dense, np.where(y > floor, y, np.nan), lw=0.9, alpha=0.8,
-                  ls="--" if m2[i] > m2_threshold else "-", color=cmap(i / max(n - 1, 1)),
+        style = {"ls": "--" if m2[i] > m2_threshold else "-",
+                 "color": cmap(i / max(n - 1, 1))}
+        rising = dense <= fit.series.wavelengths[i] / 2
+        ax.loglog(dense, np.where(rising, y, np.nan), lw=1.0, **style,
                   label=f"λ = {fit.series.wavelengths[i]:g} mm, m2 = {m2[i]:.3g}")
+        # beyond λ/2 the exact one-wave HDC oscillates (eq. 14), the clipped one is flat
+        # (eq. 15): drawn faint so that the sum stays readable
+        ax.loglog(dense, np.where(rising, np.nan, y), lw=0.6, alpha=0.35, **style)
     ax.loglog(fit.lags, fit.measured, "o", ms=3.5, mfc="none", color="tab:red",
               label="measured (mean of scans)")
     ax.loglog(dense, model, color="black", lw=2,

@@ -38,7 +38,6 @@ from dataclasses import dataclass
 from typing import Literal
 
 import numpy as np
-from scipy.optimize import least_squares, nnls
 
 from .._validation import finite_array, positive_scalar
 from ..errors import InputError
@@ -207,6 +206,8 @@ def _log_rms(fitted: np.ndarray, measured: np.ndarray) -> float:
 # -- the fit --------------------------------------------------------------------------------
 def _nnls_relative(g: np.ndarray, r: np.ndarray) -> np.ndarray:
     """min ||(g x − r)/r|| subject to x ≥ 0, columns scaled to unit norm for conditioning."""
+    from scipy.optimize import nnls  # scipy.optimize takes ~1 s to import: only when fitting
+
     a = g / r[:, None]
     norms = np.linalg.norm(a, axis=0)
     norms[norms == 0] = 1.0
@@ -216,6 +217,8 @@ def _nnls_relative(g: np.ndarray, r: np.ndarray) -> np.ndarray:
 
 def _paper_fit(g: np.ndarray, r: np.ndarray, x0: np.ndarray) -> np.ndarray:
     """Eqs. 29–30: min Σ_j (log10 Σ_i x_i g_ij − log10 r_j)², x = Δ² ≥ 0."""
+    from scipy.optimize import least_squares
+
     logr = np.log10(r)
     tiny = 1e-300
 
