@@ -99,18 +99,33 @@ def newton(residual: Callable, U0: np.ndarray, *, atol: float, max_iter: int = 2
         c.solve_time += time.perf_counter() - t0
         c.factorizations += 1
         c.newton_iterations += 1
-        alpha = 1.0
+        # Line search on the incremental energy along dU: G(α) = dU·r(U + α dU) is its
+        # derivative (the step has an incremental potential: the history stress is
+        # constant within a step). Accept α = 1 unless it overshoots the minimum badly
+        # (G(1) > η|G(0)|) or inverts elements; then Illinois/secant steps on G.
+        g0 = float(dU @ r)
+        lo, g_lo = 0.0, g0
+        alpha, hi, g_hi = 1.0, None, None
         for k in range(max_line_search + 1):
             t0 = time.perf_counter()
             r_new, K_new, aux_new = residual(U + alpha * dU, True)
             c.assembly_time += time.perf_counter() - t0
             c.residual_evaluations += 1
             n_new = float(np.linalg.norm(r_new))
-            # Accept a decrease; after the allowed cuts accept any admissible step
-            # (penalty active-set changes can raise ‖r‖ transiently).
-            if np.isfinite(n_new) and (n_new < norm or k == max_line_search):
+            if k == max_line_search:
                 break
-            alpha *= 0.5
+            if not np.isfinite(n_new):
+                hi, g_hi = alpha, None
+                alpha = 0.5 * (lo + alpha)
+                c.line_search_cuts += 1
+                continue
+            g = float(dU @ r_new)
+            if g0 >= 0 or g <= 0.5 * abs(g0) or n_new < norm:
+                break  # not a descent direction (accept), or acceptable decrease
+            hi, g_hi = alpha, g
+            # Secant root of G between lo (G < 0) and hi (G > 0), kept inside the bracket.
+            a_new = lo + (hi - lo) * g_lo / (g_lo - g_hi)
+            alpha = float(np.clip(a_new, lo + 0.1 * (hi - lo), lo + 0.9 * (hi - lo)))
             c.line_search_cuts += 1
         if not np.isfinite(n_new):
             raise NewtonFailure("line search could not avoid inverted elements", hist)
