@@ -75,3 +75,15 @@ def test_managed_local_cluster_agrees_with_sync(monkeypatch):
     reference = run_sweep(_tasks(), executor=ExecutorConfig(workers=1), progress=False)
     local = run_sweep(_tasks(), executor=ExecutorConfig(workers=2), progress=False)
     _assert_same(reference, local)
+
+
+def test_worker_version_mismatch_is_refused(tcp_cluster, monkeypatch):
+    import rubbercontact.sweep.tasks as tasks_module
+
+    # The client process pretends to have other numerics; the workers report the real ones.
+    monkeypatch.setattr(tasks_module, "NUMERICS_VERSION", "999-other")
+    from rubbercontact.errors import InputError
+
+    with pytest.raises(InputError, match="numerics"):
+        run_sweep(_tasks()[:1], executor=ExecutorConfig(scheduler=tcp_cluster.scheduler_address),
+                  progress=False)

@@ -162,6 +162,32 @@ def _execute(function: str, kwargs: dict[str, Any],
 
 
 # -- client side ------------------------------------------------------------------------
+def _versions() -> tuple[str, str]:
+    """(package version, numerics version) of the calling process."""
+    from .. import __version__
+    from .tasks import NUMERICS_VERSION
+
+    return str(__version__), NUMERICS_VERSION
+
+
+def _check_worker_versions(client: Any, address: str | None) -> None:
+    # Workers of an external cluster must compute what this client would compute: a worker
+    # with other numerics would silently fill the cache with answers under the wrong keys.
+    try:
+        found = client.run(_versions)
+    except Exception as exc:  # noqa: BLE001 - e.g. rubbercontact missing on a worker
+        raise InputError(f"scheduler: the workers of {address!r} cannot run rubbercontact "
+                         f"tasks ({type(exc).__name__}: {exc}); install the same "
+                         f"rubbercontact version on every worker") from exc
+    mine = _versions()
+    bad = {w: v for w, v in found.items() if tuple(v) != mine}
+    if bad:
+        worker, (version, numerics) = next(iter(bad.items()))
+        raise InputError(f"scheduler: worker {worker} of {address!r} runs rubbercontact "
+                         f"{version} (numerics {numerics}), this client {mine[0]} (numerics "
+                         f"{mine[1]}); {len(bad)} worker(s) differ")
+
+
 @contextlib.contextmanager
 def _dask_client(mode: str, address: str | None, workers: int,
                  config: ExecutorConfig) -> Iterator[Any]:
@@ -174,6 +200,7 @@ def _dask_client(mode: str, address: str | None, workers: int,
         except OSError as exc:
             raise InputError(f"scheduler: cannot connect to {address!r}: {exc}") from exc
         with client:
+            _check_worker_versions(client, address)
             yield client
         return
     # The nanny sets these in each worker process before it imports numpy.
