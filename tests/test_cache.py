@@ -185,3 +185,27 @@ def test_cli_cache_uses_environment_default(tmp_path, monkeypatch):
     _populate(tmp_path)
     assert main(["cache", "clear", "--yes"]) == 0
     assert ResultCache(tmp_path).info().n_entries == 0
+
+
+def test_various_dtypes_round_trip_without_false_corruption(tmp_path):
+    # A checksum that changed on a NetCDF round trip would recompute forever.
+    ds = xr.Dataset(
+        {"f64": ("x", np.array([1.0, np.nan, -0.0])),
+         "f32": ("x", np.array([1.5, 2.5, np.inf], dtype=np.float32)),
+         "i64": ("x", np.array([1, -2, 3], dtype=np.int64)),
+         "i8": ("x", np.array([1, 0, 1], dtype=np.int8)),
+         "flag": ("x", np.array([True, False, True])),
+         "status": ("x", np.array(["ok", "failed: no convergence", "ok"], dtype=object)),
+         "ustr": ("x", np.array(["a", "bb", "ccc"])),
+         "when": ((), np.datetime64("2024-01-02T03:04:05", "ns")),
+         "scalar": ((), 3.25)},
+        coords={"x": ("x", np.array([0.1, 0.2, 0.3])), "name": ("x", ["u", "v", "w"])},
+        attrs={"units_note": "mm, MPa", "n": 3, "values": [1.0, 2.0]})
+    cache = ResultCache(tmp_path)
+    task = _task()
+    cache.store(task.key(), task, ds, 0.5)
+    entry = cache.load(task.key())
+    assert entry is not None and cache.n_corrupt == 0
+    assert entry.wall_time == 0.5
+    xr.testing.assert_equal(entry.result, ds)
+    assert entry.result.attrs["units_note"] == "mm, MPa"

@@ -325,11 +325,14 @@ def run_sweep(tasks: Sequence[Task], cache: ResultCache | None = None,
                 from distributed import as_completed
 
                 with _dask_client(mode, address, min(workers, len(todo)), config) as client:
-                    futures = {}
-                    for i in todo:
-                        fut = client.submit(_execute, tasks[i].function, dict(tasks[i].kwargs),
-                                            True, key=_dask_key(tasks[i], keys[i]), pure=False)
-                        futures[fut] = i
+                    # One batched submission: client.submit in a loop costs ~1 ms per task.
+                    submitted = client.map(_execute, [tasks[i].function for i in todo],
+                                           [dict(tasks[i].kwargs) for i in todo],
+                                           [True] * len(todo),
+                                           key=[_dask_key(tasks[i], keys[i]) for i in todo],
+                                           pure=False)
+                    futures = dict(zip(submitted, todo, strict=True))
+                    del submitted
                     for fut in as_completed(list(futures)):
                         # Dropping our reference lets the cluster free the result at once.
                         i = futures.pop(fut)
