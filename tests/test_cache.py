@@ -14,7 +14,7 @@ from rubbercontact.sweep import ExecutorConfig, ResultCache, Task, TaskFailure, 
 from rubbercontact.sweep.examples import toy_kernel
 
 FN = "rubbercontact.sweep.examples:toy_kernel"
-SYNC = ExecutorConfig(workers=1)
+SYNC = ExecutorConfig(workers=1, synchronous=True)  # even if RUBBERCONTACT_SCHEDULER is set
 
 
 def _task(v=10.0, p=0.2, **extra):

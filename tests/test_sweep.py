@@ -12,7 +12,7 @@ from rubbercontact.sweep.examples import toy_kernel
 from rubbercontact.sweep.progress import make_reporter
 
 FN = "rubbercontact.sweep.examples:toy_kernel"
-SYNC = ExecutorConfig(workers=1)
+SYNC = ExecutorConfig(workers=1, synchronous=True)  # even if RUBBERCONTACT_SCHEDULER is set
 
 
 def _grid(velocities, pressures, log=None, fail_at=None):
@@ -168,7 +168,8 @@ def test_bad_scheduler_environment_variable(monkeypatch):
     assert ExecutorConfig(synchronous=True).resolved()[0] == "sync"
 
 
-def test_executor_modes():
+def test_executor_modes(monkeypatch):
+    monkeypatch.delenv("RUBBERCONTACT_SCHEDULER", raising=False)
     assert ExecutorConfig(workers=1).resolved()[0] == "sync"
     assert ExecutorConfig(workers=1, synchronous=False).resolved()[0] == "local"
     assert ExecutorConfig(workers=3).resolved() == ("local", None, 3)

@@ -43,7 +43,7 @@ def tcp_cluster():
 
 def test_sync_managed_and_external_cluster_agree(tcp_cluster, tmp_path, monkeypatch):
     monkeypatch.delenv("RUBBERCONTACT_SCHEDULER", raising=False)
-    reference = run_sweep(_tasks(), executor=ExecutorConfig(workers=1), progress=False)
+    reference = run_sweep(_tasks(), executor=ExecutorConfig(synchronous=True), progress=False)
     assert reference.n_failed == 1
 
     address = tcp_cluster.scheduler_address
@@ -72,7 +72,7 @@ def test_sync_managed_and_external_cluster_agree(tcp_cluster, tmp_path, monkeypa
 
 def test_managed_local_cluster_agrees_with_sync(monkeypatch):
     monkeypatch.delenv("RUBBERCONTACT_SCHEDULER", raising=False)
-    reference = run_sweep(_tasks(), executor=ExecutorConfig(workers=1), progress=False)
+    reference = run_sweep(_tasks(), executor=ExecutorConfig(synchronous=True), progress=False)
     local = run_sweep(_tasks(), executor=ExecutorConfig(workers=2), progress=False)
     _assert_same(reference, local)
 

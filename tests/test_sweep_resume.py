@@ -61,7 +61,7 @@ def _check_resume(tmp_path, cache, log):
     done_before = cache.info().n_entries
     started_before = log.read_text().count("\n")
     assert 0 < done_before < N
-    resumed = run_sweep(_tasks(log), cache=cache, executor=ExecutorConfig(workers=1),
+    resumed = run_sweep(_tasks(log), cache=cache, executor=ExecutorConfig(synchronous=True),
                         progress=False)
     # Finished tasks are not recomputed: counted by the sweep and by the kernel's call log.
     assert resumed.n_cached == done_before
@@ -69,7 +69,7 @@ def _check_resume(tmp_path, cache, log):
     assert log.read_text().count("\n") - started_before == N - done_before
     assert resumed.ok
     uninterrupted = run_sweep(_tasks(tmp_path / "other.txt", sleep=0.0), cache=None,
-                              executor=ExecutorConfig(workers=1), progress=False)
+                              executor=ExecutorConfig(synchronous=True), progress=False)
     for a, b in zip(resumed, uninterrupted, strict=True):
         xr.testing.assert_identical(a, b)
 
