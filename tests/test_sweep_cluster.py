@@ -87,3 +87,49 @@ def test_worker_version_mismatch_is_refused(tcp_cluster, monkeypatch):
     with pytest.raises(InputError, match="numerics"):
         run_sweep(_tasks()[:1], executor=ExecutorConfig(scheduler=tcp_cluster.scheduler_address),
                   progress=False)
+
+
+def test_workers_write_a_shared_cache(tcp_cluster, tmp_path, monkeypatch):
+    cache = ResultCache(tmp_path, shared=True)
+
+    def client_store(*args, **kwargs):
+        raise AssertionError("the client wrote an entry")
+
+    # Only the client process is patched: any write from it turns into a CacheWriteError.
+    monkeypatch.setattr(ResultCache, "store", client_store)
+    res = run_sweep(_tasks(), cache=cache,
+                    executor=ExecutorConfig(scheduler=tcp_cluster.scheduler_address),
+                    progress=False)
+    monkeypatch.undo()
+    assert res.n_computed == 6 and res.n_failed == 1
+    assert res.failures[0][1].error_type == "ConvergenceError"
+    assert (cache.info().n_entries, cache.info().n_failed) == (6, 1)
+    again = run_sweep(_tasks(), cache=cache, executor=ExecutorConfig(synchronous=True),
+                      progress=False)
+    assert again.n_cached == 6
+    _assert_same(res, again)
+
+
+def test_shared_cache_that_is_not_shared_falls_back_to_client_writes(tcp_cluster, tmp_path,
+                                                                     monkeypatch, caplog):
+    worker_dir, client_dir = tmp_path / "worker-view", tmp_path / "client-view"
+    cache = ResultCache(worker_dir, shared=True)
+    # The client sees the cache under another path than the workers (not really shared).
+    monkeypatch.setattr(cache, "directory", client_dir)
+    import rubbercontact.sweep.executor as ex
+
+    real = ex._execute
+
+    def execute_in_worker_view(function, kwargs, limit_threads=False, store_in=None):
+        if store_in is not None:
+            store_in = (str(worker_dir), *store_in[1:])
+        return real(function, kwargs, limit_threads, store_in)
+
+    monkeypatch.setattr(ex, "_execute", execute_in_worker_view)
+    with caplog.at_level("WARNING", logger="rubbercontact.sweep.executor"):
+        res = run_sweep(_tasks(), cache=cache,
+                        executor=ExecutorConfig(scheduler=tcp_cluster.scheduler_address),
+                        progress=False)
+    assert res.n_failed == 1 and "not visible to the client" in caplog.text
+    assert ResultCache(client_dir).info().n_entries == 6  # written by the client
+    assert ResultCache(worker_dir).info().n_entries == 6  # and by the workers

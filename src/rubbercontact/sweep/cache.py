@@ -122,13 +122,20 @@ class ResultCache:
     directory
         Cache root; default ``$RUBBERCONTACT_CACHE`` or the user cache directory.
         Created on first write.
+    shared
+        The directory is visible at the same path to every Dask worker (shared
+        filesystem): workers then write the entries themselves, in parallel,
+        instead of the client one after the other. If an entry written by a
+        worker is not visible to the client, the client writes it again and warns.
     """
 
-    def __init__(self, directory: str | os.PathLike[str] | None = None) -> None:
+    def __init__(self, directory: str | os.PathLike[str] | None = None,
+                 shared: bool = False) -> None:
         root = default_cache_dir() if directory is None else Path(directory).expanduser()
         if root.exists() and not root.is_dir():
             raise InputError(f"cache: {str(root)!r} exists and is not a directory")
-        self.directory = root
+        self.directory = root.absolute()
+        self.shared = bool(shared)
         #: Entries found corrupt (and deleted) by this object so far.
         self.n_corrupt = 0
 
