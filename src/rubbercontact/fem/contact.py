@@ -57,13 +57,16 @@ def closest_point(surface: SineSeries, shift: float, px: np.ndarray, py: np.ndar
     Returns ``(xi, g, n, t, kappa)``.
     """
     xi = px.copy()
+    max_step = float(surface.wavelengths[0]) / 16.0
     for _ in range(iterations):
         z = surface.heights(xi + shift)
         dz = surface.slopes(xi + shift)
         d2z = surface.curvatures(xi + shift)
         f = (xi - px) + (z - py) * dz
         fp = 1.0 + dz * dz + (z - py) * d2z
-        step = f / np.where(fp > 0.1, fp, 0.1)
+        # Safeguards for points far below the curve: a positive-curvature floor and a
+        # step limit of λ_min/16 keep the iteration on the local branch.
+        step = np.clip(f / np.where(fp > 0.1, fp, 0.1), -max_step, max_step)
         xi = xi - step
         if np.all(np.abs(step) <= 1e-15 * max(1.0, float(np.max(np.abs(px), initial=1.0)))):
             break

@@ -48,7 +48,8 @@ def factorize(K: sp.csr_matrix):
 
 
 def newton(residual: Callable, U0: np.ndarray, *, atol: float, max_iter: int = 25,
-           counters: SolverCounters | None = None, max_line_search: int = 5):
+           counters: SolverCounters | None = None, max_line_search: int = 5,
+           full_steps: int = 0):
     """Solve ``r(U) = 0``.
 
     Parameters
@@ -65,7 +66,12 @@ def newton(residual: Callable, U0: np.ndarray, *, atol: float, max_iter: int = 2
     counters
         Accumulates work statistics.
     max_line_search
-        Maximum halvings of a step that raises the residual norm or inverts elements.
+        Maximum line-search trials per iteration.
+    full_steps
+        The first ``full_steps`` iterations take the full Newton step (halved only if it
+        inverts elements): with a stiff penalty the line search would creep toward the
+        right contact active set one node at a time. Later iterations use the line search
+        (guards against active-set cycling).
 
     Returns
     -------
@@ -87,7 +93,7 @@ def newton(residual: Callable, U0: np.ndarray, *, atol: float, max_iter: int = 2
     hist = [norm]
     if not np.isfinite(norm):
         raise NewtonFailure("inadmissible predictor (inverted element)", hist)
-    for _ in range(max_iter):
+    for it in range(max_iter):
         if norm <= atol:
             return U, aux, hist
         t0 = time.perf_counter()
@@ -119,6 +125,8 @@ def newton(residual: Callable, U0: np.ndarray, *, atol: float, max_iter: int = 2
                 alpha = 0.5 * (lo + alpha)
                 c.line_search_cuts += 1
                 continue
+            if it < full_steps:
+                break  # plain Newton first: fastest way to the right contact active set
             g = float(dU @ r_new)
             if g0 >= 0 or g <= 0.5 * abs(g0) or n_new < norm:
                 break  # not a descent direction (accept), or acceptable decrease

@@ -1,0 +1,191 @@
+"""FEM contact, static indentation and the Newton solver.
+
+References: exact closest-point geometry of a sine, Westergaard's elastic
+solution for a sinusoid (plane strain, E_r = 4E/3 for ν = 1/2), global equilibrium
+and Newton's quadratic convergence.
+"""
+
+import numpy as np
+import pytest
+
+import rubbercontact as rc
+from rubbercontact.errors import InputError
+from rubbercontact.fem.cell import CellModel
+from rubbercontact.fem.constitutive import MaterialParameters
+from rubbercontact.fem.contact import closest_point, contact_fraction, evaluate_contact
+from rubbercontact.fem.mesh import periodic_cell
+from rubbercontact.fem.solver import SolverCounters, newton
+
+
+def test_closest_point_is_orthogonal_projection():
+    surf = rc.roughness.SineSeries([1.0, 0.5], [0.1, 0.04], [0.3, 1.0])
+    rng = np.random.default_rng(0)
+    xi0 = rng.uniform(0, 1, 50)
+    shift = 0.37
+    # points at a known signed distance d along the exact normal of the curve
+    z = surf.heights(xi0 + shift)
+    dz = surf.slopes(xi0 + shift)
+    a = np.sqrt(1 + dz**2)
+    d = rng.uniform(-0.01, 0.01, 50)
+    px, py = xi0 - d * dz / a, z + d / a
+    xi, g, n, t, kappa = closest_point(surf, shift, px, py)
+    np.testing.assert_allclose(xi, xi0, atol=1e-12)
+    np.testing.assert_allclose(g, d, atol=1e-12)
+    np.testing.assert_allclose(np.einsum("ij,ij->i", n, t), 0, atol=1e-14)
+
+
+def test_contact_tangent_matches_finite_differences():
+    surf = rc.roughness.high_slope_wave()
+    rng = np.random.default_rng(1)
+    x = rng.uniform(0, surf.period, 40)
+    pos = np.column_stack([x, surf.heights(x + 0.01) + rng.uniform(-2e-3, 1e-3, 40)])
+    w = np.full(40, 1e-3)
+    eps = 1e5
+    cs = evaluate_contact(surf, 0.01, pos, w, eps)
+    h = 1e-9
+    for k in range(2):
+        d = np.zeros_like(pos)
+        d[:, k] = h
+        fp = evaluate_contact(surf, 0.01, pos + d, w, eps).force
+        fm = evaluate_contact(surf, 0.01, pos - d, w, eps).force
+        num = -(fp - fm) / (2 * h)   # stiffness = -∂(force on rubber)/∂p
+        np.testing.assert_allclose(num, cs.stiffness[:, :, k],
+                                   atol=1e-5 * np.abs(cs.stiffness).max())
+
+
+def test_contact_fraction_interpolates_edges():
+    x = np.arange(10) * 0.1
+    gap = np.array([1, 1, -1, -1, -1, 1, 1, 1, 1, 1], float)
+    # two half segments + two full segments = 0.3 of the length 1.0
+    assert contact_fraction(x, gap, 1.0) == pytest.approx(0.3)
+
+
+def _small_cell(surface, material, nx=24, ny=18, dt=1e-4):
+    L0 = surface.period
+    y0 = float(surface.heights(np.arange(nx) * L0 / nx).max()) - 1e-3 * L0 / nx
+    cell = periodic_cell(L0, 0.75 * L0, nx, ny, y0=y0)
+    par = MaterialParameters.from_material(material)
+    return CellModel(cell, surface, par, 100 * 3 * par.algorithmic_shear_modulus(dt) * nx / L0)
+
+
+def test_cell_tangent_with_contact_matches_finite_differences():
+    surf = rc.roughness.SineSeries([1.0], [0.05])
+    model = _small_cell(surf, rc.materials.sbr(), nx=12, ny=6)
+    rng = np.random.default_rng(4)
+    st = model.new_state()
+    U = 1e-3 * rng.standard_normal(model.n)
+    U[model.plate] = -0.02           # several face nodes penetrate
+    U[model.by] -= 0.03
+    r, K, ev = model.evaluate(U, st, 1e-4, 0.1, 0.3)
+    assert ev.contact.active.sum() >= 3
+    K = K.toarray()
+    h = 1e-8
+    cols = np.concatenate([model.bx[:4], model.by[:4], [model.plate], [5, 17]])
+    for j in cols:
+        e = np.zeros(model.n)
+        e[j] = h
+        num = (model.evaluate(U + e, st, 1e-4, 0.1, 0.3, False)[0]
+               - model.evaluate(U - e, st, 1e-4, 0.1, 0.3, False)[0]) / (2 * h)
+        np.testing.assert_allclose(num, K[:, j], atol=1e-5 * np.abs(K).max())
+    np.testing.assert_allclose(K, K.T, atol=1e-10 * np.abs(K).max())
+
+
+def test_newton_converges_quadratically():
+    # Static elastic indentation; the residual ratios r_{k+1}/r_k² stay bounded in the
+    # last iterations (quadratic convergence with the consistent tangent).
+    surf = rc.roughness.SineSeries([1.0], [0.02])
+    model = _small_cell(surf, rc.materials.GeneralizedMaxwell.elastic(4.0))
+    st = model.new_state()
+    load = 0.2 * surf.period
+    counters = SolverCounters()
+
+    def res(U, tangent):
+        return model.evaluate(U, st, 1.0, 0.0, load, tangent)
+
+    U = np.zeros(model.n)
+    for frac in np.linspace(0.125, 1.0, 8):   # press in increments, as the protocol does
+        U, _, _ = newton(lambda V, tangent, f=frac: model.evaluate(V, st, 1.0, 0.0, f * load,
+                                                                     tangent),
+                         U, atol=1e-10 * load, max_iter=60)
+    # restart from a perturbed converged state: active set unchanged, pure Newton
+    U0 = U + 1e-5 * np.random.default_rng(5).standard_normal(model.n)
+    _, _, hist = newton(res, U0, atol=1e-11 * load, counters=counters)
+    hist = np.array(hist)
+    print("residual norms", hist)
+    print("ratios r_k+1/r_k", hist[1:] / hist[:-1])
+    assert len(hist) <= 6
+    # quadratic: log r_{k+1} ≈ 2 log r_k (relative to the first residual)
+    rel = hist / hist[0]
+    k = np.flatnonzero(rel[1:] < 1e-2)[0] + 1   # first iterate in the asymptotic range
+    if k + 1 < len(rel):
+        assert rel[k + 1] <= 10 * rel[k] ** 2 * 1e2 or rel[k + 1] < 1e-11
+
+
+def test_westergaard_elastic_indentation():
+    # Elastic sine (m2 = 0.044, small slope) pressed to p̄ = 0.3 p_full:
+    # Westergaard p̄/p_full = sin²(πa/λ), p(0) = 2 p̄ / sin(πa/λ).
+    E = 4.0
+    lam, amp = 1.0, 0.01
+    surf = rc.roughness.SineSeries([lam], [amp], [np.pi / 2])   # peak at x = 0
+    p_full = np.pi * (4 * E / 3) * amp / lam
+    pbar = 0.3 * p_full
+    out = rc.fem.sliding_test(surf, rc.materials.GeneralizedMaxwell.elastic(E), pbar, 0.0,
+                              mesh=(40, 30))
+    a = lam / np.pi * np.arcsin(np.sqrt(pbar / p_full))
+    # contact edges are resolved to about one element each: 2 h/λ = 0.05
+    assert out.contact_fraction == pytest.approx(2 * a / lam, abs=0.05)
+    prof = out.pressure_profile
+    # global equilibrium: contact force balances the plate load (penalty forces are exact)
+    dx = np.gradient(prof.x)
+    assert np.sum(prof.pressure * dx) / lam == pytest.approx(pbar, rel=0.02)
+    # peak pressure vs Westergaard within 5 % (P1 resolution of a smooth profile)
+    xs = np.mod(prof.x + lam / 2, lam) - lam / 2
+    p0 = prof.pressure[np.argmin(np.abs(xs))]
+    assert p0 == pytest.approx(2 * pbar / np.sin(np.pi * a / lam), rel=0.05)
+    # pressure shape inside the contact vs Westergaard's
+    # p(x) = 2 p̄ cos(πx/λ) sqrt(sin²(πa/λ) − sin²(πx/λ)) / sin²(πa/λ)
+    inner = np.abs(xs) < 0.7 * a
+    ref = (2 * pbar * np.cos(np.pi * xs[inner] / lam)
+           * np.sqrt(np.sin(np.pi * a / lam) ** 2 - np.sin(np.pi * xs[inner] / lam) ** 2)
+           / np.sin(np.pi * a / lam) ** 2)
+    np.testing.assert_allclose(prof.pressure[inner], ref, rtol=0.08)
+    # no checkerboard: the node-to-node alternating part of the pressure is small
+    p = prof.pressure[inner][np.argsort(xs[inner])]
+    alt = p[1:-1] - 0.5 * (p[:-2] + p[2:])
+    assert np.max(np.abs(alt)) < 0.02 * p.max()
+    assert out.friction == pytest.approx(0.0, abs=1e-10)   # static and symmetric
+    # penalty ε = 100 E/h: penetration ≈ p_max h/(100 E) ≈ 1e-5 mm, 0.1 % of the amplitude
+    assert out.stats.max_penetration < 1.2 * prof.pressure.max() * (lam / 40) / (100 * E)
+    assert out.stats.max_penetration < 2e-3 * amp
+
+
+def _bad(**kw):
+    args = dict(surface=rc.roughness.high_slope_wave(), material=rc.materials.sbr(),
+                mean_pressure=1.0, velocity=10.0, mesh=(30, 23))
+    args.update(kw)
+    return args
+
+
+@pytest.mark.parametrize("kw, field", [
+    ({"mean_pressure": -1.0}, "mean_pressure"),
+    ({"mean_pressure": 0.0}, "mean_pressure"),
+    ({"velocity": -1.0}, "velocity"),
+    ({"surface": rc.roughness.SineSeries([], [])}, "surface"),
+    ({"surface": "sine"}, "surface"),
+    ({"material": 4.17}, "material"),
+    ({"mesh": (6, 5)}, "mesh"),
+    ({"mesh": (30,)}, "mesh"),
+    ({"mesh": (30.5, 20)}, "mesh"),
+    ({"height_ratio": 0.0}, "height_ratio"),
+    ({"periods": 0}, "periods"),
+    ({"steps_per_period": 2}, "steps_per_period"),
+])
+def test_bad_input_names_the_field(kw, field):
+    with pytest.raises(InputError, match=field):
+        rc.fem.sliding_test(**_bad(**kw))
+
+
+def test_mesh_too_coarse_for_shortest_wavelength():
+    surf = rc.roughness.SineSeries([1.0, 0.0625], [0.1, 0.005])
+    with pytest.raises(InputError, match="elements per shortest wavelength"):
+        rc.fem.sliding_test(surf, rc.materials.sbr(), 1.0, 1.0, mesh=(64, 48))

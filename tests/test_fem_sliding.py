@@ -1,0 +1,137 @@
+"""FEM sliding test: small-slope limit vs linear viscoelastic theory, sign convention,
+zero friction of an elastic solid, global equilibrium, result container.
+
+Reference for full contact of one sine on a viscoelastic half-space (plane strain,
+ν = 1/2): μ = q²Δ² Im E_r(qv)/(4 σ0), E_r = 4E/3.
+"""
+
+import numpy as np
+import pytest
+
+import rubbercontact as rc
+
+LAM = 0.0625
+
+
+def _small_slope_case(v=1.0, m2=0.1, nx=32, ny=24, material=None, periods=4):
+    mat = material or rc.materials.sbr()
+    q = 2 * np.pi / LAM
+    amp = m2 * np.sqrt(2) / q
+    er = mat.reduced_modulus(q * v)
+    # twice the full-contact pressure of the (complex) modulus keeps the contact full
+    p = 2 * np.pi * abs(er) * amp / LAM
+    out = rc.fem.sliding_test(rc.roughness.SineSeries([LAM], [amp]), mat, p, v,
+                              mesh=(nx, ny), periods=periods)
+    mu_th = q**2 * amp**2 * er.imag / (4 * p)
+    return out, mu_th, amp
+
+
+@pytest.fixture(scope="module")
+def small_slope():
+    return _small_slope_case()
+
+
+def test_small_slope_friction_matches_linear_theory(small_slope):
+    out, mu_th, _ = small_slope
+    assert out.contact_fraction == pytest.approx(1.0, abs=1e-12)
+    # Issue requirement: within 5 %. Measured agreement is ~0.1 %, the residual error
+    # coming from the mesh (16 elements per λ in depth decay) and the cell height.
+    assert out.friction == pytest.approx(mu_th, rel=0.05)
+    assert out.friction > 0
+    assert out.stats.steady
+
+
+def test_sign_convention_pressure_higher_on_rising_flanks(small_slope):
+    # v > 0: rubber moves +x relative to the surface; pressure higher where dz/dx > 0.
+    out, _, _ = small_slope
+    prof = out.pressure_profile
+    slope = np.cos(2 * np.pi * prof.x / LAM)   # dz/dx sign for phase 0
+    rising, falling = prof.pressure[slope > 0.3].mean(), prof.pressure[slope < -0.3].mean()
+    assert rising > falling
+    # μ from the pressure profile, <σ dz/dx>/σ0 (projected-length weights), agrees with
+    # the contact-force friction (different formula, same physics; 2 % for the
+    # trapezoid-vs-lumped weights).
+    dzdx = rc.roughness.SineSeries([LAM], [out.surface["amplitudes"][0]]).slopes(prof.x)
+    mu_profile = np.mean(prof.pressure * dzdx) / out.mean_pressure
+    assert mu_profile == pytest.approx(out.friction, rel=0.02)
+
+
+def test_global_equilibrium_top_reaction_equals_contact_friction(small_slope):
+    out, _, _ = small_slope
+    h = out.history
+    slide = h["phase"] == 2
+    # the horizontal reaction of the top edge balances the contact force: only the
+    # Newton tolerance (1e-6 p̄ L0) separates them
+    np.testing.assert_allclose(h["friction_top"][slide], h["friction"][slide], atol=1e-5)
+    # vertical: the load history reaches p̄
+    assert h["load"][-1] == pytest.approx(out.mean_pressure)
+
+
+def test_mean_separation_definition(small_slope):
+    # In full contact the deformed face follows z, whose mean is 0 (the trapezoid rule of a
+    # sine at uniform nodes is exact), except for the penalty penetration p̄/ε with
+    # ε = 100 E_alg/h, bounded using E∞ < E_alg.
+    out, _, amp = small_slope
+    h = LAM / 32
+    assert out.mean_separation < 0
+    assert abs(out.mean_separation) < out.mean_pressure * h / (100 * 4.17)
+
+
+def test_elastic_material_gives_zero_friction():
+    mat = rc.materials.GeneralizedMaxwell.elastic(4.17)
+    surf = rc.roughness.SineSeries([LAM], [0.005])        # m2 = 0.36, partial contact
+    out = rc.fem.sliding_test(surf, mat, 0.3, 10.0, mesh=(32, 24), periods=2)
+    assert 0.05 < out.contact_fraction < 0.95
+    # exactly zero up to round-off: every step is a symmetric configuration
+    assert abs(out.friction) < 1e-8
+
+
+def test_static_test_has_no_friction_and_relaxed_state():
+    # v = 0: fully relaxed static indentation; with the equilibrium modulus alone the
+    # result equals that of the elastic material E∞ (exact relaxation in one big step).
+    surf = rc.roughness.SineSeries([LAM], [0.004])
+    visco = rc.fem.sliding_test(surf, rc.materials.sbr(), 0.3, 0.0, mesh=(24, 18))
+    elastic = rc.fem.sliding_test(surf, rc.materials.GeneralizedMaxwell.elastic(4.17), 0.3,
+                                  0.0, mesh=(24, 18))
+    assert visco.friction == pytest.approx(0.0, abs=1e-10)
+    # e^{-100} relaxation: identical up to the Newton tolerance
+    assert visco.contact_fraction == pytest.approx(elastic.contact_fraction, abs=1e-6)
+    assert visco.mean_separation == pytest.approx(elastic.mean_separation, rel=1e-5)
+
+
+def test_result_dataset_has_units(small_slope):
+    out, _, _ = small_slope
+    ds = out.to_dataset()
+    assert ds["friction"].attrs["units"] == "1"
+    assert ds["mean_separation"].attrs["units"] == "mm"
+    assert ds["profile_pressure"].attrs["units"] == "MPa"
+    assert ds["history_friction"].size == out.stats.steps
+    assert float(ds["shear_stress"]) == pytest.approx(out.friction * out.mean_pressure)
+
+
+@pytest.mark.slow
+def test_small_slope_friction_fine_mesh_two_speeds():
+    for v in (1.0, 10.0):
+        out, mu_th, _ = _small_slope_case(v=v, nx=64, ny=48, periods=4)
+        assert out.friction == pytest.approx(mu_th, rel=0.02)
+
+
+@pytest.mark.slow
+def test_high_slope_wave_mesh_convergence():
+    # Paper's high-slope wave at 1 MPa and 10 mm/s. Sequence 30x23 -> 60x45 (the
+    # 120x90 point is in benchmarks/fem.md): friction and contact fraction must change
+    # by less than 10 % between the two meshes and the contact pressure must be smooth.
+    res = [rc.fem.sliding_test(rc.roughness.high_slope_wave(), rc.materials.sbr(), 1.0,
+                               10.0, mesh=m, periods=6) for m in ((30, 23), (60, 45))]
+    for r in res:
+        print(r.mesh, r.friction, r.contact_fraction, r.mean_separation, r.stats)
+        assert 0.05 < r.contact_fraction < 0.5
+        assert r.friction > 0
+    assert res[1].friction == pytest.approx(res[0].friction, rel=0.10)
+    assert res[1].contact_fraction == pytest.approx(res[0].contact_fraction, rel=0.10)
+    prof = res[1].pressure_profile
+    p = prof.pressure
+    inside = np.flatnonzero(p > 0.1 * p.max())
+    inside = inside[(inside > inside.min() + 1) & (inside < inside.max() - 1)]
+    alt = p[inside] - 0.5 * (p[inside - 1] + p[inside + 1])
+    assert np.max(np.abs(alt)) < 0.1 * p.max()
