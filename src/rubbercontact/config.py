@@ -95,10 +95,17 @@ class HalfSpaceConfig(_Strict):
     tol: PositiveFloat = Field(1e-8, lt=1, description="relative residual tolerance")
 
 
+Mesh = tuple[Annotated[int, Field(ge=4)], Annotated[int, Field(ge=2)]]
+
+
 class FemConfig(_Strict):
-    mesh: tuple[Annotated[int, Field(ge=4)], Annotated[int, Field(ge=2)]] = (120, 90)
+    """FEM sliding test (paper §2.4): used for the law and for the full-surface model."""
+
+    mesh: Mesh = Field((120, 90), description="elements (nx, ny) of the high-slope cell")
+    full_mesh: Mesh | None = Field(
+        None, description="elements (nx, ny) of the full-surface FEM model (default: mesh)")
     height_ratio: PositiveFloat = Field(0.75, description="cell height / width [-]")
-    periods: PositiveFloat = Field(3.0, description="sliding distance in periods")
+    periods: int = Field(4, ge=1, le=100, description="maximum sliding distance in periods")
     steps_per_period: int | None = Field(None, ge=4, description="time steps per period")
 
 
@@ -258,7 +265,7 @@ DEFAULT_CONFIG: dict = {
     "seed": 1,
     "models": ["vhs", "hybrid", "fem"],
     "halfspace": {"n": 2048},
-    "fem": {"mesh": [60, 45], "periods": 2.0},
+    "fem": {"mesh": [60, 45], "periods": 3},
     "law": {"pressures": [0.25, 0.5, 1.0, 2.0, 4.0]},
     "output": {"directory": "results"},
 }

@@ -46,7 +46,7 @@ def command(
         # The built-in default also shows the roughness analysis of paper §2.2/§4.1.
         from ..roughness.analysis import analyse_default
 
-        analyse_default(outdir)
+        analyse_default(outdir, echo=typer.echo)
 
     with warnings.catch_warnings(record=True) as caught:
         warnings.simplefilter("always")

@@ -32,7 +32,7 @@ class LawWarning(UserWarning):
 def effective_law(hs_surface: SineSeries, material: GeneralizedMaxwell,
                   pressures: Sequence[float], velocities: Sequence[float], *,
                   mesh: tuple[int, int] = (120, 90), height_ratio: float = 0.75,
-                  periods: float = 3.0, steps_per_period: int | None = None,
+                  periods: int = 4, steps_per_period: int | None = None,
                   runner=None) -> xr.Dataset:
     """Run the FEM sliding test over ``pressures × velocities`` and tabulate the law.
 
@@ -72,7 +72,7 @@ def effective_law(hs_surface: SineSeries, material: GeneralizedMaxwell,
     from ..sweep import Task
 
     fem_opts = {"mesh": [int(m) for m in mesh], "height_ratio": float(height_ratio),
-                "periods": float(periods), "steps_per_period": steps_per_period}
+                "periods": int(periods), "steps_per_period": steps_per_period}
     tasks = [Task(function="rubbercontact.hybrid.tasks:fem_task",
                   kwargs={"surface": hs_surface.as_dict(), "material": material.as_dict(),
                           "velocity": float(vi), "mean_pressure": float(pi), **fem_opts},

@@ -74,16 +74,20 @@ def build_surface(cfg: RunConfig) -> tuple[SineSeries, dict]:
     if s.wavelengths is not None:
         return SineSeries(s.wavelengths, s.amplitudes), {"source": "sine table"}
     from ..io.profiles import read_profiles
-    from ..roughness.fit import fit_hdc
+    from ..roughness.fit import default_wavelengths, fit_hdc_details
 
     p = s.profiles
     profiles = read_profiles(p.files, format=p.format, unit=p.unit, dx=p.dx,
-                             window=p.window, despike=p.despike)
-    fit_kwargs = {k: v for k, v in {"waves": p.waves, "lower_cutoff": p.lower_cutoff,
-                                    "upper_cutoff": p.upper_cutoff}.items() if v is not None}
-    series = fit_hdc(profiles, method=p.method, **fit_kwargs)
+                             window=p.window or 16.0, despike=p.despike)
+    shortest = min(z.size for z in profiles.profiles) * profiles.dx
+    wavelengths = default_wavelengths(profiles.dx, shortest, n_waves=p.waves,
+                                      lower_cutoff=p.lower_cutoff, upper_cutoff=p.upper_cutoff)
+    fit = fit_hdc_details(profiles, wavelengths=wavelengths, method=p.method)
+    series = fit.series
     info = {"source": "fit of measured profiles", "files": [str(f) for f in p.files],
-            "sha256": list(getattr(profiles, "sha256", []) or []), "fit_method": p.method}
+            "sources": [dict(src) for src in profiles.sources], "fit_method": p.method,
+            "n_scans": len(profiles.profiles), "dx_mm": profiles.dx,
+            "log10_rms_error": float(fit.log10_rms_error)}
     return series, info
 
 
@@ -198,7 +202,8 @@ def run(config: RunConfig | dict | str | Path, *, runner: Runner | None = None,
                     keep = ir == 0
                     if m == "fem":
                         kw = {"surface": real.as_dict(), **common,
-                              "mesh": list(cfg.fem.mesh), "height_ratio": cfg.fem.height_ratio,
+                              "mesh": list(cfg.fem.full_mesh or cfg.fem.mesh),
+                              "height_ratio": cfg.fem.height_ratio,
                               "periods": cfg.fem.periods,
                               "steps_per_period": cfg.fem.steps_per_period}
                         fn = "rubbercontact.hybrid.tasks:fem_task"
@@ -250,7 +255,7 @@ def run(config: RunConfig | dict | str | Path, *, runner: Runner | None = None,
         "title": "rubbercontact hybrid multiscale results",
         "rubbercontact_version": __version__,
         "config": cfg.model_dump_json(),
-        "surface": json.dumps(surface_info),
+        "surface": json.dumps(surface_info, default=str),
         "material": json.dumps(material.as_dict()),
         "period_mm": period,
         "timings_s": json.dumps(timings),

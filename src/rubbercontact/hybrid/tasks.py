@@ -87,25 +87,28 @@ def halfspace_task(surface: dict, period: float, material: dict, velocity: float
 
 def fem_task(surface: dict, material: dict, velocity: float, mean_pressure: float,
              mesh: list[int] | tuple[int, int] = (120, 90), height_ratio: float = 0.75,
-             periods: float = 3.0, steps_per_period: int | None = None) -> xr.Dataset:
+             periods: int = 4, steps_per_period: int | None = None) -> xr.Dataset:
     """One FEM micromechanical sliding test (paper §2.4), reduced to its time averages."""
     from .. import fem
 
     t0 = time.perf_counter()
-    kwargs = {"mesh": tuple(mesh), "height_ratio": height_ratio, "periods": periods}
+    kwargs = {"mesh": tuple(mesh), "height_ratio": height_ratio, "periods": int(periods)}
     if steps_per_period is not None:
         kwargs["steps_per_period"] = steps_per_period
     out = fem.sliding_test(_surface(surface), _material(material), mean_pressure, velocity,
                            **kwargs)
+    st = out.stats
     values = {
         "friction": out.friction, "shear_stress": out.shear_stress,
         "contact_fraction": out.contact_fraction, "mean_separation": out.mean_separation,
         "mean_pressure": mean_pressure, "velocity": velocity,
         "wall_time": time.perf_counter() - t0,
+        "steps": st.steps, "newton_iterations": st.newton_iterations, "cutbacks": st.cutbacks,
+        "max_penetration": st.max_penetration, "steady": int(st.steady),
     }
     ds = _scalars(values, {"model": "fem"})
+    ds["max_penetration"].attrs["units"] = "mm"
     prof = out.pressure_profile
-    px, pp = (prof if isinstance(prof, tuple) else (prof["x"], prof["pressure"]))
-    ds["x_fem"] = ("x_fem", np.asarray(px), {"units": "mm"})
-    ds["pressure_profile"] = ("x_fem", np.asarray(pp), {"units": "MPa"})
+    ds["x_fem"] = ("x_fem", np.asarray(prof.x), {"units": "mm"})
+    ds["pressure_profile"] = ("x_fem", np.asarray(prof.pressure), {"units": "MPa"})
     return ds
