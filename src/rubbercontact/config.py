@@ -267,5 +267,6 @@ DEFAULT_CONFIG: dict = {
     "halfspace": {"n": 2048},
     "fem": {"mesh": [60, 45], "periods": 3},
     "law": {"pressures": [0.25, 0.5, 1.0, 2.0, 4.0]},
+    "execution": {"workers": 2},
     "output": {"directory": "results"},
 }
