@@ -119,17 +119,21 @@ def element_arrays(params: MaterialParameters, dNdX: np.ndarray, w: np.ndarray,
     B[:, :, 2] = dN2 * F1 + dN1 * F2
     B = B.reshape(nel, 4, 3, 8)
     wS = w[..., None] * S
-    fe = np.einsum("egI,egIa->ea", wS, B)
+    fe = (wS.reshape(nel, 1, 12) @ B.reshape(nel, 12, 8)).reshape(nel, 8)
     ke = None
     if tangent:
-        DB = CC @ B                                    # (e, g, 3, 8)
-        ke = np.einsum("egIa,egIb->eab", B * w[..., None, None], DB)
+        # Batched small matmuls with the Gauss points folded into the contraction index
+        # are several times faster than einsum here.
+        DB = (CC @ B).reshape(nel, 12, 8)                       # (e, g·I, 8)
+        Bt = (B * w[..., None, None]).transpose(0, 3, 1, 2).reshape(nel, 8, 12)
+        ke = Bt @ DB
         # Geometric stiffness δ_ik ∇N_a·S·∇N_b.
         Sm = np.empty((nel, 4, 2, 2))
-        Sm[..., 0, 0] = S[..., 0]
-        Sm[..., 1, 1] = S[..., 1]
-        Sm[..., 0, 1] = Sm[..., 1, 0] = S[..., 2]
-        G = np.einsum("egaI,egIJ,egbJ->eab", dNdX, Sm * w[..., None, None], dNdX)
+        Sm[..., 0, 0] = wS[..., 0]
+        Sm[..., 1, 1] = wS[..., 1]
+        Sm[..., 0, 1] = Sm[..., 1, 0] = wS[..., 2]
+        T = (dNdX @ Sm).transpose(0, 2, 1, 3).reshape(nel, 4, 8)
+        G = T @ dNdX.transpose(0, 1, 3, 2).reshape(nel, 8, 4)
         ke4 = ke.reshape(nel, 4, 2, 4, 2)
         ke4[:, :, 0, :, 0] += G
         ke4[:, :, 1, :, 1] += G
@@ -139,6 +143,6 @@ def element_arrays(params: MaterialParameters, dNdX: np.ndarray, w: np.ndarray,
         Finv[..., 1, 1] = F[..., 0, 0] / J
         Finv[..., 0, 1] = -F[..., 0, 1] / J
         Finv[..., 1, 0] = -F[..., 1, 0] / J
-        b = np.einsum("eg,egaI,egIi->eai", w * J, dNdX, Finv).reshape(nel, 8)
+        b = ((w * J)[..., None, None] * (dNdX @ Finv)).sum(axis=1).reshape(nel, 8)
         ke += (dp / V0)[:, None, None] * b[:, :, None] * b[:, None, :]
     return ElementOutput(fe, ke, new_state, S, F, theta, p)
