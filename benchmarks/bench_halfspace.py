@@ -1,0 +1,320 @@
+"""Half-space solver benchmarks: elastic hard wall vs Tamaas and ContactMechanics; viscoelastic.
+
+Run: ``python benchmarks/bench_halfspace.py [--quick] [--output benchmarks/halfspace.md]``.
+Single-threaded (set ``OMP_NUM_THREADS=1``). Accuracy is made equal by running every solver on a
+ladder of its own tolerances and keeping the first (cheapest) run whose pressure field is within
+``--target`` (relative L2) of a tightly converged reference (our active-set solver at tol 1e-12).
+"""
+
+from __future__ import annotations
+
+import argparse
+import datetime
+import os
+import platform
+import subprocess
+import sys
+import tempfile
+import time
+
+import numpy as np
+import scipy.fft as sfft
+
+import rubbercontact as rc
+from rubbercontact.halfspace import LennardJonesRepulsion, solve_sliding
+
+E, NU = 10.0, 0.5
+ER = E / (1 - NU**2)
+
+
+# -- surfaces ------------------------------------------------------------------------------------
+def sinusoid(n: int, frac: float = 0.3):
+    lam, delta = 1.0, 0.01
+    x = np.arange(n) * lam / n
+    z = delta * np.sin(2 * np.pi * x / lam)
+    p0 = np.pi * ER * delta / lam * np.sin(np.pi * frac / 2) ** 2  # Westergaard
+    return z, lam, p0
+
+
+def hurst_map(n: int, hurst: float = 0.8, seed: int = 1) -> np.ndarray:
+    """Periodic self-affine map (isotropic PSD ∝ q^-(2+2H)), rms height 0.01 mm, L = 1 mm."""
+    rng = np.random.default_rng(seed)
+    q = np.sqrt(sfft.fftfreq(n)[:, None] ** 2 + sfft.rfftfreq(n)[None, :] ** 2) * n
+    amp = np.zeros_like(q)
+    ok = (q > 0) & (q <= n / 2)
+    amp[ok] = q[ok] ** (-(1 + hurst))
+    spec = amp * (rng.standard_normal(q.shape) + 1j * rng.standard_normal(q.shape))
+    z = sfft.irfftn(spec, s=(n, n))
+    return 0.01 * z / z.std()
+
+
+def pressure_for_fraction(z, period, frac):
+    """Mean pressure giving the target contact fraction (bisection on a coarse tolerance)."""
+    mat = rc.materials.GeneralizedMaxwell.elastic(E)
+    lo, hi = 1e-4, 10.0
+    for _ in range(30):
+        mid = np.sqrt(lo * hi)
+        a = solve_sliding(z, period, mat, 0.0, mid, tol=1e-6).contact_fraction
+        if a < frac:
+            lo = mid
+        else:
+            hi = mid
+        if hi / lo < 1.02:
+            break
+    return np.sqrt(lo * hi)
+
+
+# -- helpers -------------------------------------------------------------------------------------
+def fft_pair_time(shape, repeat=50) -> float:
+    a = np.random.default_rng(0).standard_normal(shape)
+    k = np.ones(sfft.rfftn(a).shape)
+    best = np.inf
+    for _ in range(3):
+        t = time.perf_counter()
+        for _ in range(repeat):
+            sfft.irfftn(k * sfft.rfftn(a, workers=1), s=shape, workers=1)
+        best = min(best, (time.perf_counter() - t) / repeat)
+    return best
+
+
+def capture_output(fn):
+    """Run fn with C-level stdout/stderr captured (Tamaas logs from C++)."""
+    sys.stdout.flush()
+    sys.stderr.flush()
+    tmp = tempfile.TemporaryFile(mode="w+b")
+    saved = [os.dup(1), os.dup(2)]
+    os.dup2(tmp.fileno(), 1)
+    os.dup2(tmp.fileno(), 2)
+    try:
+        out = fn()
+    finally:
+        sys.stdout.flush()
+        sys.stderr.flush()
+        os.dup2(saved[0], 1)
+        os.dup2(saved[1], 2)
+        for s in saved:
+            os.close(s)
+    tmp.seek(0)
+    return out, tmp.read().decode(errors="replace")
+
+
+def run_ours(z, period, p0, tol, method):
+    mat = rc.materials.GeneralizedMaxwell.elastic(E)
+    t = time.perf_counter()
+    r = solve_sliding(z, period, mat, 0.0, p0, tol=tol, method=method, max_iter=100000)
+    dt = time.perf_counter() - t
+    its = r.iterations if method == "pk" else r.info.get("linear_iterations", r.iterations)
+    return r.pressure, dt, its, r.matvecs
+
+
+def run_tamaas(z, period, p0, tol):
+    import tamaas as tm
+
+    tm.set_log_level(tm.LogLevel.info)
+    if z.ndim == 1:
+        model = tm.ModelFactory.createModel(tm.model_type.basic_1d, [period], [z.size])
+    else:
+        model = tm.ModelFactory.createModel(tm.model_type.basic_2d, [period, period],
+                                            list(z.shape))
+    model.E = E
+    model.nu = NU
+    solver = tm.PolonskyKeerRey(model, z, tol)
+    solver.max_iter = 100000
+    solver.dump_freq = 10**9
+    t = time.perf_counter()
+    _, log = capture_output(lambda: solver.solve(p0))
+    dt = time.perf_counter() - t
+    its = None
+    for line in reversed(log.splitlines()):
+        parts = line.split()
+        if parts and parts[0].isdigit():
+            its = int(parts[0])
+            break
+    return np.array(model.traction).reshape(z.shape), dt, its, None
+
+
+def run_cm(z, period, p0, pentol_rel):
+    from ContactMechanics import PeriodicFFTElasticHalfSpace
+    from ContactMechanics.Optimization import constrained_conjugate_gradients
+    from SurfaceTopography import Topography, UniformLineScan
+
+    if z.ndim == 1:
+        sub = PeriodicFFTElasticHalfSpace((z.size,), E, physical_sizes=(period,), poisson=NU)
+        topo = UniformLineScan(z, period, periodic=True)
+        area_px = period / z.size
+        area = period
+    else:
+        sub = PeriodicFFTElasticHalfSpace(z.shape, E, physical_sizes=(period, period),
+                                          poisson=NU)
+        topo = Topography(z, (period, period), periodic=True)
+        area_px = period**2 / z.size
+        area = period**2
+    rms = float(np.sqrt(np.mean(z**2)))
+    t = time.perf_counter()
+    # tolerances passed explicitly (the defaults are absolute and loose): penetration relative
+    # to the rms height, force outside contact relative to the mean force per pixel
+    res = constrained_conjugate_gradients(
+        sub, topo, external_force=p0 * area, pentol=pentol_rel * rms,
+        forcetol=pentol_rel * p0 * area_px, thermotol=pentol_rel, maxiter=100000)
+    dt = time.perf_counter() - t
+    return np.asarray(res.jac).reshape(z.shape) / area_px, dt, int(res.nit), None
+
+
+LADDERS = {
+    "ours (active set)": (lambda z, L, p, t: run_ours(z, L, p, t, "active-set"),
+                          [1e-4, 1e-6, 1e-8, 1e-10]),
+    "ours (Polonsky-Keer)": (lambda z, L, p, t: run_ours(z, L, p, t, "pk"),
+                             [1e-6, 1e-8, 1e-10, 1e-12]),
+    "Tamaas PolonskyKeerRey": (run_tamaas, [1e-6, 1e-8, 1e-10, 1e-12]),
+    "ContactMechanics CCG": (run_cm, [1e-6, 1e-8, 1e-10, 1e-12]),
+}
+
+
+def elastic_case(label, z, period, p0, target, skip=(), fft=None):
+    mat = rc.materials.GeneralizedMaxwell.elastic(E)
+    ref = solve_sliding(z, period, mat, 0.0, p0, tol=1e-12, max_iter=100000)
+    rows = []
+    for name, (fn, ladder) in LADDERS.items():
+        if name in skip:
+            continue
+        got = None
+        for tol in ladder:
+            try:
+                p, dt, its, mv = fn(z, period, p0, tol)
+            except ImportError as exc:
+                got = (name, None, None, None, None, None, f"not installed ({exc.name})")
+                break
+            err = float(np.linalg.norm(p - ref.pressure) / np.linalg.norm(ref.pressure))
+            got = (name, tol, dt, its, mv, err, "")
+            if err <= target:
+                break
+        rows.append(got)
+        print(label, got, flush=True)
+    return {"label": label, "rows": rows, "fft": fft, "contact": ref.contact_fraction}
+
+
+def viscoelastic_cases(ns, fracs, velocity=10.0):
+    """SBR on the section-3 surface, steep Lennard-Jones law and hard wall."""
+    surf = rc.roughness.section3(phases=[0.3, 1.2, 2.5])
+    mat = rc.materials.sbr()
+    out = []
+    # mean pressures for the target contact fractions (hard wall, N = 2^12; not timed)
+    pressures = {}
+    for frac in fracs:
+        lo, hi = 1e-3, 100.0
+        for _ in range(40):
+            mid = np.sqrt(lo * hi)
+            a = solve_sliding(surf, None, mat, velocity, mid, n=4096, tol=1e-6).contact_fraction
+            lo, hi = (mid, hi) if a < frac else (lo, mid)
+            if hi / lo < 1.03:
+                break
+        pressures[frac] = np.sqrt(lo * hi)
+    for frac in fracs:
+        for n in ns:
+            for law_name, law in (("LJ law", LennardJonesRepulsion()), ("hard wall", None)):
+                t = time.perf_counter()
+                r = solve_sliding(surf, None, mat, velocity, pressures[frac], n=n, law=law)
+                dt = time.perf_counter() - t
+                row = dict(frac=frac, n=n, law=law_name, time=dt, iterations=r.iterations,
+                           matvecs=r.matvecs, contact=r.contact_fraction, friction=r.friction,
+                           sigma0=pressures[frac], fft=fft_pair_time((n,)))
+                print(row, flush=True)
+                out.append(row)
+    return out
+
+
+def machine_info() -> str:
+    try:
+        commit = subprocess.run(["git", "rev-parse", "--short", "HEAD"], capture_output=True,
+                                text=True, check=False).stdout.strip()
+    except OSError:
+        commit = "?"
+    cpu = platform.processor() or platform.machine()
+    try:
+        with open("/proc/cpuinfo") as fh:
+            for line in fh:
+                if line.startswith("model name"):
+                    cpu = line.split(":", 1)[1].strip()
+                    break
+    except OSError:
+        pass
+    load = os.getloadavg() if hasattr(os, "getloadavg") else ("?",)
+    now = datetime.datetime.now(datetime.timezone.utc)  # noqa: UP017 - Python 3.10 support
+    return (f"- date: {now:%Y-%m-%d %H:%M} UTC\n"
+            f"- machine: {cpu}, {os.cpu_count()} cores, Python {platform.python_version()}, "
+            f"numpy {np.__version__}\n- commit: {commit}\n"
+            f"- load average at start: {load[0]:.2f} (other jobs share the 2 cores)\n")
+
+
+def to_markdown(elastic, visco, target, info) -> str:
+    lines = ["# Half-space solver benchmarks", "", info,
+             f"Elastic hard wall: every solver run on a ladder of its own tolerances; the row is "
+             f"the first run whose pressure is within {target:g} (relative L2) of a reference "
+             f"(our active set at tol 1e-12). Sinusoid (λ = 1 mm, Δ = 0.01 mm, 30 % contact) "
+             f"in 1D; self-affine H = 0.8 map at 10 % contact in 2D. E = {E} MPa, ν = {NU}. "
+             "`its` are CG/PK iterations (Tamaas, ContactMechanics, ours PK) or GMRES "
+             "iterations summed over active-set updates (ours); `ms/it` the time per iteration; "
+             "`/FFT` the time per iteration divided by one rfft+irfft pair.", "",
+             "| case | solver | tol | time [s] | its | ms/it | /FFT | error | ratio Tamaas/ours |",
+             "|---|---|---|---|---|---|---|---|---|"]
+    for case in elastic:
+        tam = next((r for r in case["rows"] if r and r[0].startswith("Tamaas") and r[2]), None)
+        ours = next((r for r in case["rows"] if r and r[0] == "ours (active set)"), None)
+        for r in case["rows"]:
+            name, tol, dt, its, _mv, err, note = r
+            if dt is None:
+                lines.append(f"| {case['label']} | {name} | | | | | | | {note} |")
+                continue
+            per = dt / its * 1e3 if its else float("nan")
+            ratio = f"{tam[2] / dt:.2f}" if tam and r is ours else ""
+            lines.append(f"| {case['label']} | {name} | {tol:g} | {dt:.3f} | {its} | "
+                         f"{per:.2f} | {per / (case['fft'] * 1e3):.1f} | {err:.1e} | {ratio} |")
+        lines.append(f"| {case['label']} | rfft+irfft pair | | {case['fft'] * 1e3:.3f} ms | | | "
+                     f"| | |")
+    lines += ["", "Viscoelastic (SBR, v = 10 mm/s, section-3 surface, tol 1e-8): steep "
+              "Lennard-Jones law (default ℓ = 1e-5 h_rms) and exact hard wall.", "",
+              "| contact | N | law | time [s] | iterations | FFT pairs | time / FFT pair | μ |",
+              "|---|---|---|---|---|---|---|---|"]
+    for r in visco:
+        lines.append(f"| {r['contact']:.3f} | {r['n']} | {r['law']} | {r['time']:.3f} | "
+                     f"{r['iterations']} | {r['matvecs']} | {r['time'] / r['fft']:.0f} | "
+                     f"{r['friction']:.4f} |")
+    return "\n".join(lines) + "\n"
+
+
+def main(argv=None) -> int:
+    ap = argparse.ArgumentParser(description=__doc__)
+    ap.add_argument("--quick", action="store_true", help="small sizes only (smoke test)")
+    ap.add_argument("--target", type=float, default=1e-6, help="relative L2 pressure error")
+    ap.add_argument("--output", default=None, help="write the markdown table here")
+    ap.add_argument("--skip-elastic", action="store_true")
+    ap.add_argument("--skip-visco", action="store_true")
+    args = ap.parse_args(argv)
+    info = machine_info()
+    print(info)
+    elastic = []
+    if not args.skip_elastic:
+        ns = [2**10, 2**12] if args.quick else [2**12, 2**14, 2**16]
+        for n in ns:
+            z, lam, p0 = sinusoid(n)
+            elastic.append(elastic_case(f"1D N=2^{int(np.log2(n))}", z, lam, p0, args.target,
+                                        fft=fft_pair_time((n,))))
+        for n in ([64] if args.quick else [256, 512]):
+            z = hurst_map(n)
+            p0 = pressure_for_fraction(z, 1.0, 0.10)
+            elastic.append(elastic_case(f"2D {n}²", z, 1.0, p0, args.target,
+                                        fft=fft_pair_time((n, n))))
+    visco = []
+    if not args.skip_visco:
+        ns = [2**10, 2**12] if args.quick else [2**12, 2**14, 2**16]
+        visco = viscoelastic_cases(ns, [0.05, 0.30])
+    md = to_markdown(elastic, visco, args.target, info)
+    print(md)
+    if args.output:
+        with open(args.output, "w") as fh:
+            fh.write(md)
+    return 0
+
+
+if __name__ == "__main__":
+    sys.exit(main())
