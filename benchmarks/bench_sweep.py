@@ -19,6 +19,9 @@ What is measured
   startup of a managed cluster added.
 * **overhead per task**: ``m`` trivial tasks (no work) per executor mode, with
   and without the cache, on an already running cluster: wall / m − mean task time.
+  "cores used" = Σ task CPU time / wall and "tasks in flight" = Σ task wall
+  time / wall tell apart what the executor does (keep every worker busy) from
+  what a shared machine gives (CPU contention).
 * **memory per task**: peak of Python/numpy allocations inside one task
   (tracemalloc), result size in memory and on disk (cache entry), and the RSS of
   an idle worker process.
@@ -170,7 +173,10 @@ def main() -> None:
             if name not in speed or wall < speed[name]["wall_s"]:
                 speed[name] = {"wall_s": wall, "with_startup_s": wall + startup[name],
                                "mean_task_s": sum(res.task_times) / len(res.task_times),
-                               "cpu_s": cpu, "cores_used": cpu / wall}
+                               "cpu_s": cpu, "cores_used": cpu / wall,
+                               # average number of tasks running at once: shows that the
+                               # executor keeps every worker busy, whatever the load
+                               "in_flight": sum(res.task_times) / wall}
     speed["speedup"] = speed["local-1"]["wall_s"] / speed["local-2"]["wall_s"]
     speed["speedup_with_startup"] = (speed["local-1"]["with_startup_s"]
                                      / speed["local-2"]["with_startup_s"])
@@ -225,12 +231,13 @@ def main() -> None:
     for k, v in startup.items():
         print(f"| {k} | {v:.2f} |")
     print(f"\n| speed-up, {args.n} tasks (best of {args.repeat}) | wall s (cluster up) | "
-          f"+ startup s | mean task wall s | task CPU s (sum) | cores used |")
-    print("|---|---|---|---|---|---|")
+          f"+ startup s | mean task wall s | task CPU s (sum) | cores used | tasks in flight |")
+    print("|---|---|---|---|---|---|---|")
     for k in ("local-1", "local-2"):
         s = speed[k]
         print(f"| {k} | {s['wall_s']:.2f} | {s['with_startup_s']:.2f} | "
-              f"{s['mean_task_s']:.3f} | {s['cpu_s']:.2f} | {s['cores_used']:.2f} |")
+              f"{s['mean_task_s']:.3f} | {s['cpu_s']:.2f} | {s['cores_used']:.2f} | "
+              f"{s['in_flight']:.2f} |")
     print(f"\nspeed-up 2 vs 1 workers: {speed['speedup']:.2f}× (cluster up), "
           f"{speed['speedup_with_startup']:.2f}× (including startup)\n")
     print(f"| overhead, {args.m} trivial tasks | per task ms | kernel ms |\n|---|---|---|")
