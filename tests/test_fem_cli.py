@@ -1,0 +1,34 @@
+"""``rubbercontact fem`` command: JSON output, TOML config, plot, bad input."""
+
+import json
+
+from rubbercontact.cli import main
+
+
+def test_fem_cli_json_and_plot(tmp_path, capsys):
+    cfg = tmp_path / "t.toml"
+    cfg.write_text('surface = {wavelengths = [0.0625], amplitudes = [0.004]}\n'
+                   'material = "sbr"\nmean_pressure = 0.5\nvelocity = 10.0\n'
+                   'mesh = [16, 12]\nperiods = 2\n')
+    png = tmp_path / "f.png"
+    nc = tmp_path / "r.nc"
+    code = main(["fem", "--config", str(cfg), "--json", "--plot", str(png),
+                 "--netcdf", str(nc)])
+    assert code == 0
+    out = json.loads(capsys.readouterr().out)
+    assert out["mesh"] == [16, 12]
+    assert out["mean_pressure_MPa"] == 0.5
+    assert out["friction"] > 0             # v > 0 on a viscoelastic solid
+    assert 0 < out["contact_fraction"] <= 1
+    assert png.stat().st_size > 10_000
+    import xarray as xr
+
+    with xr.open_dataset(nc) as ds:
+        assert ds["friction"].attrs["units"] == "1"
+
+
+def test_fem_cli_bad_input_exit_code(capsys):
+    assert main(["fem", "--pressure", "-1", "--mesh", "16x12", "--quiet"]) == 2
+    assert "mean_pressure" in capsys.readouterr().err
+    assert main(["fem", "--mesh", "abc"]) == 2
+    assert main(["fem", "--wavelength", "0.0625", "--mesh", "16x12"]) == 2
