@@ -72,8 +72,10 @@ symmetric contact problem solved by the warm-started active-set method. With
 modulus 1 and Lipschitz constant ``√(1 + θ²)`` in that norm). Once the pressure changes by less
 than 10 % (then 3 %, 1 %, ...) per step, the active-set iteration on the full operator is tried
 (at most 5 updates) from the current set; it then converges in 1–5 updates and gives exact
-complementarity. Anderson acceleration of the projection map was tried and was slower (the map
-is only piecewise smooth).
+complementarity. Each projection step is itself inexact: a single active-set update (one
+contact-set linear solve) of the symmetric subproblem, warm-started; a fixed point of this
+fused iteration has ``u = 0`` on the set and ``u >= 0`` off it for the full operator. Anderson
+acceleration of the projection map was tried and was slower (the map is only piecewise smooth).
 
 *Hard wall, Polonsky–Keer* (``method="pk"``, elastic only): the classic constrained conjugate
 gradient of Polonsky & Keer (Wear 231, 1999) with the mean-pressure constraint, stopping when the
@@ -216,6 +218,7 @@ class _Problem:
     compliance: np.ndarray  # M on the rfft half-grid
     sigma0: float
     matvecs: int = 0
+    _pre: np.ndarray | None = None
 
     @property
     def size(self) -> int:
@@ -227,6 +230,12 @@ class _Problem:
 
     def displacement(self, sigma: np.ndarray) -> np.ndarray:
         return self.apply(self.compliance, sigma)
+
+    def preconditioner(self) -> np.ndarray:
+        """Hard-wall preconditioner kernel ``1/Re M`` (cached)."""
+        if self._pre is None:
+            self._pre = kn.stiffness_kernel(self.compliance)
+        return self._pre
 
 
 def _commensurate(name: str, period: float, wavelengths: np.ndarray) -> None:
@@ -343,10 +352,11 @@ def _contact_solve(prob: _Problem, idx: np.ndarray, rhs: np.ndarray, total: floa
 # ----------------------------------------------------------------------------------------------
 # hard wall
 # ----------------------------------------------------------------------------------------------
-def _hard_wall_active_set(prob: _Problem, tol: float, max_iter: int, sigma_init=None, z=None):
+def _hard_wall_active_set(prob: _Problem, tol: float, max_iter: int, sigma_init=None, z=None,
+                          active_init=None):
     n = prob.size
     z = prob.z if z is None else z
-    k_pre = kn.stiffness_kernel(prob.compliance)
+    k_pre = prob.preconditioner()
     zscale = float(np.abs(z).max()) or 1.0
     eps = _SET_EPS * zscale
     eps_p = _SET_EPS * prob.sigma0
@@ -355,7 +365,7 @@ def _hard_wall_active_set(prob: _Problem, tol: float, max_iter: int, sigma_init=
         sigma = np.full(n, prob.sigma0)
     else:
         sigma = sigma_init.copy()
-        active = sigma > 0
+        active = sigma > 0 if active_init is None else active_init.copy()
     history = []
     lin_its = 0
     u = None
@@ -378,10 +388,11 @@ def _hard_wall_active_set(prob: _Problem, tol: float, max_iter: int, sigma_init=
         if changed == 0:
             res = max(rr, float(np.abs(u[active]).max()) / zscale if idx.size else 0.0)
             return sigma, u, w, ubar, it, res, True, {"linear_iterations": lin_its,
-                                                      "history": history}
+                                                      "history": history, "active": new}
         active = new
     return sigma, u, w, ubar, max_iter, float("nan"), False, {"linear_iterations": lin_its,
-                                                            "history": history}
+                                                            "history": history,
+                                                            "active": active}
 
 
 def _hard_wall_viscoelastic(prob: _Problem, tol: float, max_iter: int, polish: bool = True):
@@ -411,10 +422,15 @@ def _hard_wall_viscoelastic(prob: _Problem, tol: float, max_iter: int, polish: b
     it = 0
     next_try = 1e-1
     info = {"theta": theta, "gamma": gamma}
+    active = out[7]["active"]
     for it in range(1, 50 * max_iter + 1):
+        # one active-set update of the projection subproblem per step (inexact projection):
+        # the fixed point has u = 0 on the set and u >= 0 off it for the full operator M
         z_eff = gamma * prob.z + sym.apply(comb, sigma)
-        out = _hard_wall_active_set(sym, min(tol, 1e-10), max_iter, sigma_init=sigma, z=z_eff)
-        inner += out[4]
+        out = _hard_wall_active_set(sym, min(tol, 1e-10), 1, sigma_init=sigma, z=z_eff,
+                                    active_init=active)
+        inner += 1
+        active = out[7]["active"]
         diff = float(np.linalg.norm(out[0] - sigma) / np.linalg.norm(out[0]))
         sigma = out[0]
         hist.append(diff)
