@@ -24,6 +24,7 @@ import rubbercontact as rc
 from rubbercontact.halfspace import LennardJonesRepulsion, solve_sliding
 
 E, NU = 10.0, 0.5
+_OB = ("OPENBLAS_CORETYPE", "OPENBLAS_L2_SIZE")
 ER = E / (1 - NU**2)
 
 
@@ -243,7 +244,10 @@ def machine_info() -> str:
     return (f"- date: {now:%Y-%m-%d %H:%M} UTC\n"
             f"- machine: {cpu}, {os.cpu_count()} cores, Python {platform.python_version()}, "
             f"numpy {np.__version__}\n- commit: {commit}\n"
-            f"- load average at start: {load[0]:.2f} (other jobs share the 2 cores)\n")
+            f"- load average at start: {load[0]:.2f} (other jobs share the 2 cores)\n"
+            f"- OPENBLAS_CORETYPE/OPENBLAS_L2_SIZE: "
+            f"{'set' if any(k in os.environ for k in _OB) else 'unset'} for this run; "
+            f"OMP_NUM_THREADS={os.environ.get('OMP_NUM_THREADS', 'unset')}\n")
 
 
 def to_markdown(elastic, visco, target, info) -> str:
