@@ -220,3 +220,14 @@ def test_bad_heights():
         solve_sliding(np.zeros(64), 1.0, SBR, 1.0, 0.1)  # flat
     with pytest.raises(InputError, match="period"):
         solve_sliding(np.zeros((16, 16)), (1.0, -1.0), SBR, 1.0, 0.1)
+
+
+def test_convergence_error_keeps_last_state():
+    from rubbercontact.errors import ConvergenceError
+
+    with pytest.raises(ConvergenceError) as info:
+        solve_sliding(SURF3, None, GeneralizedMaxwell.elastic(5.0), 0.0, 0.3, n=1024,
+                      method="pk", max_iter=1)
+    err = info.value
+    assert err.last_state is not None and not err.last_state.converged
+    assert err.diagnostics["iterations"] >= 1 and "residual" in err.diagnostics
