@@ -85,6 +85,15 @@ def test_tabulated_out_of_table_behaviour():
     np.testing.assert_allclose(law.contact_fraction(u), [0.9, 0.5, 0.2, 0.0], atol=1e-15)
 
 
+def test_tabulated_far_continuation_stays_finite():
+    # steep first secant (found by hypothesis): exp overflow far below the table before the fix
+    law = TabulatedLaw([0.0, 0.002, 1.0, 2.0], [1.0, 0.5, 0.5, 0.5])
+    u = np.linspace(-3.0, 0.0, 301)
+    p = law.pressure(u)
+    assert np.all(np.isfinite(p)) and np.all(np.diff(p) < 0)
+    assert np.all(np.isfinite(law.stiffness(u)))
+
+
 def test_tabulated_decaying_tail_when_table_never_reaches_zero():
     law = TabulatedLaw([0.0, 0.01, 0.02], [1.0, 0.5, 0.25])
     assert law.pressure(np.array([0.03]))[0] == pytest.approx(0.125)  # exponential decay

@@ -21,6 +21,9 @@ from ..errors import InputError
 
 __all__ = ["InteractionLaw", "LennardJonesRepulsion", "TabulatedLaw", "SumLaw"]
 
+#: E-folds of the exponential continuation below a table before it turns linear.
+_MAX_EFOLDS = 20.0
+
 
 class InteractionLaw:
     """Base class: subclasses implement :meth:`pressure` and :meth:`stiffness`."""
@@ -255,8 +258,13 @@ class TabulatedLaw(InteractionLaw):
         u0, s0 = tab_u[0], tab_s[0]
         lo = u < u0
         if np.any(lo):
-            sig[lo] = s0 * np.exp(c["slope_lo"] * (u[lo] - u0))
-            k[lo] = -c["slope_lo"] * sig[lo]
+            a = -c["slope_lo"]
+            t = a * (u0 - u[lo])
+            # exponential rise for 20 e-folds, then linear (C1), so far extrapolation stays
+            # finite and monotone
+            tc = np.minimum(t, _MAX_EFOLDS)
+            sig[lo] = s0 * np.exp(tc) * (1.0 + (t - tc))
+            k[lo] = a * s0 * np.exp(tc)
         upos = tab_u[npos - 1]
         mid = (u >= u0) & (u <= upos)
         if np.any(mid) and c["logp"] is not None:
