@@ -45,14 +45,17 @@ class CellModel:
         Material parameters.
     penalty
         Contact penalty ``ε`` [MPa/mm].
+    smoothing
+        Penalty-kink rounding ``δ`` [mm] (see :func:`~.contact.evaluate_contact`).
     """
 
     def __init__(self, cell: PeriodicCell, surface: SineSeries, params: MaterialParameters,
-                 penalty: float) -> None:
+                 penalty: float, smoothing: float = 0.0) -> None:
         self.cell = cell
         self.surface = surface
         self.params = params
         self.penalty = float(penalty)
+        self.smoothing = float(smoothing)
         n_dofs = 2 * cell.n_nodes
         dof_map = -np.ones(n_dofs, dtype=np.int64)
         top = np.zeros(cell.n_nodes, bool)
@@ -94,7 +97,7 @@ class CellModel:
             out = self.asm.element_output(self.params, u_full, state, dt, tangent)
         r = self.asm.vector(out.fe)
         cs = evaluate_contact(self.surface, shift, self.face_positions(u_full),
-                              self.face_weight, self.penalty)
+                              self.face_weight, self.penalty, self.smoothing)
         # Residual = ∂Π/∂u: the contact force acts ON the rubber, so subtract it.
         r[self.bx] -= cs.force[:, 0]   # face DOFs are distinct unknowns
         r[self.by] -= cs.force[:, 1]

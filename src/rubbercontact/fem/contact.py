@@ -82,7 +82,7 @@ def closest_point(surface: SineSeries, shift: float, px: np.ndarray, py: np.ndar
 
 
 def evaluate_contact(surface: SineSeries, shift: float, pos: np.ndarray, weight: np.ndarray,
-                     penalty: float) -> ContactState:
+                     penalty: float, smoothing: float = 0.0) -> ContactState:
     """Penalty forces and tangent at face nodes of current positions ``pos`` ``(n, 2)`` [mm].
 
     Parameters
@@ -97,6 +97,12 @@ def evaluate_contact(surface: SineSeries, shift: float, pos: np.ndarray, weight:
         Reference tributary lengths ``w_k`` [mm].
     penalty
         ``ε`` [MPa/mm].
+    smoothing
+        Half-width ``δ`` [mm] of a C¹ rounding of the penalty kink: the normal force per
+        unit length is ``ε φ(−g)`` with ``φ(x) = x`` for ``x ≥ δ``, ``(x + δ)²/(4δ)`` for
+        ``|x| < δ`` and 0 below (0 gives the plain penalty). The contact force is exact
+        for penetrations beyond ``δ``; it only softens the on/off switch that makes Newton
+        cycle on the active set.
     """
     px, py = pos[:, 0], pos[:, 1]
     n_face = px.size
@@ -105,21 +111,34 @@ def evaluate_contact(surface: SineSeries, shift: float, pos: np.ndarray, weight:
     xi = px.copy()
     force = np.zeros((n_face, 2))
     stiff = np.zeros((n_face, 2, 2))
-    cand = np.flatnonzero(gap < 0.0)
+    d = float(smoothing)
+    # normal gap >= vertical gap · cos θ >= vertical gap / sqrt(1 + max z'²): only nodes
+    # below that bound can carry force
+    slope_max = float(np.sum(surface.wavenumbers * surface.amplitudes))
+    cand = np.flatnonzero(gap < d * np.sqrt(1.0 + slope_max**2))
     energy = 0.0
     if cand.size:
         xi_c, g_c, n_c, t_c, k_c = closest_point(surface, shift, px[cand], py[cand])
         gap[cand] = g_c
         normal[cand] = n_c
         xi[cand] = xi_c
-        gneg = np.minimum(g_c, 0.0)
+        x = -g_c
+        if d > 0:
+            phi = np.where(x >= d, x, np.where(x > -d, (x + d) ** 2 / (4 * d), 0.0))
+            dphi = np.where(x >= d, 1.0, np.where(x > -d, (x + d) / (2 * d), 0.0))
+            ephi = np.where(x >= d, x**2 / 2 + d**2 / 6,
+                            np.where(x > -d, (x + d) ** 3 / (12 * d), 0.0))
+        else:
+            phi = np.maximum(x, 0.0)
+            dphi = (x > 0).astype(float)
+            ephi = phi**2 / 2
         ew = penalty * weight[cand]
-        force[cand] = -(ew * gneg)[:, None] * n_c
-        curv = -(gneg * k_c / (1.0 - g_c * k_c))
+        force[cand] = (ew * phi)[:, None] * n_c
+        curv = phi * k_c / (1.0 - g_c * k_c)
         stiff[cand] = ew[:, None, None] * (
-            (g_c < 0)[:, None, None] * n_c[:, :, None] * n_c[:, None, :]
+            dphi[:, None, None] * n_c[:, :, None] * n_c[:, None, :]
             + curv[:, None, None] * t_c[:, :, None] * t_c[:, None, :])
-        energy = float(0.5 * np.sum(ew * gneg**2))
+        energy = float(np.sum(ew * ephi))
     return ContactState(gap=gap, active=gap < 0.0, force=force, normal=normal, xi=xi,
                         stiffness=stiff, energy=energy)
 

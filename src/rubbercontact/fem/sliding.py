@@ -48,11 +48,10 @@ MIN_ELEMENTS_PER_WAVELENGTH = 8
 
 PHASES = ("press", "settle", "slide")
 
+
 #: Steps over which the sliding speed ramps up from v/30 to v.
 _START_STEPS = 0
 
-#: Plain Newton iterations before the line search engages in sliding steps.
-_FULL_STEPS = 0
 
 
 @dataclass(frozen=True)
@@ -341,8 +340,6 @@ def sliding_test(surface: SineSeries, material: GeneralizedMaxwell, mean_pressur
         return {"U": st.U.copy(), "time": st.t, "sliding_distance": st.s, "load": st.load,
                 "history": {k: np.asarray(v_) for k, v_ in hist.items()}}
 
-    full_steps = int(_FULL_STEPS)
-
     def advance(st: _State, dt: float, ds: float, dload: float, depth: int,
                 predictor_shift: bool) -> tuple[_State, int]:
         U0 = model.shift_field(st.U, ds) if (predictor_shift and ds != 0) else st.U
@@ -351,8 +348,7 @@ def sliding_test(surface: SineSeries, material: GeneralizedMaxwell, mean_pressur
             return model.evaluate(U, st.visc, dt, st.s + ds, st.load + dload, tangent)
 
         try:
-            U, ev, h = newton(res, U0, atol=atol, max_iter=max_newton, counters=counters,
-                              full_steps=full_steps if predictor_shift else 0)
+            U, ev, h = newton(res, U0, atol=atol, max_iter=max_newton, counters=counters)
         except NewtonFailure as fail:
             if depth >= max_cutbacks:
                 raise ConvergenceError(
