@@ -209,3 +209,10 @@ def test_various_dtypes_round_trip_without_false_corruption(tmp_path):
     assert entry.wall_time == 0.5
     xr.testing.assert_equal(entry.result, ds)
     assert entry.result.attrs["units_note"] == "mm, MPa"
+
+
+def test_atomic_write_gives_normal_permissions(tmp_path):
+    umask = os.umask(0)
+    os.umask(umask)
+    path = write_netcdf_atomic(_ds(), tmp_path / "perm.nc")
+    assert path.stat().st_mode & 0o777 == 0o666 & ~umask

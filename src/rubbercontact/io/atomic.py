@@ -11,7 +11,7 @@ from __future__ import annotations
 
 import contextlib
 import os
-import tempfile
+import secrets
 from pathlib import Path
 
 import xarray as xr
@@ -80,10 +80,15 @@ def write_netcdf_atomic(dataset: xr.Dataset, path: str | os.PathLike[str],
     if target.exists() and not overwrite:
         raise FileExistsError(f"path: {str(target)!r} already exists; pass overwrite=True "
                               f"(or --overwrite on the command line) to replace it")
-    fd, tmp_name = tempfile.mkstemp(prefix=f".{target.name}.", suffix=TEMP_SUFFIX,
-                                    dir=directory)
-    os.close(fd)
-    tmp = Path(tmp_name)
+    # Not tempfile.mkstemp: its 0600 mode would survive the rename. O_EXCL with a random
+    # name is as safe and gives the file the usual umask-derived permissions.
+    while True:
+        tmp = directory / f".{target.name}.{secrets.token_hex(6)}{TEMP_SUFFIX}"
+        try:
+            os.close(os.open(tmp, os.O_CREAT | os.O_EXCL | os.O_WRONLY, 0o666))
+            break
+        except FileExistsError:
+            continue
     try:
         with _local_write_lock():
             dataset.to_netcdf(tmp, mode="w", format="NETCDF4", engine="netcdf4")
