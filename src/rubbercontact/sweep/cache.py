@@ -8,7 +8,7 @@ Layout under the cache directory::
 ``key`` is the task's SHA-256 key (:func:`~rubbercontact.sweep.tasks.task_key`).
 Each file carries, as global attributes prefixed ``rc_cache_``: the key, the task
 description (canonical JSON), the status, the wall time of the computation, the
-numerics version, the creation time and a SHA-256 checksum of all its variables
+numerics and package versions, the creation time and a SHA-256 checksum of all its variables
 (names, dimensions, dtypes and values). Files are written atomically
 (:func:`~rubbercontact.io.atomic.write_netcdf_atomic`). On reading, an
 unreadable file, a key that does not match the file name or a checksum
@@ -48,6 +48,12 @@ ENV_CACHE = "RUBBERCONTACT_CACHE"
 _FORMAT_DIR = "sweep-v1"
 _PREFIX = "rc_cache_"
 _FAILED_SUFFIX = ".failed.nc"
+
+
+def _package_version() -> str:
+    from .. import __version__
+
+    return str(__version__)
 
 
 def default_cache_dir() -> Path:
@@ -247,6 +253,7 @@ class ResultCache:
                     _PREFIX + "label": task.label,
                     _PREFIX + "wall_time_s": float(wall_time),
                     _PREFIX + "numerics_version": NUMERICS_VERSION,
+                    _PREFIX + "package_version": _package_version(),
                     _PREFIX + "created": time.strftime("%Y-%m-%dT%H:%M:%SZ", time.gmtime()),
                     _PREFIX + "checksum": dataset_checksum(ds)}
         path = self.path_for(key, failed)
