@@ -161,7 +161,9 @@ def run(config: RunConfig | dict | str | Path, *, runner: Runner | None = None,
     base, surface_info = build_surface(cfg)
     realizations = base.realizations(cfg.realizations, seed=cfg.seed)
     parts = [r.partition(cfg.surface.m2_threshold) for r in realizations]
-    hs0 = parts[0][0]
+    # The law is a property of the high-slope scale up to a translation: shift the first
+    # high-slope wave to zero phase (keeps the relative phases of several hs waves).
+    hs0 = _translated_to_zero_phase(parts[0][0])
     period = base.period
     velocities = np.asarray(cfg.velocities, float)
     models = list(dict.fromkeys(cfg.models))
@@ -272,6 +274,14 @@ def _as_config(config) -> RunConfig:
     if isinstance(config, dict):
         return parse_config(config)
     return load_config(config)
+
+
+def _translated_to_zero_phase(surface: SineSeries) -> SineSeries:
+    """``surface(x + x0)`` with ``x0`` chosen so that its shortest wave has phase 0."""
+    if surface.size == 0:
+        return surface
+    x0 = -surface.phases[0] / surface.wavenumbers[0]
+    return surface.with_phases(surface.phases + surface.wavenumbers * x0)
 
 
 def _law_with_vhs(law: xr.Dataset, hs: SineSeries, material: GeneralizedMaxwell,
