@@ -133,3 +133,28 @@ def test_shared_cache_that_is_not_shared_falls_back_to_client_writes(tcp_cluster
     assert res.n_failed == 1 and "not visible to the client" in caplog.text
     assert ResultCache(client_dir).info().n_entries == 6  # written by the client
     assert ResultCache(worker_dir).info().n_entries == 6  # and by the workers
+
+
+def crash_kernel(x: float):
+    """Kills its worker process, like an out-of-memory kill would."""
+    import os
+
+    os._exit(1)
+
+
+def test_worker_crash_is_reported_not_cached(tmp_path, monkeypatch):
+    import dask
+
+    monkeypatch.delenv("RUBBERCONTACT_SCHEDULER", raising=False)
+    cache = ResultCache(tmp_path)
+    tasks = [*_tasks()[:2], Task("test_sweep_cluster:crash_kernel", {"x": 1.0}, label="crash")]
+    # Give up on the first worker death instead of retrying the task on other workers, and
+    # send a worker only the task it runs (no queued task dies with it).
+    with dask.config.set({"distributed.scheduler.allowed-failures": 0,
+                          "distributed.scheduler.worker-saturation": 1.0}):
+        res = run_sweep(tasks, cache=cache, executor=ExecutorConfig(workers=2), progress=False)
+    assert isinstance(res[0], xr.Dataset) and isinstance(res[1], xr.Dataset)
+    failure = res[2]
+    assert isinstance(failure, TaskFailure) and not failure.cached
+    assert "did not complete on the cluster" in failure.message
+    assert cache.info().n_entries == 2  # the crash says nothing about the inputs
