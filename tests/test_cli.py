@@ -41,3 +41,59 @@ def test_console_script_entry_point():
     out = subprocess.run([sys.executable, "-m", "rubbercontact.cli", "--version"],
                          capture_output=True, text=True, timeout=60)
     assert out.returncode == 0 and __version__ in out.stdout
+
+
+# All of the surface is high-slope: the hybrid's half-space part is flat, so at the law's own
+# pressures the hybrid must return exactly the FEM law's friction and contact fraction (the
+# cache shares those FEM runs between the law and the full-FEM model).
+TINY = """
+velocities = [10.0]
+realizations = 1
+seed = 5
+models = ["vhs", "hybrid", "fem"]
+[surface]
+preset = "high_slope_wave"
+[loads]
+pressures = [0.3, 1.0]
+[halfspace]
+n = 512
+[fem]
+mesh = [30, 23]
+periods = 2
+[law]
+pressures = [0.3, 1.0]
+[execution]
+workers = 1
+cache = "cache"
+[output]
+directory = "out"
+"""
+
+
+def test_run_end_to_end_tiny(tmp_path, capsys):
+    import numpy as np
+    import xarray as xr
+
+    cfg = tmp_path / "tiny.toml"
+    cfg.write_text(TINY)
+    assert main(["run", str(cfg), "--quiet"]) == 0
+    out = capsys.readouterr().out
+    assert "eq. 28 error of hybrid vs FEM" in out
+    ds = xr.load_dataset(tmp_path / "out" / "results.nc")
+    assert list(ds["model"].values) == ["vhs", "hybrid", "fem"]
+    assert ds.attrs["rubbercontact_version"] == __version__ and "config" in ds.attrs
+    assert ds["friction"].attrs["units"] == "1" and ds["pressure"].attrs["units"] == "MPa"
+    # Flat low-slope part: hybrid = FEM law at the law's nodes (brentq to 1e-12 relative).
+    for k in ("friction", "contact_fraction"):
+        np.testing.assert_allclose(ds[k].sel(model="hybrid"), ds[k].sel(model="fem"),
+                                   rtol=1e-6)
+    assert float(ds["error_vs_fem"].sel(compared_model="hybrid").max()) < 1e-6
+    for fig in ("fig2_law.png", "fig5_friction_vs_area.png", "fig7_high_slope_friction.png",
+                "fig8_pressure_profiles.png", "fig9_friction_vs_pressure.png"):
+        assert (tmp_path / "out" / fig).stat().st_size > 1000
+    # No silent overwrite; the second run finds everything in the cache.
+    assert main(["run", str(cfg), "--quiet"]) == 2
+    assert "--overwrite" in capsys.readouterr().err
+    assert main(["run", str(cfg), "--quiet", "--overwrite"]) == 0
+    assert main(["plot", str(tmp_path / "out" / "results.nc"), "-o", str(tmp_path / "f")]) == 0
+    assert (tmp_path / "f" / "fig5_friction_vs_area.png").exists()

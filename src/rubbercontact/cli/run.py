@@ -16,6 +16,10 @@ def command(
                                 help="Output directory (overrides output.directory)."),
     overwrite: bool = typer.Option(False, "--overwrite", help="Replace an existing results file."),
     workers: int = typer.Option(None, "--workers", min=1, help="Dask workers (local cluster)."),
+    threads_per_worker: int = typer.Option(None, "--threads-per-worker", min=1,
+                                           help="Threads per Dask worker (default 1)."),
+    retry_failed: bool = typer.Option(False, "--retry-failed",
+                                      help="Recompute tasks whose failure is cached."),
     scheduler: str = typer.Option(None, "--scheduler", envvar="RUBBERCONTACT_SCHEDULER",
                                   help="Address of an existing Dask scheduler (tcp://HOST:PORT)."),
     cache: Path = typer.Option(None, "--cache", envvar="RUBBERCONTACT_CACHE",
@@ -30,8 +34,9 @@ def command(
     from ..plotting.figures import plot_all, summary_table
 
     cfg = load_config(config) if config is not None else default_config()
-    upd_exec = {k: v for k, v in {"workers": workers, "scheduler": scheduler,
-                                  "cache": cache}.items() if v is not None}
+    upd_exec = {k: v for k, v in {"workers": workers, "threads_per_worker": threads_per_worker,
+                                  "scheduler": scheduler, "cache": cache}.items()
+                if v is not None}
     if upd_exec:
         cfg = cfg.model_copy(update={"execution": cfg.execution.model_copy(update=upd_exec)})
     outdir = output if output is not None else cfg.output.directory
@@ -50,7 +55,7 @@ def command(
 
     with warnings.catch_warnings(record=True) as caught:
         warnings.simplefilter("always")
-        ds = run(cfg, progress=False if quiet else "auto")
+        ds = run(cfg, progress=False if quiet else "auto", retry_failed=retry_failed)
     for w in caught:
         typer.echo(f"warning: {w.message}", err=True)
     write_results(ds, results_path, overwrite=overwrite)

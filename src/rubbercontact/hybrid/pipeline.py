@@ -91,7 +91,8 @@ def build_surface(cfg: RunConfig) -> tuple[SineSeries, dict]:
     return series, info
 
 
-def make_runner(cfg: RunConfig, progress: bool | str = "auto") -> Runner:
+def make_runner(cfg: RunConfig, progress: bool | str = "auto",
+                retry_failed: bool = False) -> Runner:
     """A runner backed by the sweep executor and result cache of the config."""
     from ..sweep import ExecutorConfig, ResultCache, run_sweep
 
@@ -100,8 +101,9 @@ def make_runner(cfg: RunConfig, progress: bool | str = "auto") -> Runner:
     executor = ExecutorConfig(workers=ex.workers, threads_per_worker=ex.threads_per_worker,
                               scheduler=ex.scheduler)
 
-    def runner(tasks: list) -> list:
-        return run_sweep(tasks, cache=cache, executor=executor, progress=progress).results
+    def runner(tasks: list, description: str = "sweep") -> list:
+        return run_sweep(tasks, cache=cache, executor=executor, progress=progress,
+                         retry_failed=retry_failed, description=description).results
 
     return runner
 
@@ -137,7 +139,8 @@ def _pressure_grid_for_areas(cfg: RunConfig, surfaces: list[SineSeries],
 
 
 def run(config: RunConfig | dict | str | Path, *, runner: Runner | None = None,
-        law: xr.Dataset | None = None, progress: bool | str = "auto") -> xr.Dataset:
+        law: xr.Dataset | None = None, progress: bool | str = "auto",
+        retry_failed: bool = False) -> xr.Dataset:
     """Run the models of a configuration and return the results dataset.
 
     Parameters
@@ -152,11 +155,13 @@ def run(config: RunConfig | dict | str | Path, *, runner: Runner | None = None,
         A precomputed law table (skips the FEM on the high-slope scale).
     progress
         Progress display of the sweeps (``"auto"``, True, False).
+    retry_failed
+        Recompute tasks whose failure is recorded in the cache.
     """
     cfg = _as_config(config)
     t_start = time.perf_counter()
     timings: dict[str, float] = {}
-    runner = runner or make_runner(cfg, progress)
+    runner = runner or make_runner(cfg, progress, retry_failed)
     material = build_material(cfg)
     base, surface_info = build_surface(cfg)
     realizations = base.realizations(cfg.realizations, seed=cfg.seed)
@@ -203,7 +208,9 @@ def run(config: RunConfig | dict | str | Path, *, runner: Runner | None = None,
                               "mean_pressure": float(p)}
                     keep = ir == 0
                     if m == "fem":
-                        kw = {"surface": real.as_dict(), **common,
+                        # Translation-invariant: the same cell as the law's when the surface
+                        # is all high-slope, so the cache shares those FEM runs.
+                        kw = {"surface": _translated_to_zero_phase(real).as_dict(), **common,
                               "mesh": list(cfg.fem.full_mesh or cfg.fem.mesh),
                               "height_ratio": cfg.fem.height_ratio,
                               "periods": cfg.fem.periods,

@@ -11,11 +11,12 @@ import time
 import numpy as np
 import xarray as xr
 
+from ..errors import InputError
 from ..materials import GeneralizedMaxwell
 from ..roughness import SineSeries
 
-#: Bump when a change in these task functions changes their answers (part of the cache key).
-TASKS_VERSION = 1
+#: Bump when a change in these task functions changes their answers (read by the sweep cache key).
+CACHE_VERSION = 1
 
 _UNITS = {
     "friction": "1", "friction_ls": "1", "friction_hs": "1", "contact_fraction": "1",
@@ -65,7 +66,12 @@ def halfspace_task(surface: dict, period: float, material: dict, velocity: float
     from .. import halfspace
 
     t0 = time.perf_counter()
-    res = halfspace.solve_sliding(_surface(surface), period, _material(material), velocity,
+    surf = _surface(surface)
+    if surf.size == 0:
+        if interface_law is None:
+            raise InputError("surface: empty (flat) surface without an interface law")
+        return _flat_interface_solve(interface_law, mean_pressure, velocity, law, t0)
+    res = halfspace.solve_sliding(surf, period, _material(material), velocity,
                                   mean_pressure, law=halfspace_law(law, interface_law, velocity),
                                   n=n, nu=nu)
     values = {
@@ -83,6 +89,42 @@ def halfspace_task(surface: dict, period: float, material: dict, velocity: float
         ds["heights_profile"] = ("x", np.asarray(res.heights), {"units": "mm"})
         ds["separation_profile"] = ("x", np.asarray(res.separation), {"units": "mm"})
     return ds
+
+
+def _flat_interface_solve(interface_law: dict, mean_pressure: float, velocity: float,
+                          law: str, t0: float) -> xr.Dataset:
+    """Exact half-space solution for a flat low-slope surface (every wave is high-slope).
+
+    With ``z_ls = 0`` the pressure is uniform, ``w = 0`` and ``u = ū`` everywhere, so the
+    solve reduces to the scalar equation ``σ_hs(ū) = σ0``; then ``μ = Δτ_hs(ū)/σ0`` and
+    ``A_c/A_0 = α_hs(ū)`` (eqs. 6–8 with constant fields). The Lennard-Jones wall acts at
+    separations far below the law's and is left out.
+    """
+    from scipy.optimize import brentq
+
+    from .law import tabulated_law_from_dict
+
+    table = tabulated_law_from_dict(interface_law)
+    u_tab = np.asarray(interface_law["separation"])
+    hi = float(u_tab.max())
+    lo = float(u_tab.min())
+    for _ in range(60):   # walk into the stiff continuation until it exceeds sigma0
+        if float(table.pressure(np.array([lo]))[0]) > mean_pressure:
+            break
+        lo -= (hi - lo) if lo > 0 else max(abs(lo), hi)
+    else:
+        raise InputError(f"mean_pressure: {mean_pressure} MPa is beyond the interface law")
+    u = brentq(lambda x: float(table.pressure(np.array([x]))[0]) - mean_pressure, lo, hi,
+               xtol=1e-15, rtol=1e-12)
+    ua = np.array([u])
+    tau = float(table.shear_stress(ua)[0])
+    values = {"friction": tau / mean_pressure, "friction_ls": 0.0,
+              "friction_hs": tau / mean_pressure,
+              "contact_fraction": float(table.contact_fraction(ua)[0]),
+              "mean_separation": u, "mean_pressure": mean_pressure, "velocity": velocity,
+              "max_local_pressure": mean_pressure, "iterations": 0,
+              "wall_time": time.perf_counter() - t0}
+    return _scalars(values, {"model": "halfspace", "law": law, "hybrid": 1, "flat": 1})
 
 
 def fem_task(surface: dict, material: dict, velocity: float, mean_pressure: float,
