@@ -78,7 +78,7 @@ def factorize(K: sp.csr_matrix) -> _Factor:
 
 def newton(residual: Callable, U0: np.ndarray, *, atol: float, max_iter: int = 25,
            counters: SolverCounters | None = None, max_line_search: int = 5,
-           full_steps: int = 0):
+           full_steps: int = 0, max_step: float | None = None):
     """Solve ``r(U) = 0``.
 
     Parameters
@@ -94,6 +94,8 @@ def newton(residual: Callable, U0: np.ndarray, *, atol: float, max_iter: int = 2
         Newton iterations before giving up.
     counters
         Accumulates work statistics.
+    max_step
+        Largest change of any unknown per iteration [mm] (``None``: no limit).
     max_line_search
         Maximum line-search trials per iteration.
     full_steps
@@ -134,6 +136,13 @@ def newton(residual: Callable, U0: np.ndarray, *, atol: float, max_iter: int = 2
         c.solve_time += time.perf_counter() - t0
         c.factorizations += 1
         c.newton_iterations += 1
+        if max_step is not None:
+            # Trust region: no node moves more than max_step in one iteration, which keeps
+            # elements from inverting and face nodes from being driven deep into the
+            # surface (where the penalty force would dwarf the load).
+            big = float(np.max(np.abs(dU)))
+            if big > max_step:
+                dU *= max_step / big
         # Line search on the incremental energy along dU: G(α) = dU·r(U + α dU) is its
         # derivative (the step has an incremental potential: the history stress is
         # constant within a step). Accept α = 1 unless it overshoots the minimum badly
