@@ -189,3 +189,16 @@ def test_mesh_too_coarse_for_shortest_wavelength():
     surf = rc.roughness.SineSeries([1.0, 0.0625], [0.1, 0.005])
     with pytest.raises(InputError, match="elements per shortest wavelength"):
         rc.fem.sliding_test(surf, rc.materials.sbr(), 1.0, 1.0, mesh=(64, 48))
+
+
+def test_convergence_error_carries_diagnostics_and_last_state():
+    from rubbercontact.errors import ConvergenceError
+
+    with pytest.raises(ConvergenceError) as info:
+        rc.fem.sliding_test(rc.roughness.high_slope_wave(), rc.materials.sbr(), 1.0, 10.0,
+                            mesh=(16, 12), max_newton=1, max_cutbacks=1)
+    err = info.value
+    for key in ("step", "time", "residual_history", "cutbacks"):
+        assert key in err.diagnostics
+    assert err.diagnostics["cutbacks"] >= 1
+    assert "U" in err.last_state and "history" in err.last_state
