@@ -34,6 +34,7 @@ validate: $(VENV)/.installed
 
 bench: $(VENV)/.installed-bench
 	$(BIN)/python benchmarks/run_all.py
+	$(BIN)/python benchmarks/collect.py
 
 lint: $(VENV)/.installed
 	$(BIN)/ruff check src tests benchmarks

@@ -134,7 +134,7 @@ def _pressure_grid_for_areas(cfg: RunConfig, surfaces: list[SineSeries],
     bounds = []
     for a in (targets.min(), targets.max()):
         bounds.append(brentq(lambda lp, a=a: area(lp) - a, lo, hi, xtol=1e-3))
-    n_p = max(8, 2 * targets.size)
+    n_p = max(6, targets.size + 2)
     return np.geomspace(np.exp(bounds[0]) / 2, np.exp(bounds[1]) * 2, n_p)
 
 

@@ -1,0 +1,30 @@
+"""Assemble BENCHMARKS.md from the per-area tables the benchmark scripts write."""
+
+from __future__ import annotations
+
+from pathlib import Path
+
+HERE = Path(__file__).resolve().parent
+PARTS = [("halfspace.md", "Half-space (BEM) solver"), ("fem.md", "FEM sliding test"),
+         ("sweep.md", "Sweeps: Dask executor and result cache")]
+
+
+def main() -> None:
+    out = ["# Benchmarks", "",
+           "Latest measured figures, each section written by its script in `benchmarks/` "
+           "(`make bench` reruns them all and regenerates this file). Each section states its "
+           "machine, date and commit. Speed is measured here, never asserted in tests.", ""]
+    for name, title in PARTS:
+        path = HERE / name
+        out.append(f"<!-- from benchmarks/{name} -->")
+        if not path.exists():
+            out += [f"# {title}", "", "(not measured yet)", ""]
+            continue
+        text = path.read_text().strip().splitlines()
+        # Demote the part's headings one level under this file's title.
+        out += [("#" + line) if line.startswith("#") else line for line in text] + [""]
+    (HERE.parent / "BENCHMARKS.md").write_text("\n".join(out) + "\n")
+
+
+if __name__ == "__main__":
+    main()
