@@ -22,6 +22,8 @@ app = typer.Typer(
     no_args_is_help=True,
     add_completion=False,
     pretty_exceptions_enable=False,
+    # Plain help text: rich markup would swallow the unit brackets like "[mm]".
+    rich_markup_mode=None,
 )
 
 _STATE = {"debug": False}
