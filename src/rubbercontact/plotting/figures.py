@@ -50,8 +50,8 @@ def plot_law(ds: xr.Dataset, path: Path) -> Path | None:
     return _save(fig, path)
 
 
-def plot_friction_vs_area(ds: xr.Dataset, path: Path) -> Path:
-    """Fig. 5: friction vs normalized contact area, all models, one panel per speed."""
+def _friction_panels(ds: xr.Dataset, path: Path, x_of, xlabel: str, xlog: bool) -> Path:
+    """One panel per speed: mean friction ± sd over realizations, one curve per model."""
     plt = _plt()
     nv = ds.sizes["velocity"]
     fig, axes = plt.subplots(1, nv, figsize=(5.2 * nv, 4), squeeze=False)
@@ -59,12 +59,11 @@ def plot_friction_vs_area(ds: xr.Dataset, path: Path) -> Path:
         ax = axes[0, iv]
         for m in ds["model"].values:
             sel = ds.sel(model=m, velocity=v)
-            a = sel["contact_fraction_mean"].values
-            mu = sel["friction_mean"].values
-            err = sel["friction_std"].values
-            ax.errorbar(a, mu, yerr=err, fmt="o-", color=_COLORS.get(m), label=_LABELS.get(m, m),
-                        capsize=3)
-        ax.set_xlabel("normalized contact area A_c/A_0 [-]")
+            ax.errorbar(x_of(sel), sel["friction_mean"].values, yerr=sel["friction_std"].values,
+                        fmt="o-", color=_COLORS.get(m), label=_LABELS.get(m, m), capsize=3)
+        if xlog:
+            ax.set_xscale("log")
+        ax.set_xlabel(xlabel)
         ax.set_ylabel("friction coefficient μ [-]")
         title = f"v = {v:g} mm/s"
         if "error_vs_fem" in ds:
@@ -77,25 +76,16 @@ def plot_friction_vs_area(ds: xr.Dataset, path: Path) -> Path:
     return _save(fig, path)
 
 
+def plot_friction_vs_area(ds: xr.Dataset, path: Path) -> Path:
+    """Fig. 5: friction vs normalized contact area, all models, one panel per speed."""
+    return _friction_panels(ds, path, lambda sel: sel["contact_fraction_mean"].values,
+                            "normalized contact area A_c/A_0 [-]", xlog=False)
+
+
 def plot_friction_vs_pressure(ds: xr.Dataset, path: Path) -> Path:
     """Fig. 9: friction vs mean pressure, all models (mean ± sd over realizations)."""
-    plt = _plt()
-    nv = ds.sizes["velocity"]
-    fig, axes = plt.subplots(1, nv, figsize=(5.2 * nv, 4), squeeze=False)
-    for iv, v in enumerate(ds["velocity"].values):
-        ax = axes[0, iv]
-        for m in ds["model"].values:
-            sel = ds.sel(model=m, velocity=v)
-            ax.errorbar(ds["pressure"].values, sel["friction_mean"].values,
-                        yerr=sel["friction_std"].values, fmt="o-", color=_COLORS.get(m),
-                        label=_LABELS.get(m, m), capsize=3)
-        ax.set_xscale("log")
-        ax.set_xlabel("mean pressure σ0 [MPa]")
-        ax.set_ylabel("friction coefficient μ [-]")
-        ax.set_title(f"v = {v:g} mm/s")
-        ax.grid(alpha=0.3)
-        ax.legend(fontsize=8)
-    return _save(fig, path)
+    return _friction_panels(ds, path, lambda sel: sel["pressure"].values,
+                            "mean pressure σ0 [MPa]", xlog=True)
 
 
 def plot_high_slope_friction(ds: xr.Dataset, path: Path) -> Path | None:
