@@ -201,3 +201,40 @@ def test_steep_law_converges_to_hard_wall():
         errs.append(abs(soft.friction - hard.friction) / hard.friction)
     # the wall thickness ℓ → 0 recovers the exact complementarity solution
     assert errs[0] > errs[1] > errs[2] and errs[2] < 1e-3
+
+
+def _hs_law(u0=0.005, pa=5.0):
+    u = np.linspace(0.0, 0.04, 21)
+    sig = pa * np.exp(-u / u0)
+    sig[-1] = 0.0
+    return TabulatedLaw(u, sig, contact_fraction=np.exp(-u / u0), shear_stress=0.3 * sig)
+
+
+def test_wall_plus_soft_law_equals_soft_law_when_wall_is_idle():
+    ls = rc.roughness.section3(phases=[0.3, 1.2, 2.5]).partition(1.0)[1]
+    tab = _hs_law()
+    both = solve_sliding(ls, None, SBR, 10.0, 0.05, n=1024, law=LennardJonesRepulsion() + tab)
+    soft = solve_sliding(ls, None, SBR, 10.0, 0.05, n=1024, law=tab)
+    # u stays ≫ ℓ, so the wall adds nothing: the two solves must agree
+    assert both.separation.min() > 100 * 1e-5 * np.std(both.heights)
+    assert both.friction == pytest.approx(soft.friction, rel=1e-8)
+    assert both.contact_fraction == pytest.approx(soft.contact_fraction, rel=1e-8)
+
+
+def test_wall_plus_soft_law_sharing_the_load():
+    ls = rc.roughness.section3(phases=[0.3, 1.2, 2.5]).partition(1.0)[1]
+    tab = _hs_law(u0=0.002, pa=2.0)
+    wall = LennardJonesRepulsion()
+    res = solve_sliding(ls, None, SBR, 10.0, 1.0, n=1024, law=wall + tab)
+    assert len(res.info["continuation"]) > 1  # the soft law was switched on in stages
+    assert res.converged
+    resolved = wall.resolve(np.std(res.heights), 1.0)
+    p_wall = resolved.pressure(res.separation)
+    p_soft = tab.pressure(res.separation)
+    # both members carry a finite share; the pressure is the law at the solved separation
+    assert 0.05 < np.mean(p_wall) < 0.95 and 0.05 < np.mean(p_soft) < 0.95
+    np.testing.assert_allclose(res.pressure, p_wall + p_soft, rtol=1e-5, atol=1e-8)
+    # eq. 6 with the companion table at the solved separation (linear-space PCHIP, so only
+    # close to 0.3·<σ_soft>)
+    assert res.friction_hs == pytest.approx(np.mean(tab.shear_stress(res.separation)), rel=1e-12)
+    assert res.friction_hs == pytest.approx(0.3 * np.mean(p_soft), rel=0.02)

@@ -109,7 +109,7 @@ from ..materials.maxwell import GeneralizedMaxwell
 from ..roughness.sines import SineSeries
 from . import kernels as kn
 from .krylov import gmres
-from .laws import InteractionLaw
+from .laws import InteractionLaw, LennardJonesRepulsion, SumLaw
 
 __all__ = ["SlidingResult", "solve_sliding"]
 
@@ -632,6 +632,81 @@ def _newton_law(prob: _Problem, law: InteractionLaw, tol: float, max_iter: int, 
                                                     "history": history}
 
 
+class _Blend(InteractionLaw):
+    """``stiff + s·soft`` (pressure and stiffness only): a continuation stage."""
+
+    def __init__(self, stiff: InteractionLaw, soft: InteractionLaw, s: float) -> None:
+        self.stiff, self.soft, self.s = stiff, soft, s
+
+    def pressure(self, u):
+        return self.stiff.pressure(u) + self.s * self.soft.pressure(u)
+
+    def stiffness(self, u):
+        return self.stiff.stiffness(u) + self.s * self.soft.stiffness(u)
+
+
+def _split_law(law: InteractionLaw) -> tuple[InteractionLaw | None, InteractionLaw | None]:
+    """(stiff wall part, soft remainder) of a law; either may be ``None``."""
+    members = law.laws if isinstance(law, SumLaw) else (law,)
+    stiff = [m for m in members if isinstance(m, LennardJonesRepulsion)]
+    soft = [m for m in members if not isinstance(m, LennardJonesRepulsion)]
+
+    def pack(ms):
+        return None if not ms else ms[0] if len(ms) == 1 else SumLaw(*ms)
+
+    return pack(stiff), pack(soft)
+
+
+def _solve_law(prob: _Problem, law: InteractionLaw, tol: float, max_iter: int, hw):
+    """Newton from the hard-wall solution, with continuation in the soft part of the law.
+
+    The stiff wall (Lennard-Jones) alone is solved first from the hard-wall state; a soft
+    member (e.g. the tabulated high-slope law) is then switched on as ``stiff + s·soft``
+    with ``s`` stepping from 0 to 1 (step doubled after a success, quartered after a
+    failure). Without it Newton from the hard-wall guess stalls when the soft law carries a
+    large part of the load (observed: the wall contact must shrink a lot).
+    """
+    stiff, soft = _split_law(law)
+    sigma, w = hw[0], hw[2]
+    stages = []
+    total_its = 0
+    lin = 0
+
+    def newton(stage_law, sigma, w, final):
+        shift = _shift_for_law(stage_law, w - prob.z, prob.sigma0)
+        return _newton_law(prob, stage_law, tol if final else max(tol, 1e-6),
+                           max_iter if final else min(max_iter, 40), (sigma, shift))
+
+    if stiff is None or soft is None:
+        out = newton(law, sigma, w, True)
+        out[7]["continuation"] = [1.0]
+        return out
+    out = newton(stiff, sigma, w, False)
+    total_its += out[4]
+    lin += out[7]["linear_iterations"]
+    if not out[6]:
+        return out
+    s_prev, step = 0.0, 1.0
+    while s_prev < 1.0:
+        s = min(1.0, s_prev + step)
+        final = s == 1.0
+        trial = newton(law if final else _Blend(stiff, soft, s), out[0], out[2], final)
+        total_its += trial[4]
+        lin += trial[7]["linear_iterations"]
+        if trial[6]:
+            stages.append(s)
+            s_prev, out = s, trial
+            step *= 2.0
+        else:
+            step *= 0.25
+            if step < 1e-4:
+                out = trial
+                break
+    sigma, u, w, ubar, _, res, ok, info = out
+    info = {**info, "linear_iterations": lin, "continuation": stages}
+    return sigma, u, w, ubar, total_its, res, ok, info
+
+
 # ----------------------------------------------------------------------------------------------
 # public entry point
 # ----------------------------------------------------------------------------------------------
@@ -737,9 +812,7 @@ def solve_sliding(surface, period, material: GeneralizedMaxwell, velocity: float
         if not hw[6]:
             raise ConvergenceError("hard-wall initial guess did not converge",
                                    diagnostics=hw[7])
-        shift = _shift_for_law(used_law, hw[1], sigma0)
-        # start: hard-wall pressures, separations shifted to the law's mean level
-        out = _newton_law(prob, used_law, tol, max_iter, (hw[0], hw[3] + shift))
+        out = _solve_law(prob, used_law, tol, max_iter, hw)
         out[7]["initial_active_set_iterations"] = hw[4]
         name = "newton"
 
