@@ -48,8 +48,9 @@ All operators are applied with one ``rfftn``/``irfftn`` pair on a precomputed ke
 ``(M x)_B + c x + λ = b``, ``Σ x = S`` (``c >= 0`` a diagonal local compliance, ``λ`` the
 mean-separation increment). They are solved by right-preconditioned GMRES
 (:mod:`~rubbercontact.halfspace.krylov`) in the subspace ``Σ x = 0`` after removing the mean. The
-preconditioner is the *stiffness* operator ``K = 1/(M + c̄)`` applied to the zero-extended vector and
-restricted back to ``B`` (operator preconditioning: on a contact interval the restricted
+preconditioner is the *stiffness* operator ``K = 1/(Re M + c̄)`` (Hermitian part only, see
+:func:`~rubbercontact.halfspace.kernels.stiffness_kernel`) applied to the zero-extended vector
+and restricted back to ``B`` (operator preconditioning: on a contact interval the restricted
 ``1/|q|`` and ``|q|`` operators are spectrally inverse up to compact terms). Measured: 5–6
 iterations to 1e-10 on a contact interval, independent of N from 2^10 to 2^16 (plain CG: 56 →
 370). For a viscoelastic material ``M`` is not symmetric (it is normal, with a positive-definite
@@ -60,7 +61,8 @@ active-set (semismooth Newton) iteration on the complementarity problem. Given t
 solve ``u_A = 0``, ``σ = 0`` off ``A``, ``<σ> = σ0``; then
 ``A ← {σ > 0 on A} ∪ {u < −ε off A}`` (``ε = 1e-12 max|z|``). Stops when ``A`` no longer
 changes; the result then satisfies ``σ >= 0``, ``u >= −ε`` and ``σ u = 0`` up to the linear
-tolerance. Typically 8–15 set updates for a sinusoid, from the full-contact start.
+tolerance. Start: the contact set of a Winkler foundation ``σ = k_W (z − h)₊`` with the
+spectrum-weighted half-space stiffness ``k_W``. Typically 7–10 set updates for a sinusoid.
 
 *Hard wall, viscoelastic* (default when ``M`` is complex): the active-set iteration alone can
 cycle for the non-symmetric operator (observed). Globally convergent outer loop: the projection
@@ -91,6 +93,19 @@ displacement, frozen during the search so the Newton direction is a descent dire
 guess: the hard-wall solution, with ``ū`` shifted so that ``<f(u)> = σ0``; without it Newton on
 the ``u⁻⁹`` wall overshoots into huge pressures and stalls (observed, even with continuation in
 the wall stiffness). Converged when ``|r|₂/|σ|₂ <= tol``.
+
+*Wall + soft law* (``LennardJonesRepulsion() + TabulatedLaw(...)``, the hybrid method's law):
+the wall alone is solved first from the hard-wall state, then the soft member is switched on as
+``wall + s·soft``, ``s: 0 → 1``, each stage by Newton from the previous one (step doubled after
+a success, quartered after a failure). When the soft law carries a large share of the load this
+takes 20–40 stages (seconds at N = 1024): Newton with a linear update in ``σ`` is a poor fit for
+an exponential law that changes by orders of magnitude (known limitation; log-variables and
+step limiting were tried and did not help as implemented).
+
+Resolution note: for a viscoelastic material whose glassy relaxation length ``v τ_min`` is far
+below the grid step, the leading contact edge is not resolved and the pressure shows
+grid-scale (odd–even) oscillations there; integral quantities (μ, area, ``ū``) converge under
+refinement (tested).
 
 Failures raise :class:`~rubbercontact.errors.ConvergenceError` with the iteration history and the
 last state (a :class:`SlidingResult` with ``converged=False``).
