@@ -235,10 +235,10 @@ def test_convergence_error_keeps_last_state():
 
 def test_period_multiple_of_the_longest_wavelength():
     surf = SineSeries([0.125, 0.25], [0.002, 0.003], [0.4, 1.1])
-    one = solve_sliding(surf, None, SBR, 10.0, 0.3, n=512)
-    two = solve_sliding(surf, 0.5, SBR, 10.0, 0.3, n=1024)  # two periods, same grid step
-    # the doubled cell holds two copies of the same steady state (to the solver tolerance:
-    # linear solves at 1e-8 give ~1e-7 pressure differences)
+    one = solve_sliding(surf, None, SBR, 10.0, 0.3, n=512, tol=1e-11)
+    two = solve_sliding(surf, 0.5, SBR, 10.0, 0.3, n=1024, tol=1e-11)  # two periods
+    # the doubled cell holds two copies of the same steady state (to the solver tolerance;
+    # at tol 1e-8 pointwise differences reach 5e-6 near the glassy leading edge)
     assert two.friction == pytest.approx(one.friction, rel=1e-6)
     assert two.contact_fraction == pytest.approx(one.contact_fraction, rel=1e-12)
     np.testing.assert_allclose(two.pressure[:512], one.pressure, atol=1e-6 * one.pressure.max())
