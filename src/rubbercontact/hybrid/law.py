@@ -187,8 +187,10 @@ def tabulated_law_from_dict(table: dict):
 
 
 def check_coverage(law: xr.Dataset, velocity: float, max_local_pressure: float) -> None:
-    """Warn when the low-slope solve reached pressures beyond the law's FEM range."""
-    pmax = float(law["pressure"].max())
+    """Warn when the low-slope solve reached pressures beyond the law's successful FEM range."""
+    row = law.sel(velocity=velocity, method="nearest")
+    ok = row["status"].values == "ok"
+    pmax = float(row["pressure"].values[ok].max()) if ok.any() else 0.0
     if max_local_pressure > pmax:
         warnings.warn(f"law at v={velocity} mm/s is extrapolated: local low-slope pressure "
                       f"reaches {max_local_pressure:.3g} MPa, the FEM table ends at {pmax:.3g} "
