@@ -72,6 +72,7 @@ def full_test(nx: int, ny: int, periods: int) -> dict:
     wall = time.perf_counter() - t0
     h = res.history
     fr = h["friction"][h["phase"] == 2]
+    al = h["contact_fraction"][h["phase"] == 2]
     s = res.stats
     return {"mesh": f"{nx}x{ny}", "friction": res.friction,
             "contact_fraction": res.contact_fraction,
@@ -84,7 +85,9 @@ def full_test(nx: int, ny: int, periods: int) -> dict:
             "assembly_time_s": s.assembly_time, "solve_time_s": s.solve_time,
             "wall_time_s": wall, "unknowns": s.n_unknowns,
             "period_means": [float(np.mean(fr[i * nx:(i + 1) * nx]))
-                             for i in range(len(fr) // nx)]}
+                             for i in range(len(fr) // nx)],
+            "period_means_contact_fraction": [float(np.mean(al[i * nx:(i + 1) * nx]))
+                                              for i in range(len(al) // nx)]}
 
 
 def main() -> None:

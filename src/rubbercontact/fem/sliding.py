@@ -49,8 +49,6 @@ MIN_ELEMENTS_PER_WAVELENGTH = 8
 PHASES = ("press", "settle", "slide")
 
 
-#: Steps over which the sliding speed ramps up from v/30 to v.
-_START_STEPS = 0
 
 
 
@@ -237,7 +235,6 @@ def sliding_test(surface: SineSeries, material: GeneralizedMaxwell, mean_pressur
                  penalty_factor: float = 100.0, grading: float = 1.0, newton_tol: float = 1e-6,
                  max_newton: int = 25, max_cutbacks: int = 6, newton_max_step: float = 0.2,
                  slow_branch_start: bool = True,
-                 start_steps: int = _START_STEPS,
                  progress=None
                  ) -> SlidingTestResult:
     """Press a periodic rubber cell onto ``surface`` and slide it at constant speed.
@@ -287,9 +284,6 @@ def sliding_test(surface: SineSeries, material: GeneralizedMaxwell, mean_pressur
     slow_branch_start
         Start branches with ``τ > 0.1 L0/v`` from the row-averaged state (removes the
         slowly decaying imprint of the static indentation; see the code comment).
-    start_steps
-        Steps over which the sliding speed rises geometrically from ``v/30`` to ``v``
-        (gentler start-up transient; 0 starts at full speed).
     progress
         Optional callable ``progress(phase, step, time, friction)``.
 
@@ -427,15 +421,8 @@ def sliding_test(surface: SineSeries, material: GeneralizedMaxwell, mean_pressur
         ds = L0 / spp
         means = []
         for k in range(int(periods)):
-            for j in range(spp):
-                # Start-up: the speed rises geometrically from v/30 to v over the first
-                # `start_steps` steps, so the contact moves from the relaxed indentation to
-                # the stiffer sliding state gradually (fewer Newton iterations in the
-                # transient; the steady state is unaffected).
-                i_step = k * spp + j
-                ramp = (30.0 ** (-(1.0 - i_step / start_steps))
-                        if i_step < start_steps else 1.0)
-                st, it = advance(st, dt_slide / ramp, ds, 0.0, 0, True)
+            for _ in range(spp):
+                st, it = advance(st, dt_slide, ds, 0.0, 0, True)
                 record(st, 2, it)
             n_periods = k + 1
             sl = slice(-spp, None)

@@ -78,7 +78,7 @@ def factorize(K: sp.csr_matrix) -> _Factor:
 
 def newton(residual: Callable, U0: np.ndarray, *, atol: float, max_iter: int = 25,
            counters: SolverCounters | None = None, max_line_search: int = 5,
-           full_steps: int = 0, max_step: float | None = None):
+           max_step: float | None = None):
     """Solve ``r(U) = 0``.
 
     Parameters
@@ -98,11 +98,6 @@ def newton(residual: Callable, U0: np.ndarray, *, atol: float, max_iter: int = 2
         Largest change of any unknown per iteration [mm] (``None``: no limit).
     max_line_search
         Maximum line-search trials per iteration.
-    full_steps
-        The first ``full_steps`` iterations take the full Newton step (halved only if it
-        inverts elements): with a stiff penalty the line search would creep toward the
-        right contact active set one node at a time. Later iterations use the line search
-        (guards against active-set cycling).
 
     Returns
     -------
@@ -124,7 +119,7 @@ def newton(residual: Callable, U0: np.ndarray, *, atol: float, max_iter: int = 2
     hist = [norm]
     if not np.isfinite(norm):
         raise NewtonFailure("inadmissible predictor (inverted element)", hist)
-    for it in range(max_iter):
+    for _ in range(max_iter):
         if norm <= atol:
             return U, aux, hist
         t0 = time.perf_counter()
@@ -163,8 +158,6 @@ def newton(residual: Callable, U0: np.ndarray, *, atol: float, max_iter: int = 2
                 alpha = 0.5 * (lo + alpha)
                 c.line_search_cuts += 1
                 continue
-            if it < full_steps:
-                break  # plain Newton first: fastest way to the right contact active set
             g = float(dU @ r_new)
             if g0 >= 0 or g <= 0.5 * abs(g0) or n_new < norm:
                 break  # not a descent direction (accept), or acceptable decrease
