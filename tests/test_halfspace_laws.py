@@ -226,7 +226,7 @@ def test_wall_plus_soft_law_sharing_the_load():
     tab = _hs_law(u0=0.002, pa=2.0)
     wall = LennardJonesRepulsion()
     res = solve_sliding(ls, None, SBR, 10.0, 1.0, n=1024, law=wall + tab)
-    assert len(res.info["continuation"]) > 1  # the soft law was switched on in stages
+    assert res.info["wall_soft_method"] == "active-set"  # no continuation needed
     assert res.converged
     resolved = wall.resolve(np.std(res.heights), 1.0)
     p_wall = resolved.pressure(res.separation)
@@ -238,3 +238,36 @@ def test_wall_plus_soft_law_sharing_the_load():
     # close to 0.3·<σ_soft>)
     assert res.friction_hs == pytest.approx(np.mean(tab.shear_stress(res.separation)), rel=1e-12)
     assert res.friction_hs == pytest.approx(0.3 * np.mean(p_soft), rel=0.02)
+
+
+def _continuation_only(monkeypatch):
+    from rubbercontact.halfspace import solver
+    monkeypatch.setattr(solver, "_solve_wall_soft", lambda *args: None)
+
+
+@pytest.mark.parametrize("case", ["shared", "fem-like"])
+def test_wall_soft_active_set_matches_continuation(case, monkeypatch):
+    """The active-set path (hard wall + soft law, then Newton on the LJ law) gives the answer
+    of the previous continuation path (``stiff + s·soft``, s: 0 → 1) within the tolerance."""
+    if case == "shared":  # the wall carries ~half the load: continuation needed 11 stages
+        ls = rc.roughness.section3(phases=[0.3, 1.2, 2.5]).partition(1.0)[1]
+        tab, sigma0 = _hs_law(u0=0.002, pa=2.0), 0.3
+    else:  # the shape of the FEM high-slope law (decreasing, zero beyond 0.01867 mm)
+        ls = rc.roughness.section3(phases=[2.0, 0.4, 5.1]).partition(1.0)[1]
+        tab = TabulatedLaw(separation=[0.004, 0.008, 0.012, 0.016, 0.01867],
+                           pressure=[8, 3, 1, 0.3, 0], contact_fraction=[0.6, 0.4, 0.25, 0.1, 0],
+                           shear_stress=[2.5, 1.2, 0.4, 0.08, 0])
+        sigma0 = 1.0
+    law = LennardJonesRepulsion() + tab
+    fast = solve_sliding(ls, None, SBR, 10.0, sigma0, n=1024, law=law)
+    assert fast.info["wall_soft_method"] == "active-set"
+    with monkeypatch.context() as m:
+        _continuation_only(m)
+        ref = solve_sliding(ls, None, SBR, 10.0, sigma0, n=1024, law=law)
+    assert "wall_soft_method" not in ref.info
+    assert fast.residual <= 1e-8 and ref.residual <= 1e-8
+    assert fast.friction == pytest.approx(ref.friction, rel=1e-6)
+    assert fast.contact_fraction == pytest.approx(ref.contact_fraction, rel=1e-6)
+    assert fast.mean_separation == pytest.approx(ref.mean_separation, rel=1e-6)
+    np.testing.assert_allclose(fast.pressure, ref.pressure, rtol=0,
+                               atol=1e-5 * fast.pressure.max())

@@ -133,6 +133,8 @@ MIN_POINTS = 8
 _SET_EPS = 1e-12
 #: Relative tolerance for "period is a multiple of every wavelength".
 _PERIOD_RTOL = 1e-9
+#: GMRES tolerance of one wall+soft active-set step (inexact Newton; 1e-2..1e-5 tried).
+_WS_LINEAR_RTOL = 1e-3
 
 
 @dataclass(frozen=True, eq=False)
@@ -647,6 +649,95 @@ def _newton_law(prob: _Problem, law: InteractionLaw, tol: float, max_iter: int, 
                                                     "history": history}
 
 
+# ----------------------------------------------------------------------------------------------
+# wall + soft law: active set for "hard wall + soft law", then Newton on the full law
+# ----------------------------------------------------------------------------------------------
+def _wall_soft_active_set(prob: _Problem, soft: InteractionLaw, tol: float, max_iter: int,
+                          sigma: np.ndarray, ubar: float, active: np.ndarray | None = None):
+    """Hard wall + soft law: ``u >= 0``, ``λ = σ − f(u) >= 0``, ``u λ = 0`` (semismooth Newton).
+
+    Semismooth Newton on the complementarity function ``C = min(u, W λ)`` with
+    ``W = 1/(k + 1/m_d)`` (``k = −f'``, ``m_d`` the diagonal of ``M``): on the contact set
+    ``A = {W λ > u}`` the equation is ``u = 0`` (the wall multiplier is free), off it ``σ = f(u)``
+    linearised. Each step is one contact-set linear solve with ``c = 0`` on ``A`` and ``c = 1/k``
+    where the soft law is stiff (same system and preconditioner as the Newton solver); points
+    where ``f`` is flat are updated explicitly. Backtracking line search on ``|C|₂`` (``W`` frozen
+    during the search). The soft law is evaluated at ``u₊``: penetration is left to the wall, and
+    the law's steep extrapolation below ``u = 0`` would otherwise wreck the merit. Converged when
+    the rms of ``C`` falls below ``tol × max|z|``.
+    """
+    n = prob.size
+    z = prob.z
+    m_diag = float(np.real(prob.compliance).sum() * 2 / n)
+    zscale = float(np.abs(z).max()) or 1.0
+    w = prob.displacement(sigma)
+    u = ubar + w - z
+    if active is None:
+        k0 = soft.stiffness(np.maximum(u, 0.0))
+        active = (sigma - soft.pressure(np.maximum(u, 0.0))) / (k0 + 1.0 / m_diag) > u
+    lin_its = 0
+    history = []
+    res = np.inf
+
+    def merit(sig, uu, ff, wgt):
+        # semismooth complementarity residual min(u, W λ), λ = σ − f(u₊), as a displacement
+        return np.minimum(uu, wgt * (sig - ff))
+
+    for it in range(1, max_iter + 1):
+        # the soft law is only evaluated at u >= 0: penetration is the wall's business (it
+        # enters the set at the next update); its steep extrapolation below u = 0 would
+        # otherwise dominate the line-search merit
+        f = soft.pressure(np.maximum(u, 0.0))
+        k = soft.stiffness(np.maximum(u, 0.0))
+        stiff = active | (k * m_diag > 1e-8)
+        idx = np.flatnonzero(stiff)
+        free = ~stiff
+        dsig = np.zeros(n)
+        dsig[free] = f[free] - sigma[free]
+        total = prob.sigma0 * n - sigma.sum() - dsig[free].sum()
+        on_a = active[idx]
+        c = np.zeros(idx.size)
+        kk = k[idx]
+        c[~on_a] = 1.0 / kk[~on_a]
+        w_free = prob.displacement(dsig) if free.any() else np.zeros(n)
+        rhs = np.where(on_a, -u[idx], c * (f[idx] - sigma[idx])) - w_free[idx]
+        contact = c < m_diag
+        cbar = float(np.median(c[contact])) if contact.any() else float(np.median(c))
+        k_pre = kn.stiffness_kernel(prob.compliance, cbar)
+        x, dubar, its, rr = _contact_solve(prob, idx, rhs, total, k_pre, c=c,
+                                          rtol=_WS_LINEAR_RTOL,
+                                          extra_diag=~contact)
+        lin_its += its
+        dsig[idx] = x
+        dw = prob.displacement(dsig)
+        du = dubar + dw
+        wgt = 1.0 / (k + 1.0 / m_diag)
+        phi0 = float(np.linalg.norm(merit(sigma, u, f, wgt)))
+        t = 1.0
+        for _ in range(30):
+            s_t = sigma + t * dsig
+            u_t = u + t * du
+            f_t = soft.pressure(np.maximum(u_t, 0.0))
+            phi = float(np.linalg.norm(merit(s_t, u_t, f_t, wgt)))
+            if phi <= (1 - 1e-4 * t) * phi0 or phi <= 1e-3 * tol * zscale:
+                break
+            t *= 0.5
+        sigma, ubar, u, w = s_t, ubar + t * dubar, u_t, w + t * dw
+        k_t = soft.stiffness(np.maximum(u, 0.0))
+        wgt = 1.0 / (k_t + 1.0 / m_diag)
+        lam = sigma - f_t
+        res = float(np.linalg.norm(merit(sigma, u, f_t, wgt))) / zscale / np.sqrt(n)
+        new = wgt * lam > u
+        changed = int(np.count_nonzero(new != active))
+        history.append((int(active.sum()), changed, its, rr, t, res))
+        if res <= tol:
+            return sigma, u, w, ubar, it, res, True, {"linear_iterations": lin_its,
+                                                      "history": history, "active": active}
+        active = new
+    return sigma, u, w, ubar, max_iter, res, False, {"linear_iterations": lin_its,
+                                                     "history": history, "active": active}
+
+
 class _Blend(InteractionLaw):
     """``stiff + s·soft`` (pressure and stiffness only): a continuation stage."""
 
@@ -672,6 +763,43 @@ def _split_law(law: InteractionLaw) -> tuple[InteractionLaw | None, InteractionL
     return pack(stiff), pack(soft)
 
 
+def _solve_wall_soft(prob: _Problem, law: InteractionLaw, soft: InteractionLaw, tol: float,
+                     max_iter: int):
+    """Wall + soft law without continuation (``None`` if a stage fails: caller falls back).
+
+    1. hard wall for the Hermitian part ``Re M`` (cheap, symmetric active set), ``ū`` shifted
+       so that ``<f_soft(u)> = σ0``;
+    2. the soft law alone by Newton from it (smooth law: converges in a few steps);
+    3. hard wall + soft law by the semismooth active-set Newton
+       (:func:`_wall_soft_active_set`) from the soft solution;
+    4. Newton on the full law (Lennard-Jones wall + soft) from that state, ``ū`` shifted so
+       that ``<f(u)> = σ0`` (the wall gap ``u ≈ ℓ`` replaces ``u = 0`` on the contact set).
+    """
+    sym = _Problem(prob.shape, prob.lengths, prob.z, prob.slope, np.real(prob.compliance),
+                   prob.sigma0)
+    hw = _hard_wall_active_set(sym, max(tol, 1e-8), max_iter)
+    prob.matvecs += sym.matvecs
+    if not hw[6]:
+        return None
+    shift = _shift_for_law(soft, hw[2] - prob.z, prob.sigma0)
+    so = _newton_law(prob, soft, max(tol, 1e-8), max_iter, (hw[0], shift))
+    if not so[6]:
+        return None
+    act = _wall_soft_active_set(prob, soft, max(tol, 1e-8), min(max_iter, 100), so[0], so[3])
+    if not act[6]:
+        return None
+    shift = _shift_for_law(law, act[2] - prob.z, prob.sigma0)
+    out = _newton_law(prob, law, tol, max_iter, (act[0], shift))
+    if not out[6]:
+        return None
+    info = {**out[7], "continuation": [1.0], "wall_soft_active_set_iterations": act[4],
+            "soft_newton_iterations": so[4], "initial_active_set_iterations": hw[4],
+            "linear_iterations": (out[7]["linear_iterations"] + act[7]["linear_iterations"]
+                                  + so[7]["linear_iterations"]),
+            "wall_soft_history": act[7]["history"], "wall_soft_method": "active-set"}
+    return (*out[:4], out[4] + act[4] + so[4], out[5], out[6], info)
+
+
 def _solve_law(prob: _Problem, law: InteractionLaw, tol: float, max_iter: int, hw):
     """Newton from the hard-wall solution, with continuation in the soft part of the law.
 
@@ -682,6 +810,11 @@ def _solve_law(prob: _Problem, law: InteractionLaw, tol: float, max_iter: int, h
     large part of the load (observed: the wall contact must shrink a lot).
     """
     stiff, soft = _split_law(law)
+    if stiff is not None and soft is not None:
+        fast = _solve_wall_soft(prob, law, soft, tol, max_iter)
+        if fast is not None:
+            return fast
+    hw = hw()
     sigma, w = hw[0], hw[2]
     stages = []
     total_its = 0
@@ -822,13 +955,20 @@ def solve_sliding(surface, period, material: GeneralizedMaxwell, velocity: float
         if method == "pk":
             raise InputError("method: 'pk' is for the hard wall only (law=None)")
         used_law = law.resolve(hrms, sigma0)
-        hw = (_hard_wall_active_set(prob, max(tol, 1e-8), max_iter) if elastic
-              else _hard_wall_viscoelastic(prob, max(tol, 1e-8), max_iter))
-        if not hw[6]:
-            raise ConvergenceError("hard-wall initial guess did not converge",
-                                   diagnostics=hw[7])
+        hw_its = []
+
+        def hw():
+            out = (_hard_wall_active_set(prob, max(tol, 1e-8), max_iter) if elastic
+                   else _hard_wall_viscoelastic(prob, max(tol, 1e-8), max_iter))
+            if not out[6]:
+                raise ConvergenceError("hard-wall initial guess did not converge",
+                                       diagnostics=out[7])
+            hw_its.append(out[4])
+            return out
+
         out = _solve_law(prob, used_law, tol, max_iter, hw)
-        out[7]["initial_active_set_iterations"] = hw[4]
+        if hw_its:
+            out[7]["initial_active_set_iterations"] = hw_its[0]
         name = "newton"
 
     sigma, u, w, ubar, iters, resid, ok, info = out
