@@ -133,6 +133,10 @@ MIN_POINTS = 8
 _SET_EPS = 1e-12
 #: Relative tolerance for "period is a multiple of every wavelength".
 _PERIOD_RTOL = 1e-9
+#: Smallest grid of the coarse-grid start of the viscoelastic hard wall.
+_COARSE_MIN = 1024
+#: Active-set updates allowed to polish an interpolated coarse-grid solution.
+_COARSE_POLISH = 8
 #: GMRES tolerance of one wall+soft active-set step (inexact Newton; 1e-2..1e-5 tried).
 _WS_LINEAR_RTOL = 1e-3
 
@@ -505,6 +509,43 @@ def _hard_wall_viscoelastic(prob: _Problem, tol: float, max_iter: int, polish: b
     u0 = w - prob.z
     ubar = -float(u0[sigma > 0].mean())
     return sigma, ubar + u0, w, ubar, it, diff, ok, info
+
+
+def _coarse_problem(prob: _Problem, factor: int) -> _Problem:
+    """The same 1D problem on every ``factor``-th grid point (same period, same kernel)."""
+    nc = prob.size // factor
+    # the coarse rfft grid holds the first nc/2 + 1 wavenumbers of the fine one: same M(q)
+    zc = prob.z[::factor]
+    return _Problem((nc,), prob.lengths, zc - zc.mean(), prob.slope[::factor],
+                    prob.compliance[:nc // 2 + 1].copy(), prob.sigma0)
+
+
+def _hard_wall_viscoelastic_multilevel(prob: _Problem, tol: float, max_iter: int):
+    """Exact viscoelastic hard wall, started from the solution on a 4× coarser grid (1D).
+
+    The coarse solution (recursively, down to :data:`_COARSE_MIN` points) is interpolated
+    (periodic, linear) to the grid and polished by at most :data:`_COARSE_POLISH` active-set
+    updates on the full operator; the set then differs from the exact one by a few points per
+    contact edge, where the active-set iteration converges (exact complementarity, as the
+    polishing step of :func:`_hard_wall_viscoelastic`). If the polish does not converge, the
+    projection method runs on this grid from scratch.
+    """
+    n = prob.size
+    factor = 4
+    if len(prob.shape) == 1 and n % factor == 0 and n // factor >= _COARSE_MIN:
+        coarse = _coarse_problem(prob, factor)
+        out_c = _hard_wall_viscoelastic_multilevel(coarse, tol, max_iter)
+        prob.matvecs += coarse.matvecs
+        if out_c[6]:
+            xc = np.arange(n // factor) * factor
+            sigma = np.interp(np.arange(n), xc, out_c[0], period=n)
+            sigma *= prob.sigma0 * n / sigma.sum()
+            pol = _hard_wall_active_set(prob, tol, _COARSE_POLISH, sigma_init=sigma)
+            if pol[6]:
+                info = {"coarse_levels": out_c[7].get("coarse_levels", 0) + 1,
+                        "polish_iterations": pol[4], "coarse_info": out_c[7]}
+                return (*pol[:4], pol[4] + out_c[4], pol[5], True, info)
+    return _hard_wall_viscoelastic(prob, tol, max_iter)
 
 
 def _hard_wall_pk(prob: _Problem, tol: float, max_iter: int):
@@ -945,7 +986,7 @@ def solve_sliding(surface, period, material: GeneralizedMaxwell, velocity: float
             out = _hard_wall_active_set(prob, tol, max_iter)
             name = "active-set"
         else:
-            out = _hard_wall_viscoelastic(prob, tol, max_iter)
+            out = _hard_wall_viscoelastic_multilevel(prob, tol, max_iter)
             name = "projection+active-set"
         used_law = None
     else:
@@ -956,7 +997,7 @@ def solve_sliding(surface, period, material: GeneralizedMaxwell, velocity: float
 
         def hw():
             out = (_hard_wall_active_set(prob, max(tol, 1e-8), max_iter) if elastic
-                   else _hard_wall_viscoelastic(prob, max(tol, 1e-8), max_iter))
+                   else _hard_wall_viscoelastic_multilevel(prob, max(tol, 1e-8), max_iter))
             if not out[6]:
                 raise ConvergenceError("hard-wall initial guess did not converge",
                                        diagnostics=out[7])
