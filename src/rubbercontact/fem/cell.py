@@ -19,7 +19,7 @@ from ..roughness.sines import SineSeries
 from .assembly import Assembler
 from .constitutive import MaterialParameters, ViscousState
 from .contact import ContactState, evaluate_contact
-from .element import ElementOutput
+from .element import ElementOutput, deformation_gradient
 from .mesh import PeriodicCell
 
 
@@ -158,5 +158,14 @@ class CellModel:
         z_new = self.surface.heights(new[:, 0] + shift + ds)
         fix = (want < 0) | (new[:, 1] - z_new < 0)
         y_target = z_new + np.minimum(want, 0.0)
-        V[self.by[fix]] += y_target[fix] - new[fix, 1]
-        return V
+        # at most a quarter of the face row's height, and only if no element of the face
+        # row inverts (on steep flanks a vertical correction can be large)
+        h_row = float(cell.y_nodes[1] - cell.y_nodes[0])
+        dy = np.clip(y_target - new[:, 1], -0.25 * h_row, 0.25 * h_row)
+        W = V.copy()
+        W[self.by[fix]] += dy[fix]
+        nx = cell.nx
+        ue = self.asm.full_displacement(W)[self.asm.edofs[:nx]].reshape(nx, 4, 2)
+        F = deformation_gradient(self.asm.dNdX[:nx], ue)
+        J = F[..., 0, 0] * F[..., 1, 1] - F[..., 0, 1] * F[..., 1, 0]
+        return W if np.all(J > 0.05) else V

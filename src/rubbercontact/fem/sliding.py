@@ -304,6 +304,11 @@ def sliding_test(surface: SineSeries, material: GeneralizedMaxwell, mean_pressur
                                           height_ratio, periods, min_periods, steps_per_period)
     steady_tol = positive_scalar("steady_tol", steady_tol)
     params = MaterialParameters.from_material(material, bulk_modulus)
+    if p > material.equilibrium_modulus:
+        warnings.warn(f"mean_pressure {p} MPa exceeds the relaxed modulus E∞ = "
+                      f"{material.equilibrium_modulus} MPa: very large strains, slow or failing "
+                      f"convergence (tested up to p̄ ≈ 0.7 E∞ on the high-slope wave)",
+                      RuntimeWarning, stacklevel=2)
     L0 = surface.period
     H = hr * L0
     x_nodes = np.arange(nx) * (L0 / nx)
@@ -430,8 +435,11 @@ def sliding_test(surface: SineSeries, material: GeneralizedMaxwell, mean_pressur
             if n_periods >= max(min_periods, 2):
                 (m0, a0), (m1, a1) = means[-2], means[-1]
                 # Relative agreement, with absolute floors for (near-)zero friction.
+                # α moves in jumps of the face nodes: allow a quarter of one element's
+                # share of the length (0.0021 at nx = 120, measured period-to-period
+                # scatter there ±1 %).
                 if (abs(m1 - m0) <= steady_tol * abs(m1) + 1e-4
-                        and abs(a1 - a0) <= steady_tol * abs(a1) + 1e-4):
+                        and abs(a1 - a0) <= max(steady_tol * abs(a1), 0.25 / nx)):
                     steady = True
                     break
         if not steady:
