@@ -2,9 +2,13 @@
 
 import json
 
+import pytest
+
 from rubbercontact.cli import main
 
 
+# Two periods on a 16 x 12 mesh keep the test fast; steadiness is not the point here.
+@pytest.mark.filterwarnings("ignore:FEM sliding test:RuntimeWarning")
 def test_fem_cli_json_and_plot(tmp_path, capsys):
     cfg = tmp_path / "t.toml"
     cfg.write_text('surface = {wavelengths = [0.0625], amplitudes = [0.004]}\n'
