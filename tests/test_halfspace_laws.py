@@ -271,3 +271,36 @@ def test_wall_soft_active_set_matches_continuation(case, monkeypatch):
     assert fast.mean_separation == pytest.approx(ref.mean_separation, rel=1e-6)
     np.testing.assert_allclose(fast.pressure, ref.pressure, rtol=0,
                                atol=1e-5 * fast.pressure.max())
+
+
+def test_wall_soft_steep_soft_law_matches_continuation(monkeypatch):
+    """A soft law steep on the scale of the roughness (AC-8 low-slope part, law decaying over
+    2 µm): the soft Newton needs the hard-wall start; same answer as the continuation path."""
+    ls = rc.roughness.asphalt_ac8(phases=np.linspace(0, 6, 8)).partition(1.0)[1]
+    law = LennardJonesRepulsion() + _hs_law(u0=0.002, pa=2.0)
+    fast = solve_sliding(ls, None, SBR, 10.0, 0.5, n=2048, law=law)
+    assert fast.info["wall_soft_method"] == "active-set"
+    with monkeypatch.context() as m:
+        _continuation_only(m)
+        ref = solve_sliding(ls, None, SBR, 10.0, 0.5, n=2048, law=law)
+    assert fast.friction == pytest.approx(ref.friction, rel=1e-6)
+    assert fast.contact_fraction == pytest.approx(ref.contact_fraction, rel=1e-6)
+    assert fast.mean_separation == pytest.approx(ref.mean_separation, rel=1e-6)
+
+
+def test_wall_soft_coarse_grid_start_gives_the_single_grid_answer(monkeypatch):
+    """N = 8192: hard wall + soft law started from 4× coarser grids = started on the grid."""
+    from rubbercontact.halfspace import solver
+
+    ls = rc.roughness.section3(phases=[0.3, 1.2, 2.5]).partition(1.0)[1]
+    law = LennardJonesRepulsion() + _hs_law(u0=0.002, pa=2.0)
+    fast = solve_sliding(ls, None, SBR, 10.0, 1.0, n=8192, law=law)
+    assert fast.info["coarse_levels"] == 1
+    monkeypatch.setattr(solver, "_COARSE_MIN", 10**9)
+    ref = solve_sliding(ls, None, SBR, 10.0, 1.0, n=8192, law=law)
+    assert ref.info["coarse_levels"] == 0
+    assert fast.friction == pytest.approx(ref.friction, rel=1e-7)
+    assert fast.contact_fraction == pytest.approx(ref.contact_fraction, rel=1e-7)
+    assert fast.mean_separation == pytest.approx(ref.mean_separation, rel=1e-7)
+    rel = np.linalg.norm(fast.pressure - ref.pressure) / np.linalg.norm(ref.pressure)
+    assert rel < 1e-7
