@@ -113,22 +113,25 @@ start), half in 7–8 Newton steps of ~30 GMRES iterations each.
 the stiff wall is first replaced by a hard wall, which turns the problem into "hard wall + soft
 law": ``u >= 0``, ``λ = σ − f(u) >= 0``, ``u λ = 0`` with ``f`` the soft member. Steps:
 (1) Winkler-foundation pressure, ``ū`` shifted so that ``<f(u)> = σ0`` (no linear solve);
-(2) the soft law alone by Newton from it (6–8 steps, a smooth law); (3) the hard wall + soft law
-by a semismooth (primal–dual active-set) Newton on ``C = min(u, W λ)``: on the contact set
+(2) the soft law alone by Newton from it (6–8 steps; if it fails, as for a soft law steep on
+the scale of the roughness, from the hard wall of ``Re M`` instead); (3) the hard wall + soft
+law by a semismooth (primal–dual active-set) Newton on ``C = min(u, W λ)``: on the contact set
 ``A = {W λ > u}`` the equation is ``u = 0``, off it ``σ = f(u)`` linearised, i.e. the Newton
 system above with ``c = 0`` on ``A``; the soft law is evaluated at ``u₊`` (penetration is the
 wall's business), line search on ``|C|₂``; (4) Newton on the full law from that state, ``ū``
-shifted so that ``<f(u)> = σ0`` (7–8 steps, as from a hard-wall guess). Measured at N = 2048:
-0.01–0.02 s when the wall is idle or nearly (a law of the shape of the FEM high-slope law),
-0.08–0.2 s when the wall carries 30–60 % of the load (21–42 active-set steps: the set
-changes by a few points per step where ``u`` and ``λ`` are both small, i.e. where the soft
-law's pressure at contact is close to what the wall would carry); μ, contact fraction and
-``ū`` equal those of the continuation path below to 1e-9 or better (tested). If any step fails,
-the previous method runs: the wall alone from the hard-wall state, then the soft member switched
-on as ``wall + s·soft``, ``s: 0 → 1``, each stage by Newton from the previous one (step doubled
-after a success, quartered after a failure; 11–57 stages and 2–13 s at N = 2048 when the wall
-carries much of the load — Newton with a linear update in ``σ`` opens wall contacts by only a
-fraction of ``ℓ`` per step).
+shifted so that ``<f(u)> = σ0`` (7–8 steps, as from a hard-wall guess). On 1D grids with
+``N >= 1024``, steps 1–3 are done on a 4× coarser grid first (recursively down to 256 points)
+and step 3 restarts from the interpolated result: the active set changes by a few points per
+step where ``u`` and ``λ`` are both small (the soft law's pressure at contact close to what the
+wall carries), so from a poor start its step count grows with N (29 at 2048, 93 at 8192
+points; 4–7 and 6 with the coarse start). Measured at N = 2048: 0.01–0.02 s when the wall is
+idle (a law of the shape of the FEM high-slope law), 0.06–0.11 s when it carries 30–60 % of the
+load; μ, contact fraction and ``ū`` equal those of the continuation path below to 1e-9 or
+better (tested). If any step fails, the previous method runs: the wall alone from the
+hard-wall state, then the soft member switched on as ``wall + s·soft``, ``s: 0 → 1``, each
+stage by Newton from the previous one (step doubled after a success, quartered after a
+failure; 18–57 stages and 2–8 s at N = 2048 when the wall carries much of the load — Newton
+with a linear update in ``σ`` opens a wall contact by only a fraction of ``ℓ`` per step).
 
 Resolution note: for a viscoelastic material whose glassy relaxation length ``v τ_min`` is far
 below the grid step, the leading contact edge is not resolved and the pressure shows
@@ -163,6 +166,8 @@ _SET_EPS = 1e-12
 _PERIOD_RTOL = 1e-9
 #: Smallest grid of the coarse-grid start of the viscoelastic hard wall.
 _COARSE_MIN = 1024
+#: Smallest grid of the coarse-grid start of the hard wall + soft law stage.
+_COARSE_MIN_SOFT = 256
 #: Active-set updates allowed to polish an interpolated coarse-grid solution.
 _COARSE_POLISH = 8
 #: GMRES tolerance of one wall+soft active-set step (inexact Newton; 1e-2..1e-5 tried).
@@ -849,13 +854,14 @@ def _split_law(law: InteractionLaw) -> tuple[InteractionLaw | None, InteractionL
 def _hard_wall_soft(prob: _Problem, soft: InteractionLaw, tol: float, max_iter: int):
     """Hard wall + soft law (steps 1–3 of :func:`_solve_wall_soft`); ``None`` on failure.
 
-    1D grids with ``N >= 4096`` start from the interpolated solution on a 4× coarser grid
-    (recursively, as the viscoelastic hard wall): the active-set iteration changes the set by
-    a few points per step where the wall and the soft law are both nearly active, so its step
-    count grows with N from a poor start (measured 29 at 2048, 93 at 8192 points).
+    1D grids with ``N >= 1024`` start from the interpolated solution on a 4× coarser grid
+    (recursively down to 256 points, as the viscoelastic hard wall): the active-set iteration
+    changes the set by a few points per step where the wall and the soft law are both nearly
+    active, so its step count grows with N from a poor start (measured 29 at 2048, 93 at 8192
+    points; 4–7 and 6 with the coarse start).
     """
     n = prob.size
-    if len(prob.shape) == 1 and n % 4 == 0 and n // 4 >= _COARSE_MIN:
+    if len(prob.shape) == 1 and n % 4 == 0 and n // 4 >= _COARSE_MIN_SOFT:
         coarse = _coarse_problem(prob, 4)
         out_c = _hard_wall_soft(coarse, soft, tol, max_iter)
         prob.matvecs += coarse.matvecs
@@ -900,7 +906,7 @@ def _solve_wall_soft(prob: _Problem, law: InteractionLaw, soft: InteractionLaw, 
 
     1. Winkler-foundation pressure (:func:`_winkler_guess`, no linear solve), ``ū`` shifted
        so that ``<f_soft(u)> = σ0`` (if the soft Newton fails from it: the hard wall of the
-       Hermitian part ``Re M``); on 1D grids with ``N >= 4096`` steps 1–3 start instead from
+       Hermitian part ``Re M``); on 1D grids with ``N >= 1024`` steps 1–3 start instead from
        the interpolated solution on a 4× coarser grid (:func:`_hard_wall_soft`);
     2. the soft law alone by Newton from it (smooth law: converges in 6–8 steps; measured as
        good a start as the symmetric hard-wall solution, which costs ~900 FFT pairs);
