@@ -6,7 +6,13 @@ import xarray as xr
 
 import rubbercontact as rc
 from rubbercontact.errors import InputError
-from rubbercontact.hybrid.law import LawWarning, assemble_law, law_at_velocity, max_height
+from rubbercontact.hybrid.law import (
+    LawWarning,
+    assemble_law,
+    law_at_velocity,
+    max_height,
+    screen_monotone,
+)
 
 
 def _config(tmp_path, **over):
@@ -68,6 +74,34 @@ def test_law_table_reports_failures_and_rejects_nonmonotone():
         law_at_velocity(bad, 10.0)
     with pytest.raises(InputError, match=r"50.0 mm/s is not in the law table"):
         law_at_velocity(law, 50.0)
+
+
+def test_screen_monotone_excludes_and_names_the_offending_points():
+    # u must fall strictly as p rises. Top point crushed (u rises again at 8 MPa, as the FEM
+    # does beyond E_inf): only it goes. A lone outlier in the middle: only it goes, not
+    # every point above it.
+    top = _law([(0.018, 0.05, 0.01, 0.1), (0.013, 0.15, 0.2, 1.0), (0.009, 0.4, 0.9, 4.0),
+                (0.010, 0.5, 1.5, 8.0)])
+    with pytest.warns(LawWarning, match=r"p=\[8.0\] MPa are excluded"):
+        screened = screen_monotone(top)
+    assert screened["status"].values[0, 3].startswith("excluded: non-monotone")
+    assert list(screened["status"].values[0, :3]) == ["ok"] * 3
+    # the FEM numbers stay in the table for inspection
+    assert float(screened["mean_separation"][0, 3]) == 0.010
+    t = law_at_velocity(screened, 10.0)
+    assert t["pressure"][:3] == [4.0, 1.0, 0.1]
+    mid = _law([(0.018, 0.05, 0.01, 0.1), (0.0195, 0.1, 0.1, 0.3), (0.013, 0.15, 0.2, 1.0),
+                (0.009, 0.4, 0.9, 4.0)])
+    with pytest.warns(LawWarning, match=r"p=\[0.3\] MPa"):
+        screened = screen_monotone(mid)
+    assert list(screened["status"].values[0] == "ok") == [True, False, True, True]
+    # a monotone table passes untouched and silently
+    import warnings
+
+    with warnings.catch_warnings():
+        warnings.simplefilter("error")
+        same = screen_monotone(_law([(0.018, 0.05, 0.01, 0.1), (0.013, 0.15, 0.2, 1.0)]))
+    assert np.all(same["status"].values == "ok")
 
 
 def test_elastic_high_slope_law_gives_zero_mu_hs(tmp_path):

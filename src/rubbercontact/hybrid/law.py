@@ -137,14 +137,70 @@ def max_height(surface: SineSeries, n: int = 8192) -> float:
     return float(z[k])
 
 
+def screen_monotone(law: xr.Dataset) -> xr.Dataset:
+    """Exclude the FEM points that break the law's monotonicity, and say which.
+
+    Physically ``ū`` decreases strictly as ``p̄`` grows. Per speed, among the successful
+    points ordered by pressure, the largest subset with strictly decreasing ``ū`` is
+    kept (ties: the subset with the lower pressures, where the FEM is most reliable);
+    every other point keeps its numbers in the table but gets the status
+    ``"excluded: non-monotone ..."`` and is named in a :class:`LawWarning`. Typical
+    cause: mean pressures beyond the rubber's equilibrium modulus, where the FEM cell is
+    crushed and the time averages are not steady.
+
+    Returns a copy of ``law`` with the updated ``status``.
+    """
+    law = law.copy(deep=True)
+    status = law["status"].values.astype(object)
+    pressures = law["pressure"].values
+    order = np.argsort(pressures)
+    for iv, v in enumerate(law["velocity"].values):
+        u = law["mean_separation"].values[iv]
+        idx = [j for j in order if status[iv, j] == "ok" and np.isfinite(u[j])]
+        keep = _longest_decreasing(u[idx])
+        dropped = [j for k, j in enumerate(idx) if k not in keep]
+        for j in dropped:
+            status[iv, j] = (f"excluded: non-monotone (u = {u[j]:.6g} mm at p = "
+                             f"{pressures[j]:g} MPa breaks the decrease of u with p)")
+        if dropped:
+            warnings.warn(
+                f"law at v={v:g} mm/s: FEM points at p={[float(pressures[j]) for j in dropped]}"
+                f" MPa are excluded, their mean separations "
+                f"{[float(u[j]) for j in dropped]} mm break the strict decrease of u with p "
+                f"(check the FEM convergence and steadiness at those loads)",
+                LawWarning, stacklevel=2)
+    law["status"] = (law["status"].dims, status.astype(str))
+    return law
+
+
+def _longest_decreasing(values: np.ndarray) -> set[int]:
+    """Indices of the longest strictly decreasing subsequence, preferring early entries."""
+    n = len(values)
+    length, prev = [1] * n, [-1] * n
+    for i in range(n):
+        for j in range(i):
+            if values[j] > values[i] and length[j] + 1 > length[i]:
+                length[i], prev[i] = length[j] + 1, j
+    if n == 0:
+        return set()
+    # the first index reaching the maximal length ends the subsequence with the lowest loads
+    i = int(np.argmax(length))
+    out = set()
+    while i >= 0:
+        out.add(i)
+        i = prev[i]
+    return out
+
+
 def law_at_velocity(law: xr.Dataset, velocity: float) -> dict:
     """The law at one speed as plain data: ``u`` [mm] ascending, ``sigma``, ``alpha``, ``tau``.
 
     Failed FEM points are dropped and reported (:class:`LawWarning`); the zero-load
     anchor ``(ū = max z_hs, σ = α = Δτ = 0)`` is added — at vanishing load the rubber
     touches only the highest peak, so its mean height equals that peak's height.
-    A table that is not monotone (pressure not decreasing with ``ū``) is an error: the
-    FEM points disagree with each other and must be inspected, not smoothed.
+    A table that is still not monotone (pressure not decreasing with ``ū``; run
+    :func:`screen_monotone` first to exclude such points explicitly) is an error: the FEM
+    points disagree with each other and must be inspected, not smoothed.
     """
     speeds = law["velocity"].values
     match = np.flatnonzero(np.isclose(speeds, velocity, rtol=1e-9, atol=1e-12))

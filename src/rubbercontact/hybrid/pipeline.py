@@ -30,7 +30,7 @@ from ..config import RunConfig
 from ..errors import InputError
 from ..materials import GeneralizedMaxwell, sbr
 from ..roughness import SineSeries, presets
-from .law import check_coverage, effective_law, law_at_velocity
+from .law import check_coverage, effective_law, law_at_velocity, screen_monotone
 from .metrics import interpolate_at_areas, mean_relative_error
 
 #: Executes a list of sweep tasks; returns per task an ``xr.Dataset`` or a failure record.
@@ -191,6 +191,7 @@ def run(config: RunConfig | dict | str | Path, *, runner: Runner | None = None,
                                 height_ratio=cfg.fem.height_ratio, periods=cfg.fem.periods,
                                 steps_per_period=cfg.fem.steps_per_period, runner=runner)
             timings["law"] = time.perf_counter() - t0
+        law = screen_monotone(law)
         for v in velocities:
             law_tables[float(v)] = law_at_velocity(law, float(v))
         law = _law_with_vhs(law, hs0, material, cfg, runner)

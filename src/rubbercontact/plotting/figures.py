@@ -36,10 +36,15 @@ def plot_law(ds: xr.Dataset, path: Path) -> Path | None:
     for v in ds["velocity"].values:
         u = ds["law_mean_separation"].sel(velocity=v).values * 1e3
         p = ds["law_pressure"].values
+        ok = (ds["law_status"].sel(velocity=v).values == "ok" if "law_status" in ds
+              else np.ones(p.size, bool))
         lbl = f"v = {v:g} mm/s"
-        axes[0].plot(u, p, "o-", label=lbl)
-        axes[1].plot(u, ds["law_contact_fraction"].sel(velocity=v), "o-", label=lbl)
-        axes[2].plot(u, ds["law_shear_stress"].sel(velocity=v), "o-", label=lbl)
+        for ax, y in zip(axes, (p, ds["law_contact_fraction"].sel(velocity=v).values,
+                                ds["law_shear_stress"].sel(velocity=v).values), strict=True):
+            line, = ax.plot(u[ok], y[ok], "o-", label=lbl)
+            # failed or excluded (non-monotone) FEM points: shown, not connected
+            ax.plot(u[~ok], y[~ok], "x", color=line.get_color(), ms=8,
+                    label="excluded" if (ax is axes[0] and (~ok).any()) else None)
     axes[0].set_yscale("log")
     for ax, yl in zip(axes, ("σ_hs [MPa]", "α_hs [-]", "Δτ_hs [MPa]"), strict=True):
         ax.set_xlabel("mean separation ū [µm]")
