@@ -166,6 +166,9 @@ _SET_EPS = 1e-12
 _PERIOD_RTOL = 1e-9
 #: Smallest grid of the coarse-grid start of the viscoelastic hard wall.
 _COARSE_MIN = 256
+#: 1D grids up to this size solve contact-set systems directly (dense): the coarsest level
+#: of the multilevel starts, where GMRES is all Python overhead.
+_DENSE_MAX = 256
 #: Smallest grid of the coarse-grid start of the hard wall + soft law stage.
 _COARSE_MIN_SOFT = 256
 #: Active-set updates allowed to polish an interpolated coarse-grid solution.
@@ -283,6 +286,7 @@ class _Problem:
     sigma0: float
     matvecs: int = 0
     _pre: np.ndarray | None = None
+    _dense: np.ndarray | None = None
 
     @property
     def size(self) -> int:
@@ -294,6 +298,14 @@ class _Problem:
 
     def displacement(self, sigma: np.ndarray) -> np.ndarray:
         return self.apply(self.compliance, sigma)
+
+    def dense(self) -> np.ndarray:
+        """Dense (circulant) matrix of ``M`` on a 1D grid (cached; small grids only)."""
+        if self._dense is None:
+            col = kn.inverse(self.compliance, self.shape)  # response to a unit pressure at 0
+            i = np.arange(self.size)
+            self._dense = col[(i[:, None] - i[None, :]) % self.size]
+        return self._dense
 
     def preconditioner(self) -> np.ndarray:
         """Hard-wall preconditioner kernel ``1/Re M`` (cached)."""
@@ -370,6 +382,22 @@ def _shift_weights(c: np.ndarray, shifts: np.ndarray) -> np.ndarray:
     return weights
 
 
+def _contact_solve_dense(prob: _Problem, idx: np.ndarray, rhs: np.ndarray, total: float,
+                         c: np.ndarray | None) -> tuple[np.ndarray, float, int, float]:
+    """Direct solve of the contact-set system on a small 1D grid (bordered dense system)."""
+    nb = idx.size
+    a = np.empty((nb + 1, nb + 1))
+    a[:nb, :nb] = prob.dense()[np.ix_(idx, idx)]
+    if c is not None:
+        a[np.arange(nb), np.arange(nb)] += c
+    a[:nb, nb] = 1.0
+    a[nb, :nb] = 1.0
+    a[nb, nb] = 0.0
+    sol = np.linalg.solve(a, np.append(rhs, total))
+    prob.matvecs += 1
+    return sol[:nb], float(sol[nb]), 1, 0.0
+
+
 def _contact_solve(prob: _Problem, idx: np.ndarray, rhs: np.ndarray, total: float,
                    precond: np.ndarray, c: np.ndarray | None = None,
                    x0: np.ndarray | None = None, rtol: float = 1e-10,
@@ -386,6 +414,8 @@ def _contact_solve(prob: _Problem, idx: np.ndarray, rhs: np.ndarray, total: floa
     Returns ``x`` (values on B), ``λ``, GMRES iterations, relative residual.
     """
     nb = idx.size
+    if len(prob.shape) == 1 and prob.size <= _DENSE_MAX:
+        return _contact_solve_dense(prob, idx, rhs, total, c)
     buf = np.zeros(prob.size)
     m_diag = float(np.real(prob.compliance).sum() * 2 / prob.size)  # ≈ diagonal of M
 
