@@ -172,7 +172,7 @@ _DENSE_MAX = 256
 #: Smallest grid of the coarse-grid start of the hard wall + soft law stage.
 _COARSE_MIN_SOFT = 256
 #: Active-set updates allowed to polish an interpolated coarse-grid solution.
-_COARSE_POLISH = 8
+_COARSE_POLISH = 16
 #: Mixed (inverse-law) Newton for a Lennard-Jones wall alone (switch kept for comparisons).
 _MIXED_NEWTON = True
 _MULTI_SHIFT = True
