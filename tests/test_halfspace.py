@@ -269,3 +269,84 @@ def test_coarse_grid_start_gives_the_single_grid_answer(law, monkeypatch):
     rel = np.linalg.norm(fast.pressure - ref.pressure) / np.linalg.norm(ref.pressure)
     assert rel < (1e-4 if law is None else 1e-8)
     assert np.abs(fast.separation - ref.separation).max() < 1e-8 * np.abs(surf.amplitudes).sum()
+
+
+# --- fast paths against the plain ones ------------------------------------------------------------
+def _plain_solver(monkeypatch):
+    """Switch the solver to its plain paths: Newton on σ = f(u) only, Hermitian preconditioner,
+    single-shift kernel, GMRES on every grid."""
+    from rubbercontact.halfspace import solver
+
+    monkeypatch.setattr(solver, "_MIXED_NEWTON", False)
+    monkeypatch.setattr(solver, "_COMPLEX_PRECOND", False)
+    monkeypatch.setattr(solver, "_MULTI_SHIFT", False)
+    monkeypatch.setattr(solver, "_DENSE_MAX", 0)
+
+
+@pytest.mark.parametrize("pressure", [0.38, 3.3])  # ~5 % and ~30 % contact
+def test_mixed_newton_matches_plain_newton(pressure, monkeypatch):
+    """The inverse-law (mixed) Newton with the complex and multi-shift preconditioners solves
+    the same Lennard-Jones problem as the plain Newton (the previous method), in fewer steps.
+    N = 2^14: the multi-shift preconditioner is active there."""
+    surf = rc.roughness.section3(phases=[0.3, 1.2, 2.5])
+    fast = solve_sliding(surf, None, SBR, 10.0, pressure, n=2**14, law=LennardJonesRepulsion())
+    _plain_solver(monkeypatch)
+    ref = solve_sliding(surf, None, SBR, 10.0, pressure, n=2**14, law=LennardJonesRepulsion())
+    # both stop at |σ − f(u)|/|σ| <= 1e-8; the integrals then agree to that order
+    assert fast.friction == pytest.approx(ref.friction, rel=1e-8)
+    assert fast.contact_fraction == pytest.approx(ref.contact_fraction, rel=1e-8)
+    assert fast.mean_separation == pytest.approx(ref.mean_separation, rel=1e-8)
+    assert fast.iterations < ref.iterations
+    assert "mixed_newton_failed" not in fast.info
+
+
+def test_newton_iterations_do_not_grow_with_n():
+    """Steep law, 30 % contact: Newton steps equal and GMRES iterations nearly equal from
+    N = 2^12 to 2^16 (the multi-shift preconditioner follows the resolved contact edges)."""
+    surf = rc.roughness.section3(phases=[0.3, 1.2, 2.5])
+    runs = [solve_sliding(surf, None, SBR, 10.0, 3.3, n=n, law=LennardJonesRepulsion())
+            for n in (2**12, 2**14, 2**16)]
+    assert len({r.iterations for r in runs}) == 1
+    lin = [r.info["linear_iterations"] for r in runs]
+    # measured 50, 67, 59; the plain preconditioner needed ~3.7x more at 2^16 than at 2^12
+    # (52, 90, 194 at σ0 = 3.315, same steps)
+    assert max(lin) <= 1.5 * min(lin)
+
+
+@pytest.mark.parametrize("velocity", [0.0, 10.0])
+def test_dense_coarse_solve_matches_gmres(velocity, monkeypatch):
+    """N = 256 (dense contact-set solves) gives the GMRES answer: elastic limit (v = 0) and
+    viscoelastic hard wall, and the Lennard-Jones law."""
+    surf = rc.roughness.section3(phases=[0.3, 1.2, 2.5])
+    dense = [solve_sliding(surf, None, SBR, velocity, 0.5, n=256, law=law)
+             for law in (None, LennardJonesRepulsion())]
+    from rubbercontact.halfspace import solver
+
+    monkeypatch.setattr(solver, "_DENSE_MAX", 0)
+    krylov = [solve_sliding(surf, None, SBR, velocity, 0.5, n=256, law=law)
+              for law in (None, LennardJonesRepulsion())]
+    for d, k in zip(dense, krylov, strict=True):
+        np.testing.assert_array_equal(d.pressure > 0, k.pressure > 0)
+        # GMRES stops at 1e-8 (hard wall) / the Newton tolerance 1e-8: agreement to that order;
+        # μ is a cancellation of O(1) terms (≈ 0 in the elastic case): absolute 1e-8
+        assert d.friction == pytest.approx(k.friction, rel=1e-7, abs=1e-8)
+        assert d.mean_separation == pytest.approx(k.mean_separation, rel=1e-7)
+        np.testing.assert_allclose(d.pressure, k.pressure, atol=1e-6 * k.pressure.max())
+
+
+def test_complex_preconditioner_fallback(monkeypatch):
+    """When GMRES with the complex preconditioner stalls, the Hermitian one takes over (forced
+    here by allowing it a single iteration): same hard-wall and steep-law answers."""
+    from rubbercontact.halfspace import solver
+
+    surf = rc.roughness.section3(phases=[0.3, 1.2, 2.5])
+    ref = [solve_sliding(surf, None, SBR, 10.0, 3.3, n=4096, law=law)
+           for law in (None, LennardJonesRepulsion())]
+    monkeypatch.setattr(solver, "_COMPLEX_PRECOND_MAXITER", 1)
+    forced = [solve_sliding(surf, None, SBR, 10.0, 3.3, n=4096, law=law)
+              for law in (None, LennardJonesRepulsion())]
+    for f, r in zip(forced, ref, strict=True):
+        # both converged to 1e-8 (hard wall: linear tolerance; law: Newton residual)
+        assert f.friction == pytest.approx(r.friction, rel=1e-7)
+        assert f.contact_fraction == pytest.approx(r.contact_fraction, rel=1e-7)
+        assert f.mean_separation == pytest.approx(r.mean_separation, rel=1e-7)

@@ -48,13 +48,27 @@ All operators are applied with one ``rfftn``/``irfftn`` pair on a precomputed ke
 ``(M x)_B + c x + λ = b``, ``Σ x = S`` (``c >= 0`` a diagonal local compliance, ``λ`` the
 mean-separation increment). They are solved by right-preconditioned GMRES
 (:mod:`~rubbercontact.halfspace.krylov`) in the subspace ``Σ x = 0`` after removing the mean. The
-preconditioner is the *stiffness* operator ``K = 1/(Re M + c̄)`` (Hermitian part only, see
+preconditioner is the *stiffness* operator ``K = 1/(M + c̄)`` (see
 :func:`~rubbercontact.halfspace.kernels.stiffness_kernel`) applied to the zero-extended vector
 and restricted back to ``B`` (operator preconditioning: on a contact interval the restricted
 ``1/|q|`` and ``|q|`` operators are spectrally inverse up to compact terms). Measured: 5–6
 iterations to 1e-10 on a contact interval, independent of N from 2^10 to 2^16 (plain CG: 56 →
 370). For a viscoelastic material ``M`` is not symmetric (it is normal, with a positive-definite
-Hermitian part ``Re M``), hence GMRES, which converges for positive-definite operators.
+Hermitian part ``Re M``), hence GMRES. ``K`` inverts the full complex ``M``: on the hard-wall
+contact sets of the section-3 surface (SBR, 10 mm/s, N = 2^14) 9–12 iterations to 1e-8 against
+30–34 with the inverse of the Hermitian part ``1/(Re M + c̄)`` (independent of N from 2^12 to
+2^16). Only the latter is guaranteed to keep the preconditioned operator positive definite (the
+sector of the loss angle), so when GMRES with the complex ``K`` has not converged within
+150 iterations it continues with the Hermitian one (never triggered in the tests and sweeps,
+forced in a test). Steep laws add a ``c`` that varies over orders of magnitude across a contact
+edge (``c = 1/k``); where ``c > m_d`` (the diagonal of ``M``) the point is preconditioned by
+``1/(c + m_d)``, and when at least 32 points have ``c > 10 c̄`` (resolved edges: N >= 2^14 on
+the benchmark) the kernel becomes the variable-coefficient ``1/(M(q) + c(x))``, interpolated in
+``log c`` between the shifts ``c̄, √(c̄ m_d), m_d`` (one forward and three inverse FFTs per
+application). Measured GMRES iterations summed over the Newton steps of the benchmark (30 %
+contact): 52 / 60 / 59 at N = 2^12 / 2^14 / 2^16 against 52 / 90 / 194 with one shift. 1D grids
+of at most 256 points (the coarsest level of the multilevel starts) solve the system directly
+(dense bordered matrix): there GMRES cost was all Python overhead.
 
 *Hard wall, active set* (``method="active-set"``, default for an elastic material): primal–dual
 active-set (semismooth Newton) iteration on the complementarity problem. Given the set ``A``:
@@ -79,14 +93,16 @@ contact-set linear solve) of the symmetric subproblem, warm-started; a fixed poi
 fused iteration has ``u = 0`` on the set and ``u >= 0`` off it for the full operator. Anderson
 acceleration of the projection map was tried and was slower (the map is only piecewise smooth).
 
-*Hard wall, viscoelastic, coarse-grid start* (1D, ``N >= 4096``, ``N`` divisible by 4): the
+*Hard wall, viscoelastic, coarse-grid start* (1D, ``N >= 1024``, ``N`` divisible by 4): the
 problem is first solved exactly on every 4th point (same period, the same ``M(q)`` on the
-coarser rfft grid; recursively down to 1024 points), the pressure interpolated (periodic,
-linear) and polished by at most 8 active-set updates on the full operator, which converge
-because the set is right up to a few points per contact edge. Result: the same exact
-complementarity solution (tested against the fine-grid projection method: same contact set,
-μ, area and ``ū`` within 1e-7), 2–3× faster at 2^14 and 6–8× at 2^16 (measured). If the
-polish fails, the projection method runs on the fine grid. ``matvecs`` then counts FFT pairs
+coarser rfft grid; recursively down to 256 points, solved there by the projection method with
+dense linear solves), the pressure interpolated (periodic, linear) and polished by at most 16
+active-set updates on the full operator, which converge because the set is right up to a few
+points per contact edge (3–9 updates measured on the section-3 surface; 8 allowed updates were
+too few from 256 to 1024 points). Result: the same exact complementarity solution (tested
+against the fine-grid projection method: same contact set, μ, area and ``ū`` within 1e-7);
+the hard wall alone at N = 2^14 takes 0.02–0.06 s (measured, section 3, 1–34 % contact). If
+the polish fails, the projection method runs on that grid. ``matvecs`` then counts FFT pairs
 on all grids.
 
 *Hard wall, Polonsky–Keer* (``method="pk"``, elastic only): the classic constrained conjugate
@@ -104,10 +120,26 @@ of ``M``), i.e. the residual converted to a displacement, frozen during the sear
 Newton direction is a descent direction. Initial guess for the steep (Lennard-Jones) law: the
 exact hard-wall solution, with ``ū`` shifted so that ``<f(u)> = σ0``; without it Newton on the
 ``u⁻⁹`` wall overshoots into huge pressures and stalls (observed, even with continuation in the
-wall stiffness). Converged when ``|r|₂/|σ|₂ <= tol``. Measured (SBR, section 3, v = 10 mm/s,
-5–30 % contact, one core): 0.20–0.24 s at N = 2^14 (was 0.33–0.57 s on the same machine and
-load; the issue's 0.1 s target is still missed): ~half in the hard-wall guess (coarse-grid
-start), half in 7–8 Newton steps of ~30 GMRES iterations each.
+wall stiffness). Converged when ``|r|₂/|σ|₂ <= tol``.
+
+*Mixed Newton for the Lennard-Jones wall alone.* Linearising the steep ``f`` at the current
+``u`` moves a point by at most ``u/9`` per step when ``u`` is too small (``f`` convex), and the
+points just outside the hard-wall contact, which carry a small pressure with the law, took 7–8
+Newton steps to settle. Every row ``σ_i = f(u_i)`` may be linearised at any point of the curve
+``σ = f(u)`` (the iteration is still Newton's once the state is consistent): where ``σ_i`` or
+``f(u_i)`` is in the contact range (above ``f(2ℓ)``) the tangent is taken at the geometric mean
+``σ̃ = √(σ_i f(u_i))`` (both clipped below at ``f(2ℓ)``) of the inverse law ``u = g(σ) =
+ℓ (p_ref/σ)^(1/9)``; this gives the same linear system with ``c = −g'(σ̃)`` and right-hand
+side ``g(σ̃) − c (σ − σ̃) − u``. The tangent at ``σ_i`` alone (pure inverse form) converges as
+slowly from the other side (points whose pressure is too small); the geometric mean was the
+best of those tried. GMRES forcing ``0.3 |r|/|σ|`` (capped at 1e-2). Same line search and
+stopping test; if it fails, the plain Newton runs from the same start (never observed).
+Measured (SBR, section 3, v = 10 mm/s, 5–30 % contact, one core, N = 2^12–2^16): 4 Newton
+steps (plain: 7–8) with 35–67 GMRES iterations in total (plain: 115–551); a whole solve at
+N = 2^14 takes 0.05–0.07 s against 0.14–0.25 s for the previous code in the same run on a
+loaded machine (load average ~3), about half hard-wall start and half Newton. μ, contact
+fraction and ``ū`` agree with the plain Newton to 1e-8 (tested), 4e-9 or better in a sweep
+over 1e-3–1e5 mm/s and 0.1–100 % contact at N = 2^12 and 2^14.
 
 *Wall + soft law* (``LennardJonesRepulsion() + TabulatedLaw(...)``, the hybrid method's law):
 the stiff wall is first replaced by a hard wall, which turns the problem into "hard wall + soft
