@@ -202,3 +202,39 @@ def test_convergence_error_carries_diagnostics_and_last_state():
         assert key in err.diagnostics
     assert err.diagnostics["cutbacks"] >= 1
     assert "U" in err.last_state and "history" in err.last_state
+
+
+def test_segment_penetration_closed_forms():
+    # A flat face y = 0 with nodes at the zeros of z = D sin(qx): the segment spans the
+    # whole crest, so the penetration is the amplitude D exactly (t = 1/2 is sampled).
+    from rubbercontact.fem.contact import segment_penetration
+
+    lam, amp = 0.0625, 0.01
+    s = rc.roughness.SineSeries([lam], [amp], [0.0])
+    pos = np.array([[0.0, 0.0], [lam / 2, 0.0]])
+    assert segment_penetration(s, 0.0, pos, lam) == pytest.approx(amp, rel=1e-12)
+    # A face lying on the surface itself misses it only by the chord sag h^2/(8R) at the
+    # crest, R = 1/(q^2 D); the samples at t = k/8 see at most that (tolerance 1 %).
+    n = 64
+    x = np.arange(n) * lam / n
+    pos = np.column_stack([x, s.heights(x)])
+    sag = (lam / n) ** 2 * (2 * np.pi / lam) ** 2 * amp / 8
+    assert 0.0 < segment_penetration(s, 0.0, pos, lam) <= 1.01 * sag
+    # a face above the surface: no penetration
+    pos[:, 1] += 2 * amp
+    assert segment_penetration(s, 0.0, pos, lam) == 0.0
+
+
+@pytest.mark.slow
+def test_impaled_face_is_reported():
+    # Three-wave surface at 8 elements per 0.0625 mm: the 0.0625 mm asperities pass between
+    # face nodes (measured 6-7 element widths); the test must say so, not return a number.
+    from rubbercontact.errors import ConvergenceError
+
+    surf = rc.roughness.section3().realizations(1, seed=2021)[0]
+    with pytest.warns(RuntimeWarning, match="impaled"):
+        try:
+            rc.fem.sliding_test(surf, rc.materials.sbr(), 0.35, 10.0, mesh=(32, 24),
+                                periods=1, min_periods=1)
+        except ConvergenceError:
+            pass

@@ -143,6 +143,26 @@ def evaluate_contact(surface: SineSeries, shift: float, pos: np.ndarray, weight:
                         stiffness=stiff, energy=energy)
 
 
+def segment_penetration(surface: SineSeries, shift: float, pos: np.ndarray, width: float,
+                        samples: int = 7) -> float:
+    """Deepest vertical penetration of the rigid surface between face nodes [mm].
+
+    Contact is enforced at the nodes only; the face between two nodes is a straight
+    segment. A surface whose curvature radius is not large against the element size can
+    poke through a segment unseen by the nodal penalty, impale the rubber and lock the
+    sliding (the friction then grows linearly with the travel, like a sheared block).
+    This samples ``samples`` interior points of every segment of the periodic face
+    ``pos`` ``(n, 2)`` and returns ``max(z(x + shift) − y, 0)``.
+    """
+    x0, y0 = pos[:, 0], pos[:, 1]
+    x1 = np.append(x0[1:], x0[0] + width)
+    y1 = np.roll(y0, -1)
+    t = np.linspace(0.0, 1.0, samples + 2)[1:-1]
+    xs = x0[:, None] + t * (x1 - x0)[:, None]
+    ys = y0[:, None] + t * (y1 - y0)[:, None]
+    return float(max(np.max(surface.heights(xs + shift) - ys), 0.0))
+
+
 def contact_fraction(x: np.ndarray, gap: np.ndarray, width: float) -> float:
     """Fraction of the projected length in contact, gap interpolated linearly between nodes.
 

@@ -147,9 +147,11 @@ def fem_task(surface: dict, material: dict, velocity: float, mean_pressure: floa
         "wall_time": time.perf_counter() - t0,
         "steps": st.steps, "newton_iterations": st.newton_iterations, "cutbacks": st.cutbacks,
         "max_penetration": st.max_penetration, "steady": int(st.steady),
+        "max_segment_penetration": st.max_segment_penetration,
     }
     ds = _scalars(values, {"model": "fem"})
     ds["max_penetration"].attrs["units"] = "mm"
+    ds["max_segment_penetration"].attrs["units"] = "mm"
     prof = out.pressure_profile
     ds["x_fem"] = ("x_fem", np.asarray(prof.x), {"units": "mm"})
     ds["pressure_profile"] = ("x_fem", np.asarray(prof.pressure), {"units": "MPa"})
