@@ -235,9 +235,11 @@ def _short_wave_share(ds, cfg) -> dict:
 
 
 def _assemble(header: list[str], outdir: Path, report: Path) -> None:
-    """VALIDATION.md = header + every case report present, in a fixed order."""
-    parts = [(outdir / c / "report.md").read_text() for c in EXAMPLES
-             if (outdir / c / "report.md").exists()]
+    """VALIDATION.md = header + every case report (or a line saying it is missing)."""
+    parts = [(outdir / c / "report.md").read_text() if (outdir / c / "report.md").exists()
+             else f"## Case `{c}`: no report at this commit\n\nRun "
+                  f"`python benchmarks/validate.py --only {c}` to produce it.\n"
+             for c in EXAMPLES]
     report.write_text("\n".join(header) + "\n" + "\n".join(parts))
 
 
