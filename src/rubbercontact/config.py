@@ -107,6 +107,8 @@ class FemConfig(_Strict):
     height_ratio: PositiveFloat = Field(0.75, description="cell height / width [-]")
     periods: int = Field(4, ge=1, le=100, description="maximum sliding distance in periods")
     steps_per_period: int | None = Field(None, ge=4, description="time steps per period")
+    contact_points: int = Field(
+        4, ge=1, le=64, description="contact points per face segment (1: node-to-surface)")
 
 
 class LawConfig(_Strict):

@@ -47,15 +47,19 @@ class CellModel:
         Contact penalty ``ε`` [MPa/mm].
     smoothing
         Penalty-kink rounding ``δ`` [mm] (see :func:`~.contact.evaluate_contact`).
+    contact_points
+        Contact points per face segment (1: node-to-surface; see
+        :func:`~.contact.evaluate_contact`).
     """
 
     def __init__(self, cell: PeriodicCell, surface: SineSeries, params: MaterialParameters,
-                 penalty: float, smoothing: float = 0.0) -> None:
+                 penalty: float, smoothing: float = 0.0, contact_points: int = 4) -> None:
         self.cell = cell
         self.surface = surface
         self.params = params
         self.penalty = float(penalty)
         self.smoothing = float(smoothing)
+        self.contact_points = int(contact_points)
         n_dofs = 2 * cell.n_nodes
         dof_map = -np.ones(n_dofs, dtype=np.int64)
         top = np.zeros(cell.n_nodes, bool)
@@ -71,10 +75,13 @@ class CellModel:
         self.bx = dof_map[2 * bottom]
         self.by = dof_map[2 * bottom + 1]
         self.asm = Assembler(cell, dof_map, self.n)
-        rows = np.stack([self.bx, self.bx, self.by, self.by], axis=1)
-        cols = np.stack([self.bx, self.by, self.bx, self.by], axis=1)
-        self._cpos = self.asm.positions(rows.ravel(), cols.ravel()).reshape(-1, 4)
-        self.face_weight = np.full(cell.nx, cell.hx)
+        # segment k joins face nodes k and k+1 (periodic); they share a bottom-row
+        # element, so all 4x4 blocks are in the element pattern
+        seg = np.stack([self.bx, self.by, np.roll(self.bx, -1), np.roll(self.by, -1)], axis=1)
+        rows = np.broadcast_to(seg[:, :, None], seg.shape + (4,))
+        cols = np.broadcast_to(seg[:, None, :], seg.shape + (4,))
+        self._cpos = self.asm.positions(rows.ravel(), cols.ravel())
+        self.segment_length = np.full(cell.nx, cell.hx)
         self.X_face = cell.X[bottom]
 
     def new_state(self) -> ViscousState:
@@ -96,8 +103,9 @@ class CellModel:
         with np.errstate(invalid="ignore", divide="ignore"):
             out = self.asm.element_output(self.params, u_full, state, dt, tangent)
         r = self.asm.vector(out.fe)
-        cs = evaluate_contact(self.surface, shift, self.face_positions(u_full),
-                              self.face_weight, self.penalty, self.smoothing)
+        cs = evaluate_contact(self.surface, shift, self.face_positions(u_full), self.cell.width,
+                              self.segment_length, self.penalty, self.contact_points,
+                              self.smoothing)
         # Residual = ∂Π/∂u: the contact force acts ON the rubber, so subtract it.
         r[self.bx] -= cs.force[:, 0]   # face DOFs are distinct unknowns
         r[self.by] -= cs.force[:, 1]
@@ -107,8 +115,8 @@ class CellModel:
         K = None
         if tangent:
             data = self.asm.matrix_data(out.ke)
-            k = cs.stiffness.reshape(-1, 4)
-            data[self._cpos.ravel()] += k.ravel()  # distinct positions
+            # a node belongs to two segments: accumulate repeated positions
+            data += np.bincount(self._cpos, weights=cs.stiffness.ravel(), minlength=data.size)
             K = self.asm.csr(data)
         return r, K, Evaluation(out, cs, u_full)
 

@@ -1,17 +1,21 @@
-"""Frictionless contact of the rubber's face nodes with the analytic rigid surface.
+"""Frictionless contact of the rubber's contact face with the analytic rigid surface.
 
 The rigid surface is the graph ``y = z(x + s)`` of a :class:`SineSeries` shifted by
 the sliding distance ``s`` (the surface moves in −x under the rubber, i.e. the
 rubber slides in +x relative to it). Gap and normal are exact (closest-point
-projection on the analytic curve, no faceting). Node-to-surface penalty with the
-energy ``Π_c = Σ_k ε w_k ⟨−g_k⟩²/2``, ``w_k`` the node's reference tributary length,
-``ε`` [MPa/mm] sized on the algorithmic modulus (see :func:`penalty_parameter`).
+projection on the analytic curve, no faceting). Penalty energy
+``Π_c = ∫ ε ⟨−g⟩²/2 dS`` over the reference face, integrated at points along every
+face segment (the nodes and ``m − 1`` interior points per segment, see
+:func:`evaluate_contact`), ``ε`` [MPa/mm] sized on the algorithmic modulus (see
+:func:`penalty_parameter`).
 
 Derivatives for a point ``p`` with closest point ``c(ξ) = (ξ, z)``, unit tangent
 ``t``, outward normal ``n = (−z', 1)/√(1+z'²)`` and signed curvature
 ``κ = z''/(1+z'²)^{3/2}``: ``∂g/∂p = n`` and ``∂n/∂p = −κ/(1 − gκ) t⊗t``, so the
-nodal force is ``ε w min(g, 0) n`` and its exact tangent
-``ε w [n⊗n − min(g, 0) κ/(1 − gκ) t⊗t]`` on active nodes.
+point force is ``ε w min(g, 0) n`` and its exact tangent
+``ε w [n⊗n − min(g, 0) κ/(1 − gκ) t⊗t]`` on active points; a point
+``p = N_a x_a + N_b x_b`` of a segment passes ``N_i`` of its force to node ``i`` and
+``N_i N_j`` of its tangent to the node pair ``(i, j)``.
 """
 
 from __future__ import annotations
@@ -36,14 +40,18 @@ def penalty_parameter(shear_modulus: float, element_size: float, factor: float =
 
 @dataclass
 class ContactState:
-    """Contact quantities at the face nodes (arrays of length ``n_face``)."""
+    """Contact quantities of a periodic face of ``n`` nodes and ``n`` segments.
 
-    gap: np.ndarray          # signed normal gap where penetrating, vertical gap elsewhere [mm]
-    active: np.ndarray       # bool, g < 0
-    force: np.ndarray        # (n, 2) force of the surface ON the rubber [N/mm]
-    normal: np.ndarray       # (n, 2) surface normal at the closest point
-    xi: np.ndarray           # closest-point abscissa in the moving-surface frame [mm]
-    stiffness: np.ndarray    # (n, 2, 2) ∂(−force)/∂p [N/mm²]
+    Contact is sampled at ``m = points_per_segment`` points per segment (the segment's
+    first node and ``m − 1`` interior points), ordered along the face.
+    """
+
+    gap: np.ndarray          # (n m,) signed normal gap where penetrating, vertical elsewhere [mm]
+    active: np.ndarray       # (n m,) bool, g < 0
+    point_x: np.ndarray      # (n m,) current abscissa of the contact points [mm]
+    sag: np.ndarray          # (n m,) chord sag Δx² |z''| / 8 of the surface over the segment [mm]
+    force: np.ndarray        # (n, 2) nodal force of the surface ON the rubber [N/mm]
+    stiffness: np.ndarray    # (n, 4, 4) per segment ∂(−force)/∂(a_x, a_y, b_x, b_y) [N/mm²]
     energy: float            # penalty energy [N·mm/mm]
 
 
@@ -81,47 +89,26 @@ def closest_point(surface: SineSeries, shift: float, px: np.ndarray, py: np.ndar
     return xi, g, n, t, kappa
 
 
-def evaluate_contact(surface: SineSeries, shift: float, pos: np.ndarray, weight: np.ndarray,
-                     penalty: float, smoothing: float = 0.0) -> ContactState:
-    """Penalty forces and tangent at face nodes of current positions ``pos`` ``(n, 2)`` [mm].
+def _point_penalty(surface: SineSeries, shift: float, px: np.ndarray, py: np.ndarray,
+                   weight: np.ndarray, penalty: float, smoothing: float):
+    """Penalty ``(gap, force, stiffness, energy)`` at free points ``(px, py)``.
 
-    Parameters
-    ----------
-    surface
-        Rigid surface ``z(x)``.
-    shift
-        Sliding distance ``s`` [mm]; the surface under the rubber is ``z(x + s)``.
-    pos
-        Current node positions.
-    weight
-        Reference tributary lengths ``w_k`` [mm].
-    penalty
-        ``ε`` [MPa/mm].
-    smoothing
-        Half-width ``δ`` [mm] of a C¹ rounding of the penalty kink: the normal force per
-        unit length is ``ε φ(−g)`` with ``φ(x) = x`` for ``x ≥ δ``, ``(x + δ)²/(4δ)`` for
-        ``|x| < δ`` and 0 below (0 gives the plain penalty). The contact force is exact
-        for penetrations beyond ``δ``; it only softens the on/off switch that makes Newton
-        cycle on the active set.
+    ``force`` ``(k, 2)`` acts on the rubber, ``stiffness`` ``(k, 2, 2)`` is its negative
+    derivative with respect to the point position (see the module docstring).
     """
-    px, py = pos[:, 0], pos[:, 1]
-    n_face = px.size
-    gap = py - surface.heights(px + shift)  # vertical gap: > 0 means the node is above the graph
-    normal = np.tile([0.0, 1.0], (n_face, 1))
-    xi = px.copy()
-    force = np.zeros((n_face, 2))
-    stiff = np.zeros((n_face, 2, 2))
+    k = px.size
+    gap = py - surface.heights(px + shift)  # vertical gap: > 0 means above the graph
+    force = np.zeros((k, 2))
+    stiff = np.zeros((k, 2, 2))
     d = float(smoothing)
-    # normal gap >= vertical gap · cos θ >= vertical gap / sqrt(1 + max z'²): only nodes
+    # normal gap >= vertical gap · cos θ >= vertical gap / sqrt(1 + max z'²): only points
     # below that bound can carry force
     slope_max = float(np.sum(surface.wavenumbers * surface.amplitudes))
     cand = np.flatnonzero(gap < d * np.sqrt(1.0 + slope_max**2))
     energy = 0.0
     if cand.size:
-        xi_c, g_c, n_c, t_c, k_c = closest_point(surface, shift, px[cand], py[cand])
+        _, g_c, n_c, t_c, k_c = closest_point(surface, shift, px[cand], py[cand])
         gap[cand] = g_c
-        normal[cand] = n_c
-        xi[cand] = xi_c
         x = -g_c
         if d > 0:
             phi = np.where(x >= d, x, np.where(x > -d, (x + d) ** 2 / (4 * d), 0.0))
@@ -139,8 +126,71 @@ def evaluate_contact(surface: SineSeries, shift: float, pos: np.ndarray, weight:
             dphi[:, None, None] * n_c[:, :, None] * n_c[:, None, :]
             + curv[:, None, None] * t_c[:, :, None] * t_c[:, None, :])
         energy = float(np.sum(ew * ephi))
-    return ContactState(gap=gap, active=gap < 0.0, force=force, normal=normal, xi=xi,
-                        stiffness=stiff, energy=energy)
+    return gap, force, stiff, energy
+
+
+def evaluate_contact(surface: SineSeries, shift: float, pos: np.ndarray, width: float,
+                     segment_length: np.ndarray, penalty: float, points_per_segment: int = 4,
+                     smoothing: float = 0.0) -> ContactState:
+    """Penalty forces and tangent of the periodic rubber face ``pos`` ``(n, 2)`` [mm].
+
+    The face is the closed polyline of its nodes (segment ``k`` joins node ``k`` to node
+    ``k + 1``, the last one to node 0 shifted by ``width``). The penalty energy
+    ``∫ ε ⟨−g⟩²/2 dS`` over the reference face is integrated with the composite
+    trapezoidal rule on ``m = points_per_segment`` sub-intervals per segment: the points
+    are the segment's first node and ``m − 1`` interior points, each carrying
+    ``1/m`` of the reference length. ``m = 1`` is plain node-to-surface contact, which
+    lets an asperity sharper than the element pass between two nodes unseen and impale
+    the face (see :func:`segment_penetration`); interior points push such a segment
+    out, their forces shared by the two end nodes with the linear shape functions.
+
+    Parameters
+    ----------
+    surface
+        Rigid surface ``z(x)``.
+    shift
+        Sliding distance ``s`` [mm]; the surface under the rubber is ``z(x + s)``.
+    pos
+        Current face node positions, in order along the face.
+    width
+        Period of the face ``L0`` [mm].
+    segment_length
+        Reference length of each segment ``(n,)`` [mm].
+    penalty
+        ``ε`` [MPa/mm].
+    points_per_segment
+        ``m`` >= 1.
+    smoothing
+        Half-width ``δ`` [mm] of a C¹ rounding of the penalty kink: the normal force per
+        unit length is ``ε φ(−g)`` with ``φ(x) = x`` for ``x ≥ δ``, ``(x + δ)²/(4δ)`` for
+        ``|x| < δ`` and 0 below (0 gives the plain penalty). The contact force is exact
+        for penetrations beyond ``δ``; it only softens the on/off switch that makes Newton
+        cycle on the active set.
+    """
+    m = int(points_per_segment)
+    n = pos.shape[0]
+    xa, ya = pos[:, 0], pos[:, 1]
+    xb = np.append(xa[1:], xa[0] + width)
+    yb = np.roll(ya, -1)
+    t = np.arange(m) / m
+    px = (xa[:, None] + t * (xb - xa)[:, None]).ravel()
+    py = (ya[:, None] + t * (yb - ya)[:, None]).ravel()
+    seg = np.asarray(segment_length, dtype=float)
+    w = np.tile(seg[:, None] / m, (1, m))
+    # the node's own point stands for half of each adjacent sub-interval
+    w[:, 0] = 0.5 * (seg + np.roll(seg, 1)) / m
+    gap, f, k, energy = _point_penalty(surface, shift, px, py, w.ravel(), penalty, smoothing)
+    # A straight segment on a curved surface is off it by up to its chord sag (nodes or
+    # interior points lift off by that much, whichever side is convex); smaller gaps
+    # are below the resolution of the face and count as contact (see contact_fraction).
+    sag = (np.repeat(xb - xa, m) ** 2 * np.abs(surface.curvatures(px + shift)) / 8.0)
+    shape = np.column_stack([1.0 - t, t])                        # (m, 2): N_a, N_b
+    f = f.reshape(n, m, 2)
+    force = np.einsum("qi,kqa->kia", shape, f)                   # (n, 2 ends, 2)
+    nodal = force[:, 0] + np.roll(force[:, 1], 1, axis=0)
+    stiff = np.einsum("qi,qj,kqab->kiajb", shape, shape, k.reshape(n, m, 2, 2))
+    return ContactState(gap=gap, active=gap < 0.0, point_x=px, sag=sag, force=nodal,
+                        stiffness=stiff.reshape(n, 4, 4), energy=energy)
 
 
 def segment_penetration(surface: SineSeries, shift: float, pos: np.ndarray, width: float,

@@ -238,7 +238,7 @@ def sliding_test(surface: SineSeries, material: GeneralizedMaxwell, mean_pressur
                  press_steps: int = 4, bulk_modulus: float | None = None,
                  penalty_factor: float = 100.0, grading: float = 1.0, newton_tol: float = 1e-6,
                  max_newton: int = 25, max_cutbacks: int = 6, newton_max_step: float = 0.2,
-                 slow_branch_start: bool = True,
+                 slow_branch_start: bool = True, contact_points: int = 4,
                  progress=None
                  ) -> SlidingTestResult:
     """Press a periodic rubber cell onto ``surface`` and slide it at constant speed.
@@ -288,6 +288,12 @@ def sliding_test(surface: SineSeries, material: GeneralizedMaxwell, mean_pressur
     slow_branch_start
         Start branches with ``τ > 0.1 L0/v`` from the row-averaged state (removes the
         slowly decaying imprint of the static indentation; see the code comment).
+    contact_points
+        Contact points per face segment, the node included (see
+        :func:`~.contact.evaluate_contact`). 1 is node-to-surface contact, which an
+        asperity whose tip radius is not large against the element width passes
+        through between two nodes (measured on the section 3 surface at 32 × 24 and
+        64 × 48); the default 4 keeps such a tip within ``(h/4)²/(8R)`` of the face.
     progress
         Optional callable ``progress(phase, step, time, friction)``.
 
@@ -307,6 +313,9 @@ def sliding_test(surface: SineSeries, material: GeneralizedMaxwell, mean_pressur
     p, v, nx, ny, hr, spp = _check_inputs(surface, material, mean_pressure, velocity, mesh,
                                           height_ratio, periods, min_periods, steps_per_period)
     steady_tol = positive_scalar("steady_tol", steady_tol)
+    if isinstance(contact_points, bool) or int(contact_points) != contact_points \
+            or contact_points < 1:
+        raise InputError(f"contact_points: must be an integer >= 1, got {contact_points!r}")
     params = MaterialParameters.from_material(material, bulk_modulus)
     if p > material.equilibrium_modulus:
         warnings.warn(f"mean_pressure {p} MPa exceeds the relaxed modulus E∞ = "
@@ -333,7 +342,7 @@ def sliding_test(surface: SineSeries, material: GeneralizedMaxwell, mean_pressur
     mu_alg = params.algorithmic_shear_modulus(dt_press) if v > 0 else params.mu
     h_min = min(hx, float(np.diff(cell.y_nodes).min()))
     penalty = penalty_parameter(mu_alg, h_min, penalty_factor)
-    model = CellModel(cell, surface, params, penalty)
+    model = CellModel(cell, surface, params, penalty, contact_points=int(contact_points))
     counters = SolverCounters()
     atol = newton_tol * p * L0
     load_full = p * L0
@@ -387,7 +396,7 @@ def sliding_test(surface: SineSeries, material: GeneralizedMaxwell, mean_pressur
         hist["phase"].append(phase)
         hist["friction"].append(-fx / load_full)
         hist["friction_top"].append(rx_top / load_full)
-        hist["contact_fraction"].append(contact_fraction(pos[:, 0], cs.gap, L0))
+        hist["contact_fraction"].append(contact_fraction(cs.point_x, cs.gap - cs.sag, L0))
         hist["mean_separation"].append(mean_separation(pos[:, 0], pos[:, 1], L0))
         hist["plate_displacement"].append(float(st.U[model.plate]))
         hist["load"].append(st.load / L0)

@@ -189,7 +189,8 @@ def run(config: RunConfig | dict | str | Path, *, runner: Runner | None = None,
             t0 = time.perf_counter()
             law = effective_law(hs0, material, law_p, velocities, mesh=cfg.fem.mesh,
                                 height_ratio=cfg.fem.height_ratio, periods=cfg.fem.periods,
-                                steps_per_period=cfg.fem.steps_per_period, runner=runner)
+                                steps_per_period=cfg.fem.steps_per_period,
+                                contact_points=cfg.fem.contact_points, runner=runner)
             timings["law"] = time.perf_counter() - t0
         law = screen_monotone(law)
         for v in velocities:
@@ -215,7 +216,8 @@ def run(config: RunConfig | dict | str | Path, *, runner: Runner | None = None,
                               "mesh": list(cfg.fem.full_mesh or cfg.fem.mesh),
                               "height_ratio": cfg.fem.height_ratio,
                               "periods": cfg.fem.periods,
-                              "steps_per_period": cfg.fem.steps_per_period}
+                              "steps_per_period": cfg.fem.steps_per_period,
+                              "contact_points": cfg.fem.contact_points}
                         fn = "rubbercontact.hybrid.tasks:fem_task"
                     else:
                         surf = real if (m == "vhs" or not _hs.size) else ls
