@@ -39,6 +39,10 @@ def test_default_config_is_valid():
     (_with(surface={"wavelengths": [0.1, 0.2], "amplitudes": [0.01]}), r"differ in length"),
     (_with(models=["vhs", "bem"]), r"models.1"),
     (_with(execution={"scheduler": "http://x"}), r"execution.scheduler"),
+    (_with(loads={"pressures": [1.0], "sweep_points": 4}), r"'sweep_points' applies to"),
+    (_with(loads={"contact_areas": [0.1], "sweep_points": 1}), r"loads.sweep_points"),
+    (_with(fem={"contact_points": 0}), r"fem.contact_points"),
+    (_with(fem={"full_grading": -2.0}), r"fem.full_grading"),
 ])
 def test_config_errors_name_the_key(data, expected):
     with pytest.raises(InputError, match=expected):

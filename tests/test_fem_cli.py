@@ -13,11 +13,11 @@ def test_fem_cli_json_and_plot(tmp_path, capsys):
     cfg = tmp_path / "t.toml"
     cfg.write_text('surface = {wavelengths = [0.0625], amplitudes = [0.004]}\n'
                    'material = "sbr"\nmean_pressure = 0.5\nvelocity = 10.0\n'
-                   'mesh = [16, 12]\nperiods = 2\n')
+                   'mesh = [16, 12]\nperiods = 2\ncontact_points = 2\n')
     png = tmp_path / "f.png"
     nc = tmp_path / "r.nc"
     code = main(["fem", "--config", str(cfg), "--json", "--plot", str(png),
-                 "--netcdf", str(nc)])
+                 "--netcdf", str(nc), "--grading", "2"])
     assert code == 0
     out = json.loads(capsys.readouterr().out)
     assert out["mesh"] == [16, 12]
@@ -35,4 +35,6 @@ def test_fem_cli_bad_input_exit_code(capsys):
     assert main(["fem", "--pressure", "-1", "--mesh", "16x12", "--quiet"]) == 2
     assert "mean_pressure" in capsys.readouterr().err
     assert main(["fem", "--mesh", "abc"]) == 2
+    assert main(["fem", "--mesh", "16x12", "--contact-points", "0", "--quiet"]) == 2
+    assert "contact_points" in capsys.readouterr().err
     assert main(["fem", "--wavelength", "0.0625", "--mesh", "16x12"]) == 2

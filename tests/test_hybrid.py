@@ -139,3 +139,26 @@ def test_small_slope_hybrid_agrees_with_vhs(tmp_path):
     np.testing.assert_allclose(hyb["contact_fraction"], vhs["contact_fraction"], rtol=0.05)
     # The law carries a real share of the friction: mu_hs is a sizeable part of mu.
     assert np.all(hyb["friction_hs"].values > 0.2 * hyb["friction"].values)
+
+
+def test_full_fem_options_reach_the_fem_task(tmp_path):
+    # The full-surface FEM gets its own mesh, grading and time step; the contact sampling
+    # is shared with the law. A recording runner stops the run at the first sweep.
+    class Stop(Exception):
+        pass
+
+    seen = []
+
+    def runner(tasks, description="sweep"):
+        seen.extend(tasks)
+        raise Stop
+
+    cfg = _config(tmp_path, models=["fem"], surface={"preset": "section3"},
+                  fem={"mesh": [40, 30], "full_mesh": [96, 40], "full_grading": 4.0,
+                       "full_steps_per_period": 48, "contact_points": 3})
+    with pytest.raises(Stop):
+        rc.hybrid.run(cfg, runner=runner, progress=False)
+    kw = seen[0].kwargs
+    assert seen[0].function.endswith(":fem_task")
+    assert (kw["mesh"], kw["grading"], kw["steps_per_period"], kw["contact_points"]) == (
+        [96, 40], 4.0, 48, 3)

@@ -81,11 +81,16 @@ class LoadConfig(_Strict):
     pressures: list[PositiveFloat] | None = Field(None, description="mean pressures σ0 [MPa]")
     contact_areas: list[Annotated[float, Field(gt=0, le=1)]] | None = Field(
         None, description="target normalized contact areas A_c/A_0 in (0, 1]")
+    sweep_points: int | None = Field(
+        None, ge=2, le=200, description="pressures of the sweep that brackets the target "
+                                        "areas (default: max(6, areas + 2))")
 
     @model_validator(mode="after")
     def _one_kind(self) -> LoadConfig:
         if (self.pressures is None) == (self.contact_areas is None):
             raise ValueError("give exactly one of 'pressures' and 'contact_areas'")
+        if self.sweep_points is not None and self.contact_areas is None:
+            raise ValueError("'sweep_points' applies to 'contact_areas' only")
         return self
 
 
@@ -109,6 +114,12 @@ class FemConfig(_Strict):
     steps_per_period: int | None = Field(None, ge=4, description="time steps per period")
     contact_points: int = Field(
         4, ge=1, le=64, description="contact points per face segment (1: node-to-surface)")
+    full_grading: PositiveFloat = Field(
+        1.0, le=100, description="top/bottom element height ratio of the full-surface FEM mesh "
+                                 "(> 1 refines toward the contact face)")
+    full_steps_per_period: int | None = Field(
+        None, ge=4, description="time steps per period of the full-surface FEM "
+                                "(default: steps_per_period)")
 
 
 class LawConfig(_Strict):

@@ -4,7 +4,8 @@ Options or a TOML file (``--config``) with the keys ``surface`` (a preset name
 ``"high_slope_wave"`` or a table ``{wavelengths, amplitudes, phases}``), ``material``
 (``"sbr"``, a Prony file path, or a table ``{equilibrium_modulus, moduli,
 relaxation_times}``), ``mean_pressure``, ``velocity``, ``mesh = [nx, ny]``,
-``height_ratio``, ``periods``, ``steps_per_period``. Command-line options override
+``height_ratio``, ``periods``, ``steps_per_period``, ``grading``, ``contact_points``.
+Command-line options override
 the file.
 """
 
@@ -20,7 +21,7 @@ import typer
 from ..errors import InputError
 
 _KEYS = {"surface", "material", "mean_pressure", "velocity", "mesh", "height_ratio",
-         "periods", "steps_per_period"}
+         "periods", "steps_per_period", "grading", "contact_points"}
 
 
 def _surface(spec):
@@ -92,6 +93,10 @@ def command(
     periods: int | None = typer.Option(None, "--periods", help="Maximum sliding periods [6]."),
     steps_per_period: int | None = typer.Option(None, "--steps-per-period",
                                                 help="Steps per period [NX]."),
+    grading: float | None = typer.Option(None, "--grading", help="Top/bottom element height "
+                                         "ratio (> 1 refines toward the contact face) [1]."),
+    contact_points: int | None = typer.Option(None, "--contact-points", help="Contact points "
+                                              "per face segment (1: node-to-surface) [4]."),
     plot: Path | None = typer.Option(None, "--plot", help="Write a figure (PNG/PDF/SVG): "
                                      "deformed mesh, contact pressure, time histories."),
     netcdf: Path | None = typer.Option(None, "--netcdf", help="Write the result dataset."),
@@ -123,7 +128,8 @@ def command(
     mat = _material(material if material is not None else cfg.get("material"))
     kw = {"mesh": _mesh(mesh if mesh is not None else cfg.get("mesh", "120x90"))}
     for name, val in (("height_ratio", height_ratio), ("periods", periods),
-                      ("steps_per_period", steps_per_period)):
+                      ("steps_per_period", steps_per_period), ("grading", grading),
+                      ("contact_points", contact_points)):
         val = val if val is not None else cfg.get(name)
         if val is not None:
             kw[name] = val
@@ -155,7 +161,8 @@ def command(
                    f"({s.newton_iterations / max(s.steps, 1):.1f}/step), factorizations "
                    f"{s.factorizations}, cut-backs {s.cutbacks}, periods {s.periods}"
                    f"{'' if s.steady else ' (NOT steady)'}")
-        typer.echo(f"  max penetration {s.max_penetration:.3g} mm, wall time "
+        typer.echo(f"  max penetration {s.max_penetration:.3g} mm (between nodes "
+                   f"{s.max_segment_penetration:.3g} mm), wall time "
                    f"{s.wall_time:.1f} s (assembly {s.assembly_time:.1f} s, "
                    f"solve {s.solve_time:.1f} s)")
     if netcdf is not None:

@@ -134,7 +134,7 @@ def _pressure_grid_for_areas(cfg: RunConfig, surfaces: list[SineSeries],
     bounds = []
     for a in (targets.min(), targets.max()):
         bounds.append(brentq(lambda lp, a=a: area(lp) - a, lo, hi, xtol=1e-3))
-    n_p = max(6, targets.size + 2)
+    n_p = cfg.loads.sweep_points or max(6, targets.size + 2)
     return np.geomspace(np.exp(bounds[0]) / 2, np.exp(bounds[1]) * 2, n_p)
 
 
@@ -216,8 +216,11 @@ def run(config: RunConfig | dict | str | Path, *, runner: Runner | None = None,
                               "mesh": list(cfg.fem.full_mesh or cfg.fem.mesh),
                               "height_ratio": cfg.fem.height_ratio,
                               "periods": cfg.fem.periods,
-                              "steps_per_period": cfg.fem.steps_per_period,
+                              "steps_per_period": (cfg.fem.full_steps_per_period
+                                                   or cfg.fem.steps_per_period),
                               "contact_points": cfg.fem.contact_points}
+                        if cfg.fem.full_grading != 1.0:   # else the law's cache key
+                            kw["grading"] = cfg.fem.full_grading
                         fn = "rubbercontact.hybrid.tasks:fem_task"
                     else:
                         surf = real if (m == "vhs" or not _hs.size) else ls
