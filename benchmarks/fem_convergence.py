@@ -84,6 +84,8 @@ def report(rows: list[dict]) -> str:
              "| p̄ [MPa] | mesh | grading | steps/period | dt [s] | points/segment | μ | "
              "A | ū [mm] | period means of μ | max surface through face [el] | Newton | "
              "wall [s] |", "|---|---|---|---|---|---|---|---|---|---|---|---|---|"]
+    rows = sorted(rows, key=lambda r: (r["pressure"], r["contact_points"], r["mesh"][0],
+                                       r["grading"], r["steps_per_period"]))
     for r in rows:
         if "failed" in r:
             lines.append(f"| {r['pressure']:g} | {r['mesh'][0]}x{r['mesh'][1]} | "
@@ -98,6 +100,29 @@ def report(rows: list[dict]) -> str:
             f"{' / '.join(f'{m:.3f}' for m in r['period_means'])} | "
             f"{r['segment_penetration_el']:.2f} | {r['newton_iterations']} | "
             f"{r['wall_s']:.0f} |")
+    lines += ["", "First-order extrapolation to dt -> 0 from the two smallest time steps of each "
+              "(load, mesh): μ0 = μ(dt2) + (μ(dt2) − μ(dt1)) dt2/(dt1 − dt2).", "",
+              "| p̄ [MPa] | mesh | dt1, dt2 [s] | μ(dt1), μ(dt2) | μ0 | VHS |",
+              "|---|---|---|---|---|---|"]
+    groups: dict = {}
+    for r in rows:
+        if "failed" not in r and r["contact_points"] == 4:
+            key = (r["pressure"], tuple(r["mesh"]), r["grading"])
+            groups.setdefault(key, []).append(r)
+    for (p, mesh, g), rs in sorted(groups.items()):
+        rs = sorted(rs, key=lambda r: -r["dt_s"])
+        if len(rs) < 2:
+            continue
+        a, b = rs[-2], rs[-1]
+        mu0 = b["friction"] + (b["friction"] - a["friction"]) * b["dt_s"] / (a["dt_s"] - b["dt_s"])
+        vhs = rc.halfspace.solve_sliding(surf, surf.period, rc.materials.sbr(), 10.0, p,
+                                         n=4096).friction
+        lines.append(f"| {p:g} | {mesh[0]}x{mesh[1]}{'' if g == 1 else f' g{g:g}'} | "
+                     f"{a['dt_s']:.2e}, {b['dt_s']:.2e} | {a['friction']:.3f}, "
+                     f"{b['friction']:.3f} | {mu0:.3f} | {vhs:.3f} |")
+    notes = [f"- `{r['case']}`: {r['note']}" for r in rows if r.get("note")]
+    if notes:
+        lines += ["", "Notes:", "", *notes]
     return "\n".join(lines) + "\n"
 
 

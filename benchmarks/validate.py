@@ -51,10 +51,13 @@ QUICK = {
                  "fem": {"mesh": [60, 45], "steps_per_period": 120, "full_mesh": [120, 90],
                          "full_steps_per_period": 480, "periods": 3},
                  "law": {"pressures": [0.05, 0.1, 0.2, 0.5, 1.0, 2.0, 4.0, 8.0]}},
+    # law FEM with dt = 5.2e-5 s at 10 mm/s (two steps per element of travel), as section 3
     "asphalt": {"realizations": 3, "halfspace": {"n": 8192},
-                "fem": {"mesh": [60, 45], "periods": 3},
+                "fem": {"mesh": [60, 45], "steps_per_period": 120, "periods": 3},
                 "law": {"pressures": [0.1, 0.2, 0.5, 1.0, 2.0, 4.0, 8.0]}},
-    "captif": {"realizations": 2, "halfspace": {"n": 8192}},
+    # the CAPTIF law cell is 0.5 mm wide: 240 steps per period give dt = 2.1e-4 s at 10 mm/s
+    "captif": {"realizations": 2, "halfspace": {"n": 8192},
+               "fem": {"steps_per_period": 240}},
 }
 EXAMPLES = {"section3": "section3.toml", "asphalt": "asphalt.toml", "captif": "captif_road.toml"}
 
