@@ -109,18 +109,23 @@ def test_result_dataset_has_units(small_slope):
     assert float(ds["shear_stress"]) == pytest.approx(out.friction * out.mean_pressure)
 
 
-def test_small_slope_partial_contact_agrees_with_halfspace_solver():
-    # Peer check in partial contact (m2 = 0.1, p̄ = 0.4 p_full, v = 1 mm/s): FEM and the
-    # viscoelastic half-space BEM must agree in the small-slope limit. Measured: μ 3 %,
-    # α 2.6 %, ū 1.8 % at 32 x 24 (1.4 %, 2.5 %, 1.6 % at 64 x 48); 5 % allows for the
-    # mesh, the finite slope (O(m2²)), K = 2 GPa vs ν = 1/2 and the cell height.
+def _partial_contact_case():
+    """m2 = 0.1 sine at p̄ = 0.4 p_full, v = 1 mm/s, and its half-space (BEM) solution."""
     mat = rc.materials.sbr()
     q = 2 * np.pi / LAM
     amp = 0.1 * np.sqrt(2) / q
     v = 1.0
     p = 0.4 * np.pi * abs(mat.reduced_modulus(q * v)) * amp / LAM
     surf = rc.roughness.SineSeries([LAM], [amp])
-    bem = rc.halfspace.solve_sliding(surf, None, mat, v, p, n=2048)
+    return surf, mat, p, v, rc.halfspace.solve_sliding(surf, None, mat, v, p, n=2048)
+
+
+def test_small_slope_partial_contact_agrees_with_halfspace_solver():
+    # Peer check in partial contact (m2 = 0.1, p̄ = 0.4 p_full, v = 1 mm/s): FEM and the
+    # viscoelastic half-space BEM must agree in the small-slope limit. Measured: μ 3 %,
+    # α 2.6 %, ū 1.8 % at 32 x 24 (1.4 %, 2.5 %, 1.6 % at 64 x 48); 5 % allows for the
+    # mesh, the finite slope (O(m2²)), K = 2 GPa vs ν = 1/2 and the cell height.
+    surf, mat, p, v, bem = _partial_contact_case()
     fem = rc.fem.sliding_test(surf, mat, p, v, mesh=(32, 24), periods=4)
     assert fem.friction == pytest.approx(bem.friction, rel=0.05)
     assert fem.contact_fraction == pytest.approx(bem.contact_fraction, rel=0.05)
@@ -161,13 +166,7 @@ def test_several_steps_per_element_predict_from_one_column_back():
     # interpolation of the contact face). Same physics as the BEM peer check above, and
     # the halved step keeps the iterations per step about the same as whole-column steps
     # (measured at 120 x 90 on the section 3 cell: 8.6/step with interpolation, ~3 now).
-    mat = rc.materials.sbr()
-    q = 2 * np.pi / LAM
-    amp = 0.1 * np.sqrt(2) / q
-    v = 1.0
-    p = 0.4 * np.pi * abs(mat.reduced_modulus(q * v)) * amp / LAM
-    surf = rc.roughness.SineSeries([LAM], [amp])
-    bem = rc.halfspace.solve_sliding(surf, None, mat, v, p, n=2048)
+    surf, mat, p, v, bem = _partial_contact_case()
     one = rc.fem.sliding_test(surf, mat, p, v, mesh=(32, 24), periods=4)
     two = rc.fem.sliding_test(surf, mat, p, v, mesh=(32, 24), periods=4, steps_per_period=64)
     assert two.friction == pytest.approx(bem.friction, rel=0.05)
