@@ -127,8 +127,14 @@ def _friction_at_common_areas(ds, points: int = 4) -> dict:
                    for m in models}
         else:
             s = ds.sel(velocity=v)
-            curves = {m: (s["contact_fraction_mean"].sel(model=m).values,
-                          s["friction_mean"].sel(model=m).values) for m in models}
+            curves = {}
+            for m in models:   # failed loads (NaN) are left out of that model's sweep
+                a = s["contact_fraction_mean"].sel(model=m).values
+                mu = s["friction_mean"].sel(model=m).values
+                ok = np.isfinite(a) & np.isfinite(mu)
+                curves[m] = (a[ok], mu[ok])
+            if any(a.size < 2 for a, _ in curves.values()):
+                continue
             lo = max(np.nanmin(a) for a, _ in curves.values())
             hi = min(np.nanmax(a) for a, _ in curves.values())
             if not hi > lo:
