@@ -162,3 +162,24 @@ def test_full_fem_options_reach_the_fem_task(tmp_path):
     assert seen[0].function.endswith(":fem_task")
     assert (kw["mesh"], kw["grading"], kw["steps_per_period"], kw["contact_points"]) == (
         [96, 40], 4.0, 48, 3)
+
+
+def test_target_areas_are_bracketed_at_every_speed(tmp_path):
+    # The pressure sweep behind target areas is shared by all speeds; at 1 mm/s the
+    # rubber is ~4x softer than at 1000 mm/s, so a grid sized at one speed misses the
+    # targets at the other. Every target must be reached (no NaN) at both speeds, and
+    # the interpolated VHS area there equals the target (log-linear interpolation
+    # along a sweep of 8 points: within 15 %).
+    cfg = _config(tmp_path, velocities=[1.0, 1000.0], realizations=1, models=["vhs"],
+                  loads={"contact_areas": [0.05, 0.2], "sweep_points": 8})
+    ds = rc.hybrid.run(cfg, progress=False)
+    mu = ds["friction_at_area"].sel(model="vhs").values
+    assert np.all(np.isfinite(mu)), mu
+    from rubbercontact.hybrid.metrics import interpolate_at_areas
+
+    for iv in range(2):
+        a = ds["contact_fraction"].sel(model="vhs").isel(velocity=iv, realization=0).values
+        p = ds["pressure"].values
+        p_at = np.exp(np.interp(np.log([0.05, 0.2]), np.log(a), np.log(p)))
+        assert np.all((p_at > p.min()) & (p_at < p.max()))
+        assert interpolate_at_areas(a, a, [0.05, 0.2]) == pytest.approx([0.05, 0.2], rel=0.15)

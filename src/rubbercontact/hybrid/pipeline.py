@@ -110,32 +110,40 @@ def make_runner(cfg: RunConfig, progress: bool | str = "auto",
 
 def _pressure_grid_for_areas(cfg: RunConfig, surfaces: list[SineSeries],
                              material: GeneralizedMaxwell) -> np.ndarray:
-    """Pressures spanning the target contact areas, estimated with the VHS model.
+    """Pressures spanning the target contact areas at every speed, estimated with the VHS.
 
-    The hybrid and FEM contact areas differ from the VHS ones, so the grid extends a
-    factor 2 beyond the VHS estimate on either side and is interpolated afterwards.
+    The area at a given load depends on the speed (the rubber stiffens with frequency),
+    so the bounds are taken over all velocities: the smallest pressure reaching the
+    smallest target and the largest reaching the largest one. The hybrid and FEM
+    contact areas differ from the VHS ones, so the grid extends a factor 2 beyond on
+    either side and is interpolated afterwards.
     """
     from scipy.optimize import brentq
 
     from .. import halfspace
 
     targets = np.asarray(cfg.loads.contact_areas)
-    v = max(cfg.velocities)
     s0 = surfaces[0]
     n = min(cfg.halfspace.n, 2048)
 
-    def area(logp: float) -> float:
+    def area(logp: float, v: float) -> float:
         res = halfspace.solve_sliding(s0, s0.period, material, v, float(np.exp(logp)), n=n,
                                       nu=cfg.material.nu)
         return res.contact_fraction
 
-    e_scale = float(abs(material.reduced_modulus(0.0, cfg.material.nu))) * s0.rms_slope
-    lo, hi = np.log(1e-6 * e_scale), np.log(2.0 * e_scale)
-    bounds = []
-    for a in (targets.min(), targets.max()):
-        bounds.append(brentq(lambda lp, a=a: area(lp) - a, lo, hi, xtol=1e-3))
+    # full contact needs about E_r m2: bracket with the relaxed modulus below and the
+    # modulus at the highest excitation frequency above
+    slope = s0.rms_slope
+    e_lo = float(abs(material.reduced_modulus(0.0, cfg.material.nu))) * slope
+    w_max = float(np.max(s0.wavenumbers)) * max(cfg.velocities)
+    e_hi = float(abs(material.reduced_modulus(w_max, cfg.material.nu))) * slope
+    lo, hi = np.log(1e-6 * e_lo), np.log(2.0 * max(e_lo, e_hi))
+    p_lo, p_hi = np.inf, -np.inf
+    for v in sorted(set(cfg.velocities)):
+        p_lo = min(p_lo, brentq(lambda lp, v=v: area(lp, v) - targets.min(), lo, hi, xtol=1e-3))
+        p_hi = max(p_hi, brentq(lambda lp, v=v: area(lp, v) - targets.max(), lo, hi, xtol=1e-3))
     n_p = cfg.loads.sweep_points or max(6, targets.size + 2)
-    return np.geomspace(np.exp(bounds[0]) / 2, np.exp(bounds[1]) * 2, n_p)
+    return np.geomspace(np.exp(p_lo) / 2, np.exp(p_hi) * 2, n_p)
 
 
 def run(config: RunConfig | dict | str | Path, *, runner: Runner | None = None,
