@@ -49,7 +49,7 @@ class ContactState:
     gap: np.ndarray          # (n m,) signed normal gap where penetrating, vertical elsewhere [mm]
     active: np.ndarray       # (n m,) bool, g < 0
     point_x: np.ndarray      # (n m,) current abscissa of the contact points [mm]
-    sag: np.ndarray          # (n m,) chord sag Δx² |z''| / 8 of the surface over the segment [mm]
+    points_per_segment: int  # m
     force: np.ndarray        # (n, 2) nodal force of the surface ON the rubber [N/mm]
     stiffness: np.ndarray    # (n, 4, 4) per segment ∂(−force)/∂(a_x, a_y, b_x, b_y) [N/mm²]
     energy: float            # penalty energy [N·mm/mm]
@@ -180,16 +180,13 @@ def evaluate_contact(surface: SineSeries, shift: float, pos: np.ndarray, width: 
     # the node's own point stands for half of each adjacent sub-interval
     w[:, 0] = 0.5 * (seg + np.roll(seg, 1)) / m
     gap, f, k, energy = _point_penalty(surface, shift, px, py, w.ravel(), penalty, smoothing)
-    # A straight segment on a curved surface is off it by up to its chord sag (nodes or
-    # interior points lift off by that much, whichever side is convex); smaller gaps
-    # are below the resolution of the face and count as contact (see contact_fraction).
-    sag = (np.repeat(xb - xa, m) ** 2 * np.abs(surface.curvatures(px + shift)) / 8.0)
     shape = np.column_stack([1.0 - t, t])                        # (m, 2): N_a, N_b
     f = f.reshape(n, m, 2)
     force = np.einsum("qi,kqa->kia", shape, f)                   # (n, 2 ends, 2)
     nodal = force[:, 0] + np.roll(force[:, 1], 1, axis=0)
     stiff = np.einsum("qi,qj,kqab->kiajb", shape, shape, k.reshape(n, m, 2, 2))
-    return ContactState(gap=gap, active=gap < 0.0, point_x=px, sag=sag, force=nodal,
+    return ContactState(gap=gap, active=gap < 0.0, point_x=px, points_per_segment=m,
+                        force=nodal,
                         stiffness=stiff.reshape(n, 4, 4), energy=energy)
 
 
@@ -211,6 +208,22 @@ def segment_penetration(surface: SineSeries, shift: float, pos: np.ndarray, widt
     xs = x0[:, None] + t * (x1 - x0)[:, None]
     ys = y0[:, None] + t * (y1 - y0)[:, None]
     return float(max(np.max(surface.heights(xs + shift) - ys), 0.0))
+
+
+def face_contact_fraction(surface: SineSeries, shift: float, cs: ContactState,
+                          width: float) -> float:
+    """Contact fraction of the face from its contact points (see :func:`contact_fraction`).
+
+    A straight segment on a curved surface is off it by up to its chord sag
+    ``Δx² |z''| / 8`` (nodes or interior points lift off by that much, whichever side
+    is convex); smaller gaps are below the resolution of the face and count as contact.
+    Evaluated once per converged step, not in the Newton iterations.
+    """
+    m = cs.points_per_segment
+    x = cs.point_x
+    dx = np.diff(np.append(x[::m], x[0] + width))            # segment projections
+    sag = np.repeat(dx, m) ** 2 * np.abs(surface.curvatures(x + shift)) / 8.0
+    return contact_fraction(x, cs.gap - sag, width)
 
 
 def contact_fraction(x: np.ndarray, gap: np.ndarray, width: float) -> float:

@@ -39,7 +39,12 @@ from ..materials.maxwell import GeneralizedMaxwell
 from ..roughness.sines import SineSeries
 from .cell import CellModel, Evaluation
 from .constitutive import MaterialParameters, ViscousState, cauchy_from_pk2
-from .contact import contact_fraction, mean_separation, penalty_parameter, segment_penetration
+from .contact import (
+    face_contact_fraction,
+    mean_separation,
+    penalty_parameter,
+    segment_penetration,
+)
 from .mesh import periodic_cell
 from .solver import NewtonFailure, SolverCounters, newton
 
@@ -418,7 +423,7 @@ def sliding_test(surface: SineSeries, material: GeneralizedMaxwell, mean_pressur
         hist["phase"].append(phase)
         hist["friction"].append(-fx / load_full)
         hist["friction_top"].append(rx_top / load_full)
-        hist["contact_fraction"].append(contact_fraction(cs.point_x, cs.gap - cs.sag, L0))
+        hist["contact_fraction"].append(face_contact_fraction(surface, st.s, cs, L0))
         hist["mean_separation"].append(mean_separation(pos[:, 0], pos[:, 1], L0))
         hist["plate_displacement"].append(float(st.U[model.plate]))
         hist["load"].append(st.load / L0)
