@@ -37,9 +37,10 @@ def parse_case(text: str) -> dict:
     parts = text.split(":")
     nx, ny = (int(v) for v in parts[1].lower().split("x"))
     case = {"case": text, "pressure": float(parts[0]), "mesh": (nx, ny), "grading": 1.0,
-            "steps_per_period": nx, "contact_points": 4}
+            "steps_per_period": nx, "contact_points": 4, "history_order": 1}
     for p in parts[2:]:
-        key = {"g": "grading", "s": "steps_per_period", "m": "contact_points"}[p[0]]
+        key = {"g": "grading", "s": "steps_per_period", "m": "contact_points",
+               "o": "history_order"}[p[0]]
         case[key] = float(p[1:]) if key == "grading" else int(p[1:])
     return case
 
@@ -55,7 +56,8 @@ def run_case(case: dict, velocity: float, periods: int) -> dict:
                                       mesh=case["mesh"], periods=periods,
                                       grading=case["grading"],
                                       steps_per_period=case["steps_per_period"],
-                                      contact_points=case["contact_points"])
+                                      contact_points=case["contact_points"],
+                                      history_order=case.get("history_order", 1))
         except rc.errors.ConvergenceError as err:
             return {**case, "failed": str(err), "wall_s": time.perf_counter() - t0}
     h = out.history

@@ -114,6 +114,9 @@ class FemConfig(_Strict):
     steps_per_period: int | None = Field(None, ge=4, description="time steps per period")
     contact_points: int = Field(
         4, ge=1, le=64, description="contact points per face segment (1: node-to-surface)")
+    history_order: Literal[1, 2] = Field(
+        2, description="time interpolation of the viscous history: 2 quadratic (second "
+                       "order in dt), 1 piecewise linear (first order for fast branches)")
     full_grading: PositiveFloat = Field(
         1.0, le=100, description="top/bottom element height ratio of the full-surface FEM mesh "
                                  "(> 1 refines toward the contact face)")

@@ -4,7 +4,8 @@ Options or a TOML file (``--config``) with the keys ``surface`` (a preset name
 ``"high_slope_wave"`` or a table ``{wavelengths, amplitudes, phases}``), ``material``
 (``"sbr"``, a Prony file path, or a table ``{equilibrium_modulus, moduli,
 relaxation_times}``), ``mean_pressure``, ``velocity``, ``mesh = [nx, ny]``,
-``height_ratio``, ``periods``, ``steps_per_period``, ``grading``, ``contact_points``.
+``height_ratio``, ``periods``, ``steps_per_period``, ``grading``, ``contact_points``,
+``history_order``.
 Command-line options override
 the file.
 """
@@ -21,7 +22,7 @@ import typer
 from ..errors import InputError
 
 _KEYS = {"surface", "material", "mean_pressure", "velocity", "mesh", "height_ratio",
-         "periods", "steps_per_period", "grading", "contact_points"}
+         "periods", "steps_per_period", "grading", "contact_points", "history_order"}
 
 
 def _surface(spec):
@@ -97,6 +98,9 @@ def command(
                                          "ratio (> 1 refines toward the contact face) [1]."),
     contact_points: int | None = typer.Option(None, "--contact-points", help="Contact points "
                                               "per face segment (1: node-to-surface) [4]."),
+    history_order: int | None = typer.Option(None, "--history-order", help="Time "
+                                             "interpolation of the viscous history: 2 "
+                                             "quadratic, 1 linear [2]."),
     plot: Path | None = typer.Option(None, "--plot", help="Write a figure (PNG/PDF/SVG): "
                                      "deformed mesh, contact pressure, time histories."),
     netcdf: Path | None = typer.Option(None, "--netcdf", help="Write the result dataset."),
@@ -129,7 +133,7 @@ def command(
     kw = {"mesh": _mesh(mesh if mesh is not None else cfg.get("mesh", "120x90"))}
     for name, val in (("height_ratio", height_ratio), ("periods", periods),
                       ("steps_per_period", steps_per_period), ("grading", grading),
-                      ("contact_points", contact_points)):
+                      ("contact_points", contact_points), ("history_order", history_order)):
         val = val if val is not None else cfg.get(name)
         if val is not None:
             kw[name] = val

@@ -198,7 +198,8 @@ def run(config: RunConfig | dict | str | Path, *, runner: Runner | None = None,
             law = effective_law(hs0, material, law_p, velocities, mesh=cfg.fem.mesh,
                                 height_ratio=cfg.fem.height_ratio, periods=cfg.fem.periods,
                                 steps_per_period=cfg.fem.steps_per_period,
-                                contact_points=cfg.fem.contact_points, runner=runner)
+                                contact_points=cfg.fem.contact_points,
+                                history_order=cfg.fem.history_order, runner=runner)
             timings["law"] = time.perf_counter() - t0
         law = screen_monotone(law)
         for v in velocities:
@@ -226,7 +227,8 @@ def run(config: RunConfig | dict | str | Path, *, runner: Runner | None = None,
                               "periods": cfg.fem.periods,
                               "steps_per_period": (cfg.fem.full_steps_per_period
                                                    or cfg.fem.steps_per_period),
-                              "contact_points": cfg.fem.contact_points}
+                              "contact_points": cfg.fem.contact_points,
+                              "history_order": cfg.fem.history_order}
                         if cfg.fem.full_grading != 1.0:   # else the law's cache key
                             kw["grading"] = cfg.fem.full_grading
                         fn = "rubbercontact.hybrid.tasks:fem_task"

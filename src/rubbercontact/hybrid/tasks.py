@@ -16,7 +16,7 @@ from ..materials import GeneralizedMaxwell
 from ..roughness import SineSeries
 
 #: Bump when a change in these task functions changes their answers (read by the sweep cache key).
-CACHE_VERSION = 2   # 2: FEM contact at points along the face segments
+CACHE_VERSION = 3   # 2: FEM contact at points along the face segments; 3: quadratic history
 
 _UNITS = {
     "friction": "1", "friction_ls": "1", "friction_hs": "1", "contact_fraction": "1",
@@ -130,13 +130,15 @@ def _flat_interface_solve(interface_law: dict, mean_pressure: float, velocity: f
 def fem_task(surface: dict, material: dict, velocity: float, mean_pressure: float,
              mesh: list[int] | tuple[int, int] = (120, 90), height_ratio: float = 0.75,
              periods: int = 4, steps_per_period: int | None = None,
-             contact_points: int = 4, grading: float = 1.0) -> xr.Dataset:
+             contact_points: int = 4, grading: float = 1.0,
+             history_order: int = 2) -> xr.Dataset:
     """One FEM micromechanical sliding test (paper §2.4), reduced to its time averages."""
     from .. import fem
 
     t0 = time.perf_counter()
     kwargs = {"mesh": tuple(mesh), "height_ratio": height_ratio, "periods": int(periods),
-              "contact_points": int(contact_points), "grading": float(grading)}
+              "contact_points": int(contact_points), "grading": float(grading),
+              "history_order": int(history_order)}
     if steps_per_period is not None:
         kwargs["steps_per_period"] = steps_per_period
     out = fem.sliding_test(_surface(surface), _material(material), mean_pressure, velocity,
