@@ -2,10 +2,11 @@
 
 Each case is one :func:`rubbercontact.fem.sliding_test` on the first realization of the
 section 3 surface (seed 2021, the validation's), SBR, 10 mm/s, 3 sliding periods. A
-case is ``P:NXxNY[:gG][:sS][:mM]`` (pressure [MPa], mesh, grading, steps per period,
-contact points per segment). Results go one JSON line per case to ``--out``; finished
-cases are skipped on a rerun (each line is appended whole after its run), so the study
-resumes after a kill. ``--report`` writes the markdown table.
+case is ``P:NXxNY[:gG][:sS][:mM][:oO]`` (pressure [MPa], mesh, grading, steps per
+period, contact points per segment, history order: 1 linear, 2 quadratic = default).
+Results go one JSON line per case to ``--out``; finished cases are skipped on a rerun
+(each line is appended whole after its run), so the study resumes after a kill.
+``--report`` writes the markdown table.
 
 Run single-threaded, e.g. (about 1 h on one core for the default set)::
 
@@ -25,11 +26,16 @@ import numpy as np
 
 import rubbercontact as rc
 
-DEFAULT_CASES = [
+_LINEAR = [  # history_order = 1 (piecewise-linear history), the default before 36fc3b9
     "0.35:32x24:m1", "0.35:32x24",
-    "0.25:64x48", "0.35:64x48", "0.25:120x90", "0.35:120x90", "1.0:120x90",
+    "0.25:64x48", "0.35:64x48", "0.25:120x90", "0.35:120x90", "1:120x90",
     "0.25:240x90:g4", "0.35:240x90:g4", "0.25:240x90:g4:s120",
     "0.25:120x90:s240", "0.25:120x90:s480",
+    "0.25:64x48:s128", "0.25:64x48:s256", "0.25:64x48:s512",
+]
+DEFAULT_CASES = [c + ":o1" for c in _LINEAR] + [
+    "0.25:64x48", "0.25:64x48:s128", "0.25:64x48:s256", "0.25:64x48:s512",
+    "0.25:120x90", "0.25:120x90:s240", "0.35:120x90",
 ]
 
 
@@ -37,7 +43,7 @@ def parse_case(text: str) -> dict:
     parts = text.split(":")
     nx, ny = (int(v) for v in parts[1].lower().split("x"))
     case = {"case": text, "pressure": float(parts[0]), "mesh": (nx, ny), "grading": 1.0,
-            "steps_per_period": nx, "contact_points": 4, "history_order": 1}
+            "steps_per_period": nx, "contact_points": 4, "history_order": 2}
     for p in parts[2:]:
         key = {"g": "grading", "s": "steps_per_period", "m": "contact_points",
                "o": "history_order"}[p[0]]
@@ -57,7 +63,7 @@ def run_case(case: dict, velocity: float, periods: int) -> dict:
                                       grading=case["grading"],
                                       steps_per_period=case["steps_per_period"],
                                       contact_points=case["contact_points"],
-                                      history_order=case.get("history_order", 1))
+                                      history_order=case["history_order"])
         except rc.errors.ConvergenceError as err:
             return {**case, "failed": str(err), "wall_s": time.perf_counter() - t0}
     h = out.history
@@ -83,43 +89,51 @@ def report(rows: list[dict]) -> str:
              + ", ".join(
                  f"μ = {rc.halfspace.solve_sliding(surf, surf.period, rc.materials.sbr(), 10.0, p, n=4096).friction:.3f}"  # noqa: E501
                  f" at {p:g} MPa" for p in sorted({r["pressure"] for r in rows})) + ".", "",
-             "| p̄ [MPa] | mesh | grading | steps/period | dt [s] | points/segment | μ | "
-             "A | ū [mm] | period means of μ | max surface through face [el] | Newton | "
-             "wall [s] |", "|---|---|---|---|---|---|---|---|---|---|---|---|---|"]
-    rows = sorted(rows, key=lambda r: (r["pressure"], r["contact_points"], r["mesh"][0],
-                                       r["grading"], r["steps_per_period"]))
+             "History: the time interpolation of the viscous history (`history_order`); "
+             "linear is first order in dt for the branches with τ ≪ dt, quadratic (the "
+             "default since 36fc3b9) second order.", "",
+             "| history | p̄ [MPa] | mesh | grading | steps/period | dt [s] | points/segment | "
+             "μ | A | ū [mm] | period means of μ | max surface through face [el] | Newton | "
+             "wall [s] |", "|---|---|---|---|---|---|---|---|---|---|---|---|---|---|"]
+    rows = sorted(rows, key=lambda r: (r["history_order"], r["pressure"], r["contact_points"],
+                                       r["mesh"][0], r["grading"], r["steps_per_period"]))
+    hist_name = {1: "linear", 2: "quadratic"}
     for r in rows:
         if "failed" in r:
-            lines.append(f"| {r['pressure']:g} | {r['mesh'][0]}x{r['mesh'][1]} | "
+            lines.append(f"| {hist_name[r['history_order']]} | {r['pressure']:g} | "
+                         f"{r['mesh'][0]}x{r['mesh'][1]} | "
                          f"{r['grading']:g} | {r['steps_per_period']} | | "
                          f"{r['contact_points']} | failed: {r['failed'][:80]} |||||||")
             continue
         lines.append(
-            f"| {r['pressure']:g} | {r['mesh'][0]}x{r['mesh'][1]} | {r['grading']:g} | "
+            f"| {hist_name[r['history_order']]} | {r['pressure']:g} | "
+            f"{r['mesh'][0]}x{r['mesh'][1]} | {r['grading']:g} | "
             f"{r['steps_per_period']} | {r['dt_s']:.2e} | {r['contact_points']} | "
             f"{r['friction']:.3f} | {r['contact_fraction']:.4f} | "
             f"{r['mean_separation_mm']:.4f} | "
             f"{' / '.join(f'{m:.3f}' for m in r['period_means'])} | "
             f"{r['segment_penetration_el']:.2f} | {r['newton_iterations']} | "
             f"{r['wall_s']:.0f} |")
-    lines += ["", "First-order extrapolation to dt -> 0 from the two smallest time steps of each "
-              "(load, mesh): μ0 = μ(dt2) + (μ(dt2) − μ(dt1)) dt2/(dt1 − dt2).", "",
-              "| p̄ [MPa] | mesh | dt1, dt2 [s] | μ(dt1), μ(dt2) | μ0 | VHS |",
-              "|---|---|---|---|---|---|"]
+    lines += ["", "Richardson extrapolation to dt -> 0 from the two smallest time steps of each "
+              "(history, load, mesh), with the scheme's order q (1 linear, 2 quadratic): "
+              "μ0 = μ(dt2) + (μ(dt2) − μ(dt1))/((dt1/dt2)^q − 1).", "",
+              "| history | p̄ [MPa] | mesh | dt1, dt2 [s] | μ(dt1), μ(dt2) | μ0 | VHS |",
+              "|---|---|---|---|---|---|---|"]
     groups: dict = {}
     for r in rows:
         if "failed" not in r and r["contact_points"] == 4:
-            key = (r["pressure"], tuple(r["mesh"]), r["grading"])
+            key = (r["history_order"], r["pressure"], tuple(r["mesh"]), r["grading"])
             groups.setdefault(key, []).append(r)
-    for (p, mesh, g), rs in sorted(groups.items()):
+    for (q, p, mesh, g), rs in sorted(groups.items()):
         rs = sorted(rs, key=lambda r: -r["dt_s"])
         if len(rs) < 2:
             continue
         a, b = rs[-2], rs[-1]
-        mu0 = b["friction"] + (b["friction"] - a["friction"]) * b["dt_s"] / (a["dt_s"] - b["dt_s"])
+        mu0 = b["friction"] + (b["friction"] - a["friction"]) / ((a["dt_s"] / b["dt_s"]) ** q - 1)
         vhs = rc.halfspace.solve_sliding(surf, surf.period, rc.materials.sbr(), 10.0, p,
                                          n=4096).friction
-        lines.append(f"| {p:g} | {mesh[0]}x{mesh[1]}{'' if g == 1 else f' g{g:g}'} | "
+        lines.append(f"| {hist_name[q]} | {p:g} | {mesh[0]}x{mesh[1]}"
+                     f"{'' if g == 1 else f' g{g:g}'} | "
                      f"{a['dt_s']:.2e}, {b['dt_s']:.2e} | {a['friction']:.3f}, "
                      f"{b['friction']:.3f} | {mu0:.3f} | {vhs:.3f} |")
     notes = [f"- `{r['case']}`: {r['note']}" for r in rows if r.get("note")]

@@ -200,12 +200,12 @@ def section3_report(ds, wall, figs, msgs, level) -> list[str]:
                 "with a 120 x 90 FEM; here one realization at three loads, the full FEM at "
                 "120 x 90 (30 elements per 0.0625 mm wave, rows graded x4 toward the contact "
                 "face) and the law at 60 x 45 (60 per wave), both with the time step "
-                "dt = 5.2e-5 s at 10 mm/s (480 and 120 steps "
-                "per period). The FEM friction carries a first-order time-step error: on this "
-                "cell at 0.25 MPa, 10 mm/s, dt = 2.1e-4/1.04e-4/5.2e-5 s gave 0.581/0.627/"
-                "0.651 (120 x 90), i.e. about -3.5 % at the dt used here against the dt -> 0 "
-                "extrapolation (docs/validation/fem_convergence.md); the law FEM shares that "
-                "dt."]
+                "dt = 1.04e-4 s at 10 mm/s (240 and 60 steps per period, one element of "
+                "travel per step). With the quadratic history update the FEM friction is "
+                "second order in dt: on this cell at 0.25 MPa, 10 mm/s, 120 x 90, dt = "
+                "2.1e-4/1.04e-4 s gave 0.642/0.660, about -1 % at the dt used here against the "
+                "dt -> 0 extrapolation 0.665; the mesh 64 x 48 -> 120 x 90 adds 3 % "
+                "(docs/validation/fem_convergence.md)."]
     at_areas = _friction_at_common_areas(ds)
     out += ["", "Eq. 28 mean relative error against full FEM at equal normal contact area "
             "(the paper's comparison; areas per velocity in the table below):", "",
