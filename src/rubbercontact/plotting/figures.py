@@ -74,7 +74,7 @@ def _friction_panels(ds: xr.Dataset, path: Path, x_of, xlabel: str, xlog: bool) 
         if "error_vs_fem" in ds:
             parts = [f"e({m}) = {100 * float(ds['error_vs_fem'].sel(compared_model=m)[iv]):.1f} %"
                      for m in ds["compared_model"].values]
-            title += "\n" + ", ".join(parts)
+            title += "\n" + ", ".join(parts) + f" (eq. 28 {_error_basis(ds)})"
         ax.set_title(title, fontsize=9)
         ax.grid(alpha=0.3)
         ax.legend(fontsize=8)
@@ -85,6 +85,12 @@ def plot_friction_vs_area(ds: xr.Dataset, path: Path) -> Path:
     """Fig. 5: friction vs normalized contact area, all models, one panel per speed."""
     return _friction_panels(ds, path, lambda sel: sel["contact_fraction_mean"].values,
                             "normalized contact area A_c/A_0 [-]", xlog=False)
+
+
+def _error_basis(ds: xr.Dataset) -> str:
+    """``"at equal σ0"`` or ``"at equal A_c"``: what ``error_vs_fem`` compares over."""
+    over = ds["error_vs_fem"].attrs.get("long_name", "")
+    return "at equal A_c" if over.endswith("contact_area") else "at equal σ0"
 
 
 def plot_friction_vs_pressure(ds: xr.Dataset, path: Path) -> Path:
@@ -185,6 +191,6 @@ def summary_table(ds: xr.Dataset) -> str:
         if "error_vs_fem" in ds:
             for m in ds["compared_model"].values:
                 e = float(ds["error_vs_fem"].sel(compared_model=m, velocity=v))
-                lines.append(f"  eq. 28 error of {m} vs FEM: "
+                lines.append(f"  eq. 28 error of {m} vs FEM {_error_basis(ds)}: "
                              f"{'n/a' if np.isnan(e) else f'{100 * e:.1f} %'}")
     return "\n".join(lines)
