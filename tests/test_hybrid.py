@@ -155,13 +155,34 @@ def test_full_fem_options_reach_the_fem_task(tmp_path):
 
     cfg = _config(tmp_path, models=["fem"], surface={"preset": "section3"},
                   fem={"mesh": [40, 30], "full_mesh": [96, 40], "full_grading": 4.0,
-                       "full_steps_per_period": 48, "contact_points": 3})
+                       "full_steps_per_period": 48, "contact_points": 3, "history_order": 1})
     with pytest.raises(Stop):
         rc.hybrid.run(cfg, runner=runner, progress=False)
     kw = seen[0].kwargs
     assert seen[0].function.endswith(":fem_task")
-    assert (kw["mesh"], kw["grading"], kw["steps_per_period"], kw["contact_points"]) == (
-        [96, 40], 4.0, 48, 3)
+    assert (kw["mesh"], kw["grading"], kw["steps_per_period"], kw["contact_points"],
+            kw["history_order"]) == ([96, 40], 4.0, 48, 3, 1)
+
+
+def test_history_order_reaches_the_law_tasks(tmp_path):
+    class Stop(Exception):
+        pass
+
+    seen = []
+
+    def runner(tasks, description="sweep"):
+        seen.extend(tasks)
+        raise Stop
+
+    for order in (1, 2):
+        seen.clear()
+        cfg = _config(tmp_path, models=["hybrid"], surface={"preset": "section3"},
+                      fem={"mesh": [40, 30], "history_order": order})
+        with pytest.raises(Stop):
+            rc.hybrid.run(cfg, runner=runner, progress=False)
+        assert seen and all(t.kwargs["history_order"] == order for t in seen)
+    with pytest.raises(rc.errors.InputError, match="history_order"):
+        rc.config.parse_config(_config(tmp_path, fem={"history_order": 3}))
 
 
 def test_target_areas_are_bracketed_at_every_speed(tmp_path):
