@@ -56,10 +56,12 @@ QUICK = {
     "asphalt": {"realizations": 3, "halfspace": {"n": 8192},
                 "fem": {"mesh": [60, 45], "steps_per_period": 60, "periods": 3},
                 "law": {"pressures": [0.1, 0.2, 0.5, 1.0, 2.0, 4.0, 6.0]}},
-    # the CAPTIF law cell is 0.5 mm wide: 240 steps per period give dt = 2.1e-4 s at 10 mm/s
+    # the CAPTIF law cell is 0.5 mm wide: 240 steps per period give dt = 2.1e-4 s at 10 mm/s;
+    # at 3 MPa the cell is near its limit (u-bar barely below its 1 MPa value, not steady in
+    # 3 periods), so the quick level stops there and the law is extrapolated beyond (warned)
     "captif": {"realizations": 2, "halfspace": {"n": 8192},
                "fem": {"steps_per_period": 240},
-               "law": {"pressures": [0.1, 0.3, 1.0, 3.0, 6.0]}},
+               "law": {"pressures": [0.1, 0.3, 1.0, 3.0]}},
 }
 EXAMPLES = {"section3": "section3.toml", "asphalt": "asphalt.toml", "captif": "captif_road.toml"}
 
