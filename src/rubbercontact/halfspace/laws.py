@@ -171,13 +171,8 @@ class TabulatedLaw(InteractionLaw):
     * above the last sample when the table never reaches 0: ``log σ`` extended linearly with
       the end slope (exponential decay; constant only if the table ends flat).
 
-    Companion tables use PCHIP in linear space (no overshoot) and are 0 where ``σ = 0``.
-    Above the table they are held at their last value. Below ``u_0`` (pressures beyond the
-    table) ``α`` is held at ``α_0`` and ``Δτ`` follows the pressure at the table's last
-    friction coefficient, ``Δτ = σ(u) Δτ_0/σ_0``: the FEM laws flatten in ``μ_hs`` and
-    ``α_hs`` at high pressure (paper section 3 wave, 10 mm/s, 2/4/6 MPa: μ 0.60/0.68/0.67,
-    α 0.22/0.25/0.23), whereas a held ``Δτ`` would make the local friction fall as
-    ``1/σ``.
+    Companion tables use PCHIP in linear space (no overshoot), are held at their first value
+    below ``u_0`` and at their last value above the table, and are 0 where ``σ = 0``.
     """
 
     separation: np.ndarray
@@ -304,13 +299,7 @@ class TabulatedLaw(InteractionLaw):
         tab = self.contact_fraction_table if name == "alpha" else self.shear_stress_table
         uc = np.clip(u, self.separation[0], self.separation[-1])
         out = interp(uc)
-        below = u < self.separation[0]
-        if name == "tau" and np.any(below) and self.pressure_table[0] > 0:
-            ratio = tab[0] / self.pressure_table[0]
-            out = np.where(below, ratio * self.pressure(np.where(below, u, self.separation[0])),
-                           out)
-        else:
-            out = np.where(below, tab[0], out)
+        out = np.where(u < self.separation[0], tab[0], out)
         out = np.where(u > self.separation[-1], tab[-1], out)
         out = np.where(u >= self._cache["u_zero"], 0.0, out)
         if name == "alpha":

@@ -91,11 +91,6 @@ def halfspace_task(surface: dict, period: float, material: dict, velocity: float
     return ds
 
 
-# Cache version of the half-space solves alone (the FEM tasks keep CACHE_VERSION): 4 since
-# a tabulated law's shear stress beyond the table keeps its last friction coefficient.
-halfspace_task.cache_version = "4"
-
-
 def _flat_interface_solve(interface_law: dict, mean_pressure: float, velocity: float,
                           law: str, t0: float) -> xr.Dataset:
     """Exact half-space solution for a flat low-slope surface (every wave is high-slope).
