@@ -55,6 +55,8 @@ def command(
 
     with warnings.catch_warnings(record=True) as caught:
         warnings.simplefilter("always")
+        # Dask's local cluster leaves sockets to the garbage collector: not the user's concern
+        warnings.simplefilter("ignore", ResourceWarning)
         ds = run(cfg, progress=False if quiet else "auto", retry_failed=retry_failed)
     for w in caught:
         typer.echo(f"warning: {w.message}", err=True)
