@@ -141,9 +141,8 @@ def test_small_slope_hybrid_agrees_with_vhs(tmp_path):
     assert np.all(hyb["friction_hs"].values > 0.2 * hyb["friction"].values)
 
 
-def test_full_fem_options_reach_the_fem_task(tmp_path):
-    # The full-surface FEM gets its own mesh, grading and time step; the contact sampling
-    # is shared with the law. A recording runner stops the run at the first sweep.
+def _first_sweep(cfg) -> list:
+    """The tasks of the run's first sweep (a recording runner stops the run there)."""
     class Stop(Exception):
         pass
 
@@ -153,11 +152,18 @@ def test_full_fem_options_reach_the_fem_task(tmp_path):
         seen.extend(tasks)
         raise Stop
 
-    cfg = _config(tmp_path, models=["fem"], surface={"preset": "section3"},
-                  fem={"mesh": [40, 30], "full_mesh": [96, 40], "full_grading": 4.0,
-                       "full_steps_per_period": 48, "contact_points": 3, "history_order": 1})
     with pytest.raises(Stop):
         rc.hybrid.run(cfg, runner=runner, progress=False)
+    return seen
+
+
+def test_full_fem_options_reach_the_fem_task(tmp_path):
+    # The full-surface FEM gets its own mesh, grading and time step; the contact sampling
+    # and the history order are shared with the law.
+    seen = _first_sweep(_config(
+        tmp_path, models=["fem"], surface={"preset": "section3"},
+        fem={"mesh": [40, 30], "full_mesh": [96, 40], "full_grading": 4.0,
+             "full_steps_per_period": 48, "contact_points": 3, "history_order": 1}))
     kw = seen[0].kwargs
     assert seen[0].function.endswith(":fem_task")
     assert (kw["mesh"], kw["grading"], kw["steps_per_period"], kw["contact_points"],
@@ -165,21 +171,9 @@ def test_full_fem_options_reach_the_fem_task(tmp_path):
 
 
 def test_history_order_reaches_the_law_tasks(tmp_path):
-    class Stop(Exception):
-        pass
-
-    seen = []
-
-    def runner(tasks, description="sweep"):
-        seen.extend(tasks)
-        raise Stop
-
     for order in (1, 2):
-        seen.clear()
-        cfg = _config(tmp_path, models=["hybrid"], surface={"preset": "section3"},
-                      fem={"mesh": [40, 30], "history_order": order})
-        with pytest.raises(Stop):
-            rc.hybrid.run(cfg, runner=runner, progress=False)
+        seen = _first_sweep(_config(tmp_path, models=["hybrid"], surface={"preset": "section3"},
+                                    fem={"mesh": [40, 30], "history_order": order}))
         assert seen and all(t.kwargs["history_order"] == order for t in seen)
     with pytest.raises(rc.errors.InputError, match="history_order"):
         rc.config.parse_config(_config(tmp_path, fem={"history_order": 3}))
