@@ -198,3 +198,43 @@ def test_target_areas_are_bracketed_at_every_speed(tmp_path):
         p_at = np.exp(np.interp(np.log([0.05, 0.2]), np.log(a), np.log(p)))
         assert np.all((p_at > p.min()) & (p_at < p.max()))
         assert interpolate_at_areas(a, a, [0.05, 0.2]) == pytest.approx([0.05, 0.2], rel=0.15)
+
+
+def _vhs_table(hs, mat, v, pressures):
+    rows = sorted((r.mean_separation, p, r.contact_fraction, r.friction * p) for p in pressures
+                  for r in [rc.halfspace.solve_sliding(hs, hs.period, mat, v, p, n=2048)])
+    return {k: [r[i] for r in rows] for i, k in enumerate(
+        ("separation", "pressure", "contact_fraction", "shear_stress"))}
+
+
+def test_continuation_past_the_fem_table_follows_the_linear_law():
+    from rubbercontact.hybrid.law import continue_with_linear_shape, tabulated_law_from_dict
+
+    hs, mat, v = rc.roughness.high_slope_wave(), rc.materials.sbr(), 10.0
+    table = _vhs_table(hs, mat, v, [0.1, 0.5, 1.0, 2.0])
+    # A law equal to the VHS law is continued by the VHS law itself (anchor ratios 1):
+    # the rows must be the VHS solutions at those pressures (same solver, n = 2048).
+    ext = continue_with_linear_shape(table, hs, mat, v)
+    added = len(ext["pressure"]) - len(table["pressure"])
+    assert added >= 3 and ext["pressure"][added] == 2.0 and min(ext["pressure"][:added]) > 2.4
+    direct = _vhs_table(hs, mat, v, ext["pressure"][:added])
+    for k in table:
+        np.testing.assert_allclose(ext[k][:added], direct[k], rtol=1e-9)
+    # A law 20 % below the VHS in shear stress and 10 % in separation keeps those ratios
+    # in the continuation; u stays positive and increasing, alpha <= 1, and the table
+    # builds a valid law (continuous at the anchor by construction).
+    scaled = {**table, "separation": [0.9 * u for u in table["separation"]],
+              "shear_stress": [0.8 * t for t in table["shear_stress"]]}
+    ext2 = continue_with_linear_shape(scaled, hs, mat, v)
+    np.testing.assert_allclose(ext2["shear_stress"][:added], 0.8 * np.array(direct["shear_stress"]),
+                               rtol=1e-9)
+    np.testing.assert_allclose(ext2["separation"][:added], 0.9 * np.array(direct["separation"]),
+                               rtol=1e-9)
+    assert np.all(np.diff(ext2["separation"]) > 0) and ext2["separation"][0] > 0
+    assert max(ext2["contact_fraction"]) <= 1.0
+    law = tabulated_law_from_dict(ext2)
+    assert law.pressure(np.array([ext2["separation"][0]]))[0] == pytest.approx(
+        max(ext2["pressure"]), rel=1e-9)
+    # an elastic rubber has no shear stress to borrow the shape of: table unchanged
+    elastic = rc.materials.GeneralizedMaxwell(4.17, [], [])
+    assert continue_with_linear_shape(table, hs, elastic, v) == table

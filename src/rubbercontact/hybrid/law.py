@@ -238,6 +238,78 @@ def law_at_velocity(law: xr.Dataset, velocity: float) -> dict:
             "contact_fraction": alpha.tolist(), "shear_stress": tau.tolist()}
 
 
+def continue_with_linear_shape(table: dict, hs_surface: SineSeries,
+                               material: GeneralizedMaxwell, velocity: float, *,
+                               n: int = 2048, nu: float = 0.5, factor: float = 1.25,
+                               max_rows: int = 40) -> dict:
+    """Continue a law table past its highest FEM pressure with the shape of the linear law.
+
+    The FEM cell of a steep wave is crushed beyond ~1.5 E∞, while the low-slope solve may
+    load the high-slope scale locally to several times that. Beyond the last FEM point
+    ``(σ₀, ū₀, α₀, Δτ₀)`` the rows follow the viscoelastic half-space (VHS) law of the same
+    wave, anchored multiplicatively at that point::
+
+        ū(σ) = ū₀ ū_V(σ)/ū_V(σ₀),  α(σ) = min(1, α₀ α_V(σ)/α_V(σ₀)),
+        Δτ(σ) = Δτ₀ Δτ_V(σ)/Δτ_V(σ₀),
+
+    at ``σ = σ₀ factor^k`` until the VHS reaches 99 % contact (``max_rows`` at most). The
+    continuation is exact when the FEM law equals the VHS law, keeps ``ū > 0`` and
+    decreasing, and reaches the linear theory's full-contact behaviour (``Δτ`` independent
+    of ``σ``) instead of holding ``Δτ`` or ``Δτ/σ`` at the last FEM value. It is an
+    extrapolation all the same: :func:`check_coverage` still warns when it is used.
+
+    Parameters
+    ----------
+    table
+        Output of :func:`law_at_velocity` (``u`` ascending, highest pressure first).
+    hs_surface, material, velocity
+        The high-slope wave, the rubber and the speed [mm/s] of the table.
+    n, nu
+        Grid points and Poisson ratio of the VHS solves (hard wall).
+    factor
+        Pressure ratio between continuation rows (> 1).
+    max_rows
+        Most rows added.
+
+    Returns
+    -------
+    dict
+        The table with the continuation rows prepended (same keys).
+    """
+    from .. import halfspace
+
+    u = np.asarray(table["separation"], float)
+    sig = np.asarray(table["pressure"], float)
+    alpha = np.asarray(table["contact_fraction"], float)
+    tau = np.asarray(table["shear_stress"], float)
+    if not factor > 1:
+        raise InputError(f"factor: must be > 1, got {factor}")
+
+    def vhs(p):
+        r = halfspace.solve_sliding(hs_surface, hs_surface.period, material, velocity, p,
+                                    law=None, n=n, nu=nu)
+        return r.mean_separation, r.contact_fraction, r.friction * p
+
+    s0 = float(sig[0])
+    ref = vhs(s0)
+    if not (ref[0] > 0 and ref[1] > 0 and ref[2] > 0 and tau[0] > 0):
+        return table        # no shape to borrow (elastic wave or full contact at σ₀)
+    rows = []
+    p = s0
+    for _ in range(int(max_rows)):
+        p *= factor
+        uv, av, tv = vhs(p)
+        if av >= 0.99 or uv <= 0:
+            break
+        rows.append((u[0] * uv / ref[0], p, min(1.0, alpha[0] * av / ref[1]),
+                     tau[0] * tv / ref[2]))
+    rows = [r for r in rows if r[0] < u[0]]
+    keep = [r for k, r in enumerate(rows) if k == 0 or r[0] < rows[k - 1][0]]
+    ext = np.array(keep[::-1]).reshape(-1, 4)   # ascending in u
+    return {"separation": [*ext[:, 0], *u], "pressure": [*ext[:, 1], *sig],
+            "contact_fraction": [*ext[:, 2], *alpha], "shear_stress": [*ext[:, 3], *tau]}
+
+
 def tabulated_law_from_dict(table: dict):
     """Build the half-space solver's tabulated law from :func:`law_at_velocity` output."""
     from ..halfspace import TabulatedLaw
@@ -255,4 +327,5 @@ def check_coverage(law: xr.Dataset, velocity: float, max_local_pressure: float) 
     if max_local_pressure > pmax:
         warnings.warn(f"law at v={velocity} mm/s is extrapolated: local low-slope pressure "
                       f"reaches {max_local_pressure:.3g} MPa, the FEM table ends at {pmax:.3g} "
-                      f"MPa; add higher law pressures", LawWarning, stacklevel=2)
+                      f"MPa (beyond, the law follows the linear law's shape anchored at the "
+                      f"last FEM point); add higher law pressures", LawWarning, stacklevel=2)

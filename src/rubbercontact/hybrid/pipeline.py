@@ -30,7 +30,13 @@ from ..config import RunConfig
 from ..errors import InputError
 from ..materials import GeneralizedMaxwell, sbr
 from ..roughness import SineSeries, presets
-from .law import check_coverage, effective_law, law_at_velocity, screen_monotone
+from .law import (
+    check_coverage,
+    continue_with_linear_shape,
+    effective_law,
+    law_at_velocity,
+    screen_monotone,
+)
 from .metrics import interpolate_at_areas, mean_relative_error
 
 #: Executes a list of sweep tasks; returns per task an ``xr.Dataset`` or a failure record.
@@ -203,7 +209,9 @@ def run(config: RunConfig | dict | str | Path, *, runner: Runner | None = None,
             timings["law"] = time.perf_counter() - t0
         law = screen_monotone(law)
         for v in velocities:
-            law_tables[float(v)] = law_at_velocity(law, float(v))
+            # past the FEM's highest pressure: the linear law's shape, anchored there
+            law_tables[float(v)] = continue_with_linear_shape(
+                law_at_velocity(law, float(v)), hs0, material, float(v), nu=cfg.material.nu)
         law = _law_with_vhs(law, hs0, material, cfg, runner)
 
     # -- one task per (model, velocity, realization, pressure) ------------------------
