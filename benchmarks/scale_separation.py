@@ -24,7 +24,7 @@ from pathlib import Path
 import numpy as np
 
 import rubbercontact as rc
-from rubbercontact.hybrid.law import max_height
+from rubbercontact.hybrid.law import linear_law
 from rubbercontact.hybrid.tasks import halfspace_task
 from rubbercontact.roughness import SineSeries
 
@@ -32,19 +32,6 @@ HS_WAVELENGTH, HS_AMPLITUDE = 0.0625, 0.01867
 CASES = [(0.125, 0.3), (0.125, 0.94), (0.25, 0.3), (0.25, 0.52), (0.25, 0.94),
          (1.0, 0.3), (1.0, 0.94)]
 PRESSURES = (0.15, 0.35)
-
-
-def linear_law(hs: SineSeries, material, velocity: float) -> dict:
-    """The VHS law of the high-slope wave alone, tabulated up to full contact."""
-    rows = []
-    for p in np.geomspace(1e-3, 50.0, 80):
-        r = rc.halfspace.solve_sliding(hs, hs.period, material, velocity, float(p), n=2048)
-        if r.contact_fraction >= 0.999:
-            break
-        rows.append((r.mean_separation, p, r.contact_fraction, r.friction * p))
-    u, sig, alpha, tau = (np.array(c) for c in zip(*sorted(rows), strict=True))
-    return {"separation": [*u, max_height(hs)], "pressure": [*sig, 0.0],
-            "contact_fraction": [*alpha, 0.0], "shear_stress": [*tau, 0.0]}
 
 
 def main(argv=None) -> int:

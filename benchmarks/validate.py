@@ -160,8 +160,7 @@ def _hybrid_with_linear_law(ds, n: int = 4096) -> dict:
     linear law the hybrid would reproduce the VHS if the scales were well separated.
     Returns ``{(v, p): mean μ over realizations}``.
     """
-    from rubbercontact import halfspace
-    from rubbercontact.hybrid.law import max_height
+    from rubbercontact.hybrid.law import linear_law
     from rubbercontact.hybrid.tasks import halfspace_task
     from rubbercontact.roughness import SineSeries
 
@@ -175,15 +174,7 @@ def _hybrid_with_linear_law(ds, n: int = 4096) -> dict:
             ph = ds["phase"].isel(realization=ir).values
             hs = SineSeries(lam[hs_mask], amp[hs_mask], ph[hs_mask])
             ls = SineSeries(lam[~hs_mask], amp[~hs_mask], ph[~hs_mask])
-            rows = []
-            for p in np.geomspace(1e-3, 50.0, 60):
-                r = halfspace.solve_sliding(hs, hs.period, mat, float(v), float(p), n=2048)
-                if r.contact_fraction >= 0.999:   # full contact: u stops changing
-                    break
-                rows.append((r.mean_separation, p, r.contact_fraction, r.friction * p))
-            u, sig, alpha, tau = (np.array(c) for c in zip(*sorted(rows), strict=True))
-            table = {"separation": [*u, max_height(hs)], "pressure": [*sig, 0.0],
-                     "contact_fraction": [*alpha, 0.0], "shear_stress": [*tau, 0.0]}
+            table = linear_law(hs, mat, float(v))
             for p in ds["pressure"].values:
                 res = halfspace_task(ls.as_dict(), float(ds.attrs["period_mm"]), mat.as_dict(),
                                      float(v), float(p), n=n, interface_law=table)

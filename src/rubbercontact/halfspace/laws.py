@@ -174,10 +174,10 @@ class TabulatedLaw(InteractionLaw):
     Companion tables use PCHIP in linear space (no overshoot), are held at their first value
     below ``u_0`` and at their last value above the table, and are 0 where ``σ = 0``. A held
     ``Δτ`` beyond the highest tabulated pressure is the linear theory's full-contact limit
-    (there ``Δτ`` no longer depends on ``σ``) and a lower bound while ``Δτ`` still grows with
-    ``σ``; holding ``Δτ/σ`` instead raised the asphalt hybrid by 12-25 % (local pressures up to
-    3-5 times the FEM table's end), so a table that does not cover the local pressures is
-    warned about, not trusted.
+    (there ``Δτ`` no longer depends on ``σ``) and a lower bound while ``Δτ`` still grows
+    with ``σ``. The hybrid therefore first continues its FEM law to near full contact
+    (:func:`rubbercontact.hybrid.law.continue_with_linear_shape`), so that this hold only
+    applies where it is the right limit.
     """
 
     separation: np.ndarray

@@ -238,6 +238,28 @@ def law_at_velocity(law: xr.Dataset, velocity: float) -> dict:
             "contact_fraction": alpha.tolist(), "shear_stress": tau.tolist()}
 
 
+def linear_law(hs_surface: SineSeries, material: GeneralizedMaxwell, velocity: float, *,
+               n: int = 2048, nu: float = 0.5, points: int = 80) -> dict:
+    """The VHS (linear) law of the high-slope wave alone, as a table like :func:`law_at_velocity`.
+
+    Hard-wall VHS solves at ``points`` pressures from 1e-3 to 50 MPa (geometric), up to
+    full contact, plus the zero-load anchor ``(max z_hs, 0, 0, 0)``. With it in place of
+    the FEM law the hybrid's remaining error is its scale split alone.
+    """
+    from .. import halfspace
+
+    rows = []
+    for p in np.geomspace(1e-3, 50.0, int(points)):
+        r = halfspace.solve_sliding(hs_surface, hs_surface.period, material, velocity,
+                                    float(p), n=n, nu=nu)
+        if r.contact_fraction >= 0.999:   # full contact: u stops changing
+            break
+        rows.append((r.mean_separation, p, r.contact_fraction, r.friction * p))
+    u, sig, alpha, tau = (np.array(c) for c in zip(*sorted(rows), strict=True))
+    return {"separation": [*u, max_height(hs_surface)], "pressure": [*sig, 0.0],
+            "contact_fraction": [*alpha, 0.0], "shear_stress": [*tau, 0.0]}
+
+
 def continue_with_linear_shape(table: dict, hs_surface: SineSeries,
                                material: GeneralizedMaxwell, velocity: float, *,
                                n: int = 2048, nu: float = 0.5, factor: float = 1.25,
@@ -295,17 +317,17 @@ def continue_with_linear_shape(table: dict, hs_surface: SineSeries,
     if not (ref[0] > 0 and ref[1] > 0 and ref[2] > 0 and tau[0] > 0):
         return table        # no shape to borrow (elastic wave or full contact at σ₀)
     rows = []
-    p = s0
+    p, u_last = s0, ref[0]
     for _ in range(int(max_rows)):
         p *= factor
         uv, av, tv = vhs(p)
-        if av >= 0.99 or uv <= 0:
+        # stop at (near) full contact, where the VHS separation stops decreasing
+        if av >= 0.99 or not 0 < uv < u_last:
             break
+        u_last = uv
         rows.append((u[0] * uv / ref[0], p, min(1.0, alpha[0] * av / ref[1]),
                      tau[0] * tv / ref[2]))
-    rows = [r for r in rows if r[0] < u[0]]
-    keep = [r for k, r in enumerate(rows) if k == 0 or r[0] < rows[k - 1][0]]
-    ext = np.array(keep[::-1]).reshape(-1, 4)   # ascending in u
+    ext = np.array(rows[::-1]).reshape(-1, 4)   # ascending in u
     return {"separation": [*ext[:, 0], *u], "pressure": [*ext[:, 1], *sig],
             "contact_fraction": [*ext[:, 2], *alpha], "shear_stress": [*ext[:, 3], *tau]}
 

@@ -436,5 +436,5 @@ def _add_errors(ds: xr.Dataset) -> xr.Dataset:
                 err[i, iv] = mean_relative_error(ref[ok], cand[ok])
     ds["error_vs_fem"] = (("compared_model", "velocity"), err,
                           {"units": "1", "long_name": f"eq. 28 mean relative error vs FEM "
-                                                      f"over {dim}"})
+                                                      f"over {dim}", "compared_over": dim})
     return ds.assign_coords(compared_model=others)

@@ -74,7 +74,7 @@ def _friction_panels(ds: xr.Dataset, path: Path, x_of, xlabel: str, xlog: bool) 
         if "error_vs_fem" in ds:
             parts = [f"e({m}) = {100 * float(ds['error_vs_fem'].sel(compared_model=m)[iv]):.1f} %"
                      for m in ds["compared_model"].values]
-            title += "\n" + ", ".join(parts) + f" (eq. 28 {_error_basis(ds)})"
+            title += "\n" + ", ".join(parts) + _error_basis(ds)
         ax.set_title(title, fontsize=9)
         ax.grid(alpha=0.3)
         ax.legend(fontsize=8)
@@ -88,9 +88,10 @@ def plot_friction_vs_area(ds: xr.Dataset, path: Path) -> Path:
 
 
 def _error_basis(ds: xr.Dataset) -> str:
-    """``"at equal σ0"`` or ``"at equal A_c"``: what ``error_vs_fem`` compares over."""
-    over = ds["error_vs_fem"].attrs.get("long_name", "")
-    return "at equal A_c" if over.endswith("contact_area") else "at equal σ0"
+    """``" at equal σ0"`` / ``" at equal A_c"``: what ``error_vs_fem`` compares over
+    (empty for files written before the attribute existed)."""
+    over = ds["error_vs_fem"].attrs.get("compared_over")
+    return {"pressure": " at equal σ0", "contact_area": " at equal A_c"}.get(over, "")
 
 
 def plot_friction_vs_pressure(ds: xr.Dataset, path: Path) -> Path:
@@ -191,6 +192,6 @@ def summary_table(ds: xr.Dataset) -> str:
         if "error_vs_fem" in ds:
             for m in ds["compared_model"].values:
                 e = float(ds["error_vs_fem"].sel(compared_model=m, velocity=v))
-                lines.append(f"  eq. 28 error of {m} vs FEM {_error_basis(ds)}: "
+                lines.append(f"  eq. 28 error of {m} vs FEM{_error_basis(ds)}: "
                              f"{'n/a' if np.isnan(e) else f'{100 * e:.1f} %'}")
     return "\n".join(lines)
