@@ -5,7 +5,7 @@ Options or a TOML file (``--config``) with the keys ``surface`` (a preset name
 (``"sbr"``, a Prony file path, or a table ``{equilibrium_modulus, moduli,
 relaxation_times}``), ``mean_pressure``, ``velocity``, ``mesh = [nx, ny]``,
 ``height_ratio``, ``periods``, ``steps_per_period``, ``grading``, ``contact_points``,
-``history_order``.
+``history_order``, ``viscous_model``.
 Command-line options override
 the file.
 """
@@ -22,7 +22,8 @@ import typer
 from ..errors import InputError
 
 _KEYS = {"surface", "material", "mean_pressure", "velocity", "mesh", "height_ratio",
-         "periods", "steps_per_period", "grading", "contact_points", "history_order"}
+         "periods", "steps_per_period", "grading", "contact_points", "history_order",
+         "viscous_model"}
 
 
 def _surface(spec):
@@ -101,6 +102,9 @@ def command(
     history_order: int | None = typer.Option(None, "--history-order", help="Time "
                                              "interpolation of the viscous history: 2 "
                                              "quadratic, 1 linear [2]."),
+    viscous_model: str | None = typer.Option(None, "--viscous-model", help="Finite-strain "
+                                             "viscoelasticity: simo or reese-govindjee "
+                                             "[simo]."),
     plot: Path | None = typer.Option(None, "--plot", help="Write a figure (PNG/PDF/SVG): "
                                      "deformed mesh, contact pressure, time histories."),
     netcdf: Path | None = typer.Option(None, "--netcdf", help="Write the result dataset."),
@@ -133,7 +137,8 @@ def command(
     kw = {"mesh": _mesh(mesh if mesh is not None else cfg.get("mesh", "120x90"))}
     for name, val in (("height_ratio", height_ratio), ("periods", periods),
                       ("steps_per_period", steps_per_period), ("grading", grading),
-                      ("contact_points", contact_points), ("history_order", history_order)):
+                      ("contact_points", contact_points), ("history_order", history_order),
+                      ("viscous_model", viscous_model)):
         val = val if val is not None else cfg.get(name)
         if val is not None:
             kw[name] = val

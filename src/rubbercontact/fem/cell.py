@@ -85,7 +85,8 @@ class CellModel:
         self.X_face = cell.X[bottom]
 
     def new_state(self) -> ViscousState:
-        return ViscousState.zeros((self.cell.n_elements, 4), self.params.n_branches)
+        return ViscousState.zeros((self.cell.n_elements, 4), self.params.n_branches,
+                                  self.params.viscous_model)
 
     def face_positions(self, u_full: np.ndarray) -> np.ndarray:
         """Current positions of the contact-face nodes ``(nx, 2)`` [mm]."""
