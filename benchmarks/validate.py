@@ -206,14 +206,24 @@ def section3_report(ds, wall, figs, msgs, level) -> list[str]:
     at_areas = _friction_at_common_areas(ds)
     out += ["", "Eq. 28 mean relative error against full FEM at equal normal contact area "
             "(the paper's comparison; areas per velocity in the table below):", "",
-            "| velocity [mm/s] | hybrid vs FEM | VHS vs FEM | paper (hybrid) |",
-            "|---|---|---|---|"]
+            "| velocity [mm/s] | hybrid vs FEM | windowed hybrid vs FEM | VHS vs FEM "
+            "| paper (hybrid) |", "|---|---|---|---|---|"]
     for v, (areas, mus) in at_areas.items():
         e = {m: mean_relative_error(mus["fem"], mus[m])
-             if m in mus and "fem" in mus and areas.size else np.nan for m in ("hybrid", "vhs")}
+             if m in mus and "fem" in mus and areas.size else np.nan
+             for m in ("hybrid", "hybrid-windowed", "vhs")}
         paper = PAPER_E.get(float(v))
-        out.append(f"| {v:g} | {100 * e['hybrid']:.1f} % | {100 * e['vhs']:.1f} % | "
+        out.append(f"| {v:g} | {100 * e['hybrid']:.1f} % | {100 * e['hybrid-windowed']:.1f} % "
+                   f"| {100 * e['vhs']:.1f} % | "
                    f"{'' if paper is None else f'{100 * paper:.1f} %'} |")
+    e_p = {m: [mean_relative_error(ds["friction_mean"].sel(model="fem", velocity=v).values,
+                                   ds["friction_mean"].sel(model=m, velocity=v).values)
+               for v in ds["velocity"].values]
+           for m in ("hybrid", "hybrid-windowed", "vhs") if m in ds["model"].values}
+    if "pressure" in ds.dims and "fem" in ds["model"].values:
+        out += ["", "The same at equal mean pressure σ0 (all loads): " + "; ".join(
+            f"{m} " + " / ".join(f"{100 * x:.1f} %" for x in vals)
+            for m, vals in e_p.items()) + f" at {ds['velocity'].values.tolist()} mm/s."]
     models = list(ds["model"].values)
     out += ["", "Mean friction at those areas (mean over realizations; interpolated in log "
             "area along each model's load sweep):", "",
@@ -263,18 +273,28 @@ def asphalt_report(ds, wall, figs, msgs, level, short_share) -> list[str]:
     out = ["## Paper §4: AC-8 asphalt (Table 2)", ""]
     out.append(f"Level `{level}`: {ds.sizes['realization']} realizations, wall time "
                f"{wall / 60:.1f} min (cached solves reused).")
-    out += ["", "| v [mm/s] | σ0 [MPa] | VHS μ | hybrid μ (μ_ls + μ_hs) | VHS A | hybrid A |",
-            "|---|---|---|---|---|---|"]
+    win = "hybrid-windowed" in ds["model"].values
+    out += ["", "| v [mm/s] | σ0 [MPa] | VHS μ | hybrid μ (μ_ls + μ_hs) | VHS A | hybrid A |"
+            + (" windowed μ (μ_ls + μ_hs) | windowed A |" if win else ""),
+            "|---|---|---|---|---|---|" + ("---|---|" if win else "")]
     for v in ds["velocity"].values:
         for p in ds["pressure"].values:
             s = ds.sel(velocity=v, pressure=p)
-            out.append(
+            cells = [
                 f"| {v:g} | {p:g} | {float(s['friction_mean'].sel(model='vhs')):.3f} | "
                 f"{float(s['friction_mean'].sel(model='hybrid')):.3f} "
                 f"({float(s['friction_ls'].sel(model='hybrid').mean()):.3f} + "
                 f"{float(s['friction_hs'].sel(model='hybrid').mean()):.3f}) | "
                 f"{float(s['contact_fraction_mean'].sel(model='vhs')):.4f} | "
-                f"{float(s['contact_fraction_mean'].sel(model='hybrid')):.4f} |")
+                f"{float(s['contact_fraction_mean'].sel(model='hybrid')):.4f} |"]
+            if win:
+                w = "hybrid-windowed"
+                cells.append(
+                    f" {float(s['friction_mean'].sel(model=w)):.3f} "
+                    f"({float(s['friction_ls'].sel(model=w).mean()):.3f} + "
+                    f"{float(s['friction_hs'].sel(model=w).mean()):.3f}) | "
+                    f"{float(s['contact_fraction_mean'].sel(model=w)):.4f} |")
+            out.append("".join(cells))
     out += ["", "High-slope wave alone (Fig. 7): FEM vs VHS friction at the law pressures:", "",
             "| v [mm/s] | p̄ [MPa] | FEM μ_hs | VHS μ | FEM α_hs |", "|---|---|---|---|---|"]
     for v in ds["velocity"].values:

@@ -21,7 +21,7 @@ def _with(**changes):
 
 def test_default_config_is_valid():
     cfg = default_config()
-    assert cfg.models == ["vhs", "hybrid", "fem"]
+    assert cfg.models == ["vhs", "hybrid", "hybrid-windowed", "fem"]
     assert cfg.surface.preset == "section3"
 
 

@@ -26,13 +26,16 @@ def _config(tmp_path, **over):
 
 
 def test_empty_high_slope_set_hybrid_equals_vhs(tmp_path):
-    # Both waves have m2 < 1: the hybrid has no law and must reproduce the VHS exactly.
-    ds = rc.hybrid.run(_config(tmp_path), progress=False)
+    # Both waves have m2 < 1: the hybrid has no law and must reproduce the VHS exactly;
+    # so must the windowed hybrid (no law to read).
+    ds = rc.hybrid.run(_config(tmp_path, models=["vhs", "hybrid", "hybrid-windowed"]),
+                       progress=False)
     assert "law_mean_separation" not in ds
-    for k in ("friction", "contact_fraction", "mean_separation"):
-        np.testing.assert_array_equal(ds[k].sel(model="hybrid").values,
-                                      ds[k].sel(model="vhs").values)
-    assert np.all(ds["friction_hs"].sel(model="hybrid") == 0)
+    for m in ("hybrid", "hybrid-windowed"):
+        for k in ("friction", "contact_fraction", "mean_separation"):
+            np.testing.assert_array_equal(ds[k].sel(model=m).values,
+                                          ds[k].sel(model="vhs").values)
+        assert np.all(ds["friction_hs"].sel(model=m) == 0)
     assert np.all(ds["status"].values == "ok")
     # The two realizations carry independent random phases.
     assert not np.allclose(ds["phase"].isel(realization=0), ds["phase"].isel(realization=1))
@@ -108,18 +111,24 @@ def test_elastic_high_slope_law_gives_zero_mu_hs(tmp_path):
     # Elastic rubber: no hysteresis at any scale, so the FEM law carries dtau_hs = 0 (FEM
     # symmetry gives ~1e-13 MPa) and mu_hs = <dtau_hs(u)>/sigma0 must vanish; the elastic
     # half-space gives mu_ls = 0 up to the sampling of the contact edges (~1e-5 at n = 1024).
-    cfg = _config(tmp_path, surface={"preset": "section3"}, models=["hybrid"],
+    cfg = _config(tmp_path, surface={"preset": "section3"},
+                  models=["hybrid", "hybrid-windowed"],
                   material={"preset": None, "equilibrium_modulus": 4.17},
                   realizations=1, fem={"mesh": [16, 12], "periods": 2},
                   law={"pressures": [0.1, 0.3, 1.0]})
     ds = rc.hybrid.run(cfg, progress=False)
     assert np.all(ds["status"].values == "ok")
     assert np.nanmax(np.abs(ds["law_shear_stress"].values)) < 1e-8
-    mu_hs = ds["friction_hs"].sel(model="hybrid").values
-    assert np.all(np.abs(mu_hs) < 1e-8)
-    assert np.all(np.abs(ds["friction"].sel(model="hybrid").values) < 1e-4)
-    a = ds["contact_fraction"].sel(model="hybrid").values
-    assert np.all((a > 0) & (a < 1))
+    for m in ("hybrid", "hybrid-windowed"):
+        mu_hs = ds["friction_hs"].sel(model=m).values
+        assert np.all(np.abs(mu_hs) < 1e-8)
+        assert np.all(np.abs(ds["friction"].sel(model=m).values) < 1e-4)
+        a = ds["contact_fraction"].sel(model=m).values
+        assert np.all((a > 0) & (a < 1))
+    # Same low-slope solve: μ_ls and ū agree exactly; only the law's reading differs.
+    for k in ("friction_ls", "mean_separation", "max_local_pressure"):
+        np.testing.assert_array_equal(ds[k].sel(model="hybrid").values,
+                                      ds[k].sel(model="hybrid-windowed").values)
 
 
 def test_small_slope_hybrid_agrees_with_vhs(tmp_path):
@@ -177,6 +186,20 @@ def test_history_order_reaches_the_law_tasks(tmp_path):
         assert seen and all(t.kwargs["history_order"] == order for t in seen)
     with pytest.raises(rc.errors.InputError, match="history_order"):
         rc.config.parse_config(_config(tmp_path, fem={"history_order": 3}))
+
+
+def test_viscous_model_reaches_the_fem_tasks_and_keeps_simo_cache_keys(tmp_path):
+    for model, models in (("reese-govindjee", ["hybrid"]), ("reese-govindjee", ["fem"]),
+                          ("simo", ["hybrid"]), ("simo", ["fem"])):
+        seen = _first_sweep(_config(tmp_path, models=models, surface={"preset": "section3"},
+                                    fem={"mesh": [40, 30], "viscous_model": model}))
+        assert seen
+        for t in seen:
+            # the default is left out of the task, so results cached before the option
+            # existed stay valid
+            assert t.kwargs.get("viscous_model") == (None if model == "simo" else model)
+    with pytest.raises(rc.errors.InputError, match="viscous_model"):
+        rc.config.parse_config(_config(tmp_path, fem={"viscous_model": "maxwell"}))
 
 
 def test_target_areas_are_bracketed_at_every_speed(tmp_path):

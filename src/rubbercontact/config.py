@@ -117,6 +117,10 @@ class FemConfig(_Strict):
     history_order: Literal[1, 2] = Field(
         2, description="time interpolation of the viscous history: 2 quadratic (second "
                        "order in dt), 1 piecewise linear (first order for fast branches)")
+    viscous_model: Literal["simo", "reese-govindjee"] = Field(
+        "simo", description="finite-strain viscoelasticity: simo (stress-like internal "
+                            "variables) or reese-govindjee (the paper's; multiplicative split, "
+                            "first order in dt, ~5x the cost)")
     full_grading: PositiveFloat = Field(
         1.0, le=100, description="top/bottom element height ratio of the full-surface FEM mesh "
                                  "(> 1 refines toward the contact face)")
@@ -157,7 +161,7 @@ class RunConfig(_Strict):
         min_length=1, description="sliding speeds [mm/s]")
     realizations: int = Field(1, ge=1, le=10_000)
     seed: int = Field(0, ge=0)
-    models: list[Literal["vhs", "hybrid", "fem"]] = Field(
+    models: list[Literal["vhs", "hybrid", "hybrid-windowed", "fem"]] = Field(
         default_factory=lambda: ["vhs", "hybrid", "fem"], min_length=1)
     halfspace: HalfSpaceConfig = HalfSpaceConfig()
     fem: FemConfig = FemConfig()
@@ -284,7 +288,7 @@ DEFAULT_CONFIG: dict = {
     "velocities": [10.0],
     "realizations": 1,
     "seed": 2021,
-    "models": ["vhs", "hybrid", "fem"],
+    "models": ["vhs", "hybrid", "hybrid-windowed", "fem"],
     "halfspace": {"n": 2048},
     # law: 40 elements per 0.0625 mm wavelength; full FEM: 16 per 0.0625 mm wavelength
     "fem": {"mesh": [40, 30], "steps_per_period": 64, "full_mesh": [64, 48],

@@ -34,7 +34,7 @@ def effective_law(hs_surface: SineSeries, material: GeneralizedMaxwell,
                   mesh: tuple[int, int] = (120, 90), height_ratio: float = 0.75,
                   periods: int = 4, steps_per_period: int | None = None,
                   contact_points: int = 4, history_order: int = 2,
-                  runner=None) -> xr.Dataset:
+                  viscous_model: str = "simo", runner=None) -> xr.Dataset:
     """Run the FEM sliding test over ``pressures × velocities`` and tabulate the law.
 
     Parameters
@@ -48,7 +48,7 @@ def effective_law(hs_surface: SineSeries, material: GeneralizedMaxwell,
         low-slope solve (checked later by :func:`check_coverage`).
     velocities
         Sliding speeds ``v`` [mm/s], >= 0.
-    mesh, height_ratio, periods, steps_per_period, contact_points, history_order
+    mesh, height_ratio, periods, steps_per_period, contact_points, history_order, viscous_model
         FEM options (see :func:`rubbercontact.fem.sliding_test`).
     runner
         Callable ``runner(tasks) -> list`` executing :class:`~rubbercontact.sweep.Task`
@@ -75,6 +75,8 @@ def effective_law(hs_surface: SineSeries, material: GeneralizedMaxwell,
     fem_opts = {"mesh": [int(m) for m in mesh], "height_ratio": float(height_ratio),
                 "periods": int(periods), "steps_per_period": steps_per_period,
                 "contact_points": int(contact_points), "history_order": int(history_order)}
+    if viscous_model != "simo":   # only then: the existing cache keys stay valid
+        fem_opts["viscous_model"] = str(viscous_model)
     tasks = [Task(function="rubbercontact.hybrid.tasks:fem_task",
                   kwargs={"surface": hs_surface.as_dict(), "material": material.as_dict(),
                           "velocity": float(vi), "mean_pressure": float(pi), **fem_opts},

@@ -8,6 +8,9 @@ and runs, on the same loads:
 - ``vhs``: the viscoelastic half-space on the whole surface;
 - ``hybrid``: the half-space on ``z_ls`` with the integrated-LJ + ``σ_hs`` law,
   ``μ = μ_ls + μ_hs`` (eqs. 5–7) and ``A_c`` by eq. 8;
+- ``hybrid-windowed``: the same solve, with ``μ_hs`` and ``A_c`` reading the law at the
+  low-slope pressure averaged over one high-slope period (our extension for contact
+  patches narrower than ``λ_hs``; see :mod:`.windowing`);
 - ``fem``: the FEM sliding test on the whole surface (cell width = longest wavelength).
 
 The result is one ``xarray.Dataset`` with dims ``model, velocity, realization,
@@ -41,6 +44,9 @@ from .metrics import interpolate_at_areas, mean_relative_error
 
 #: Executes a list of sweep tasks; returns per task an ``xr.Dataset`` or a failure record.
 Runner = Callable[[list], list]
+
+#: Models that run the low-slope solve with the high-slope law.
+HYBRID_MODELS = {"hybrid", "hybrid-windowed"}
 
 
 def failure_message(res) -> str | None:
@@ -194,7 +200,7 @@ def run(config: RunConfig | dict | str | Path, *, runner: Runner | None = None,
 
     # -- effective law of the high-slope scale ---------------------------------------
     law_tables: dict[float, dict | None] = {float(v): None for v in velocities}
-    if "hybrid" in models and hs0.size:
+    if HYBRID_MODELS & set(models) and hs0.size:
         if law is None and cfg.law.file is not None:
             law = xr.load_dataset(cfg.law.file)
         if law is None:
@@ -205,7 +211,8 @@ def run(config: RunConfig | dict | str | Path, *, runner: Runner | None = None,
                                 height_ratio=cfg.fem.height_ratio, periods=cfg.fem.periods,
                                 steps_per_period=cfg.fem.steps_per_period,
                                 contact_points=cfg.fem.contact_points,
-                                history_order=cfg.fem.history_order, runner=runner)
+                                history_order=cfg.fem.history_order,
+                                viscous_model=cfg.fem.viscous_model, runner=runner)
             timings["law"] = time.perf_counter() - t0
         law = screen_monotone(law)
         for v in velocities:
@@ -239,13 +246,18 @@ def run(config: RunConfig | dict | str | Path, *, runner: Runner | None = None,
                               "history_order": cfg.fem.history_order}
                         if cfg.fem.full_grading != 1.0:   # else the law's cache key
                             kw["grading"] = cfg.fem.full_grading
+                        if cfg.fem.viscous_model != "simo":  # keeps existing cache keys
+                            kw["viscous_model"] = cfg.fem.viscous_model
                         fn = "rubbercontact.hybrid.tasks:fem_task"
                     else:
                         surf = real if (m == "vhs" or not _hs.size) else ls
                         kw = {"surface": surf.as_dict(), "period": period, **common,
                               "n": hsc.n, "nu": cfg.material.nu, "law": hsc.law,
-                              "interface_law": law_tables[float(v)] if m == "hybrid" else None,
+                              "interface_law": (law_tables[float(v)] if m in HYBRID_MODELS
+                                                else None),
                               "keep_profile": keep}
+                        if m == "hybrid-windowed" and _hs.size:
+                            kw["hs_window"] = float(hs0.period)
                         fn = "rubbercontact.hybrid.tasks:halfspace_task"
                     tasks.append(Task(function=fn, kwargs=kw,
                                       label=f"{m} v={v:g} r={ir} p={p:.4g}"))
@@ -266,10 +278,11 @@ def run(config: RunConfig | dict | str | Path, *, runner: Runner | None = None,
         ds = ds.assign_coords(law_pressure=("law_pressure", law["pressure"].values,
                                             {"units": "MPa"}))
         per_model_time["law (FEM, counted once)"] = float(np.nansum(law["wall_time"].values))
-        if "hybrid" in models:
+        hybrid = [m for m in models if m in HYBRID_MODELS]
+        if hybrid:   # the same low-slope solve for both variants: check once
             for v in velocities:
                 check_coverage(law, float(v), float(ds["max_local_pressure"].sel(
-                    model="hybrid", velocity=v).max()))
+                    model=hybrid[0], velocity=v).max()))
     if cfg.loads.contact_areas is not None:
         ds = _at_areas(ds, np.asarray(cfg.loads.contact_areas, float))
     ds = _add_errors(ds)
@@ -354,7 +367,7 @@ def _assemble(models, velocities, realizations, pressures, index, results) -> xr
         for k in names:
             if k in res:
                 data[k][im, iv, ir, ip] = float(res[k])
-        if m != "hybrid":
+        if m not in HYBRID_MODELS:
             data["friction_ls"][im, iv, ir, ip] = float(res["friction"])
             data["friction_hs"][im, iv, ir, ip] = 0.0
     dims = ("model", "velocity", "realization", "pressure")

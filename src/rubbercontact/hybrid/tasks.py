@@ -61,8 +61,12 @@ def halfspace_law(kind: str, interface_law: dict | None = None, velocity: float 
 def halfspace_task(surface: dict, period: float, material: dict, velocity: float,
                    mean_pressure: float, n: int = 4096, nu: float = 0.5,
                    law: str = "lennard-jones", interface_law: dict | None = None,
-                   keep_profile: bool = False) -> xr.Dataset:
-    """One steady-sliding half-space solve (VHS model, or the low-slope part of the hybrid)."""
+                   keep_profile: bool = False, hs_window: float | None = None) -> xr.Dataset:
+    """One steady-sliding half-space solve (VHS model, or the low-slope part of the hybrid).
+
+    With ``hs_window`` (the high-slope period [mm]) the hybrid's ``μ_hs`` and ``A_c`` read
+    the law at the pressure averaged over that window (see :mod:`.windowing`).
+    """
     from .. import halfspace
 
     t0 = time.perf_counter()
@@ -81,8 +85,16 @@ def halfspace_task(surface: dict, period: float, material: dict, velocity: float
         "velocity": velocity, "max_local_pressure": float(np.max(res.pressure)),
         "iterations": res.iterations, "wall_time": time.perf_counter() - t0,
     }
+    if hs_window is not None and interface_law is not None:
+        from .windowing import windowed_hs_terms
+
+        mu_hs, area = windowed_hs_terms(res.pressure, period, float(hs_window), interface_law,
+                                        mean_pressure)
+        values.update(friction=res.friction_ls + mu_hs, friction_hs=mu_hs,
+                      contact_fraction=area)
     ds = _scalars(values, {"model": "halfspace", "law": law,
-                           "hybrid": int(interface_law is not None)})
+                           "hybrid": int(interface_law is not None),
+                           "hs_window_mm": float(hs_window or 0.0)})
     if keep_profile:
         ds["x"] = ("x", np.asarray(res.x), {"units": "mm"})
         ds["pressure_profile"] = ("x", np.asarray(res.pressure), {"units": "MPa"})
@@ -131,14 +143,14 @@ def fem_task(surface: dict, material: dict, velocity: float, mean_pressure: floa
              mesh: list[int] | tuple[int, int] = (120, 90), height_ratio: float = 0.75,
              periods: int = 4, steps_per_period: int | None = None,
              contact_points: int = 4, grading: float = 1.0,
-             history_order: int = 2) -> xr.Dataset:
+             history_order: int = 2, viscous_model: str = "simo") -> xr.Dataset:
     """One FEM micromechanical sliding test (paper §2.4), reduced to its time averages."""
     from .. import fem
 
     t0 = time.perf_counter()
     kwargs = {"mesh": tuple(mesh), "height_ratio": height_ratio, "periods": int(periods),
               "contact_points": int(contact_points), "grading": float(grading),
-              "history_order": int(history_order)}
+              "history_order": int(history_order), "viscous_model": str(viscous_model)}
     if steps_per_period is not None:
         kwargs["steps_per_period"] = steps_per_period
     out = fem.sliding_test(_surface(surface), _material(material), mean_pressure, velocity,

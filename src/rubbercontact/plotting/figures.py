@@ -7,8 +7,10 @@ from pathlib import Path
 import numpy as np
 import xarray as xr
 
-_COLORS = {"vhs": "tab:red", "hybrid": "tab:blue", "fem": "black"}
-_LABELS = {"vhs": "VHS (half-space only)", "hybrid": "hybrid multiscale", "fem": "FEM (full)"}
+_COLORS = {"vhs": "tab:red", "hybrid": "tab:blue", "hybrid-windowed": "tab:green",
+           "fem": "black"}
+_LABELS = {"vhs": "VHS (half-space only)", "hybrid": "hybrid multiscale",
+           "hybrid-windowed": "hybrid, law at λ_hs-averaged pressure", "fem": "FEM (full)"}
 
 
 def _plt():
@@ -172,23 +174,24 @@ def summary_table(ds: xr.Dataset) -> str:
     has_area = "friction_at_area_mean" in ds
     for v in ds["velocity"].values:
         lines.append(f"v = {v:g} mm/s")
+        wid = {m: max(10, len(m) + 3) for m in ds["model"].values}
         lines.append(f"  {'sigma0 [MPa]':>12} " + " ".join(
-            f"{m + ' mu':>10} {m + ' A':>9}" for m in ds["model"].values))
+            f"{m + ' mu':>{wid[m]}} {m + ' A':>{wid[m] - 1}}" for m in ds["model"].values))
         for p in ds["pressure"].values:
             row = [f"  {p:12.4g}"]
             for m in ds["model"].values:
                 sel = ds.sel(model=m, velocity=v, pressure=p)
-                row.append(f"{float(sel['friction_mean']):10.4f} "
-                           f"{float(sel['contact_fraction_mean']):9.4f}")
+                row.append(f"{float(sel['friction_mean']):{wid[m]}.4f} "
+                           f"{float(sel['contact_fraction_mean']):{wid[m] - 1}.4f}")
             lines.append(" ".join(row))
         if has_area:
-            lines.append(f"  {'A_c/A_0':>12} " + " ".join(f"{m + ' mu':>10}"
+            lines.append(f"  {'A_c/A_0':>12} " + " ".join(f"{m + ' mu':>{wid[m]}}"
                                                           for m in ds["model"].values))
             for a in ds["contact_area"].values:
-                vals = [float(ds["friction_at_area_mean"].sel(model=m, velocity=v,
-                                                              contact_area=a))
+                vals = [(m, float(ds["friction_at_area_mean"].sel(model=m, velocity=v,
+                                                                  contact_area=a)))
                         for m in ds["model"].values]
-                lines.append(f"  {a:12.3g} " + " ".join(f"{x:10.4f}" for x in vals))
+                lines.append(f"  {a:12.3g} " + " ".join(f"{x:{wid[m]}.4f}" for m, x in vals))
         if "error_vs_fem" in ds:
             for m in ds["compared_model"].values:
                 e = float(ds["error_vs_fem"].sel(compared_model=m, velocity=v))
