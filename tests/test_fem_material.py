@@ -151,6 +151,25 @@ def test_relaxation_after_step_shear_matches_prony():
     np.testing.assert_allclose(sxy, ref, rtol=1e-5)
 
 
+def harmonic_shear_moduli(par, omega, n_per, n_cycles, g0=1e-5):
+    """``(G', G'', dt)`` fitted to the last of ``n_cycles`` cycles of harmonic simple shear
+    ``γ0 sin ωt`` from the relaxed state, ``n_per`` steps per cycle."""
+    dt = 2 * np.pi / omega / n_per
+    st = ViscousState.zeros((1,), par.n_branches, par.viscous_model)
+    ts, ss = [], []
+    for k in range(1, n_cycles * n_per + 1):
+        t = k * dt
+        F = np.array([[[1.0, g0 * np.sin(omega * t)], [0.0, 1.0]]])
+        S, _, _, _, st = update_stress(par, F, np.zeros(1), st, dt, tangent=False)
+        if k > (n_cycles - 1) * n_per:
+            ts.append(t)
+            ss.append(S[0, 2])
+    ts = np.array(ts)
+    A = np.column_stack([np.sin(omega * ts), np.cos(omega * ts)])
+    (g1, g2), *_ = np.linalg.lstsq(A, np.array(ss) / g0, rcond=None)
+    return g1, g2, dt
+
+
 def test_harmonic_shear_gives_complex_modulus():
     # Small-amplitude steady harmonic shear γ0 sin ωt: σ_xy = γ0 (G' sin + G'' cos) with
     # G = E(ω)/3. ω near 1/τ2 gives a large loss modulus; 400 steps per cycle make the
@@ -161,27 +180,31 @@ def test_harmonic_shear_gives_complex_modulus():
     omega = 1.0 / mat.relaxation_times[1]
     period = 2 * np.pi / omega
     n_per = 400
-    dt = period / n_per
     n_cycles = int(np.ceil(10 * mat.relaxation_times[0] / period)) + 1
-    g0 = 1e-5
-    st = ViscousState.zeros((1,), par.n_branches)
-    p = np.zeros(1)
-    ts, ss = [], []
-    for k in range(1, n_cycles * n_per + 1):
-        t = k * dt
-        F = np.array([[[1.0, g0 * np.sin(omega * t)], [0.0, 1.0]]])
-        S, _, _, _, st = update_stress(par, F, p, st, dt, tangent=False)
-        if k > (n_cycles - 1) * n_per:
-            ts.append(t)
-            ss.append(S[0, 2])
-    ts = np.array(ts)
-    A = np.column_stack([np.sin(omega * ts), np.cos(omega * ts)])
-    (g1, g2), *_ = np.linalg.lstsq(A, np.array(ss) / g0, rcond=None)
+    g1, g2, _ = harmonic_shear_moduli(par, omega, n_per, n_cycles)
     G = mat.complex_modulus(omega) / 3.0
     # 0.5 %: integrator error ~1e-4 plus O(γ0) non-linearity ~1e-5.
     assert g1 == pytest.approx(G.real, rel=5e-3)
     assert g2 == pytest.approx(G.imag, rel=5e-3)
     assert g2 > 0.2 * g1  # the test really probes a lossy state
+
+
+def material_tangent_and_fd(par, F, p, st, dt, h=1e-6):
+    """``(CC, numeric)``: the code's tangent and central differences of ``S(C)``, both
+    ``(n, 3, 3)``, columns for the engineering strain ``[E11, E22, 2 E12]``."""
+    _, CC, _, _, _ = update_stress(par, F, p, st, dt)
+    C = np.swapaxes(F, -1, -2) @ F
+
+    def S_of_C(Cm):
+        Fp = np.swapaxes(np.linalg.cholesky(Cm), -1, -2)  # any F with FᵀF = C
+        return update_stress(par, Fp, p, st, dt, tangent=False)[0]
+
+    num = np.empty_like(CC)
+    for col, (i, j) in enumerate([(0, 0), (1, 1), (0, 1)]):
+        dC = np.zeros((2, 2))
+        dC[i, j] = dC[j, i] = 2.0 if i == j else 1.0  # engineering strain increment 1
+        num[:, :, col] = (S_of_C(C + h * dC) - S_of_C(C - h * dC)) / (2 * h)
+    return CC, num
 
 
 def test_constitutive_tangent_matches_finite_differences():
@@ -190,22 +213,23 @@ def test_constitutive_tangent_matches_finite_differences():
     n = 6
     F = np.eye(2) + 0.25 * rng.standard_normal((n, 2, 2))
     st = ViscousState(0.2 * rng.standard_normal((n, 3)), 0.1 * rng.standard_normal((6, n, 3)))
-    p = np.full(n, 0.7)
-    dt = 3e-5
-    _, CC, _, _, _ = update_stress(par, F, p, st, dt)
-    C = np.swapaxes(F, -1, -2) @ F
+    CC, num = material_tangent_and_fd(par, F, np.full(n, 0.7), st, 3e-5)
+    # central differences: error O(h²)·|S'''| ~ 1e-9 relative
+    np.testing.assert_allclose(num, CC, rtol=1e-6, atol=1e-6 * np.abs(CC).max())
 
-    def S_of_C(Cm):
-        Fp = np.swapaxes(np.linalg.cholesky(Cm), -1, -2)  # any F with FᵀF = C
-        return update_stress(par, Fp, p, st, dt, tangent=False)[0]
 
-    h = 1e-6
-    for col, (i, j) in enumerate([(0, 0), (1, 1), (0, 1)]):
-        dC = np.zeros((2, 2))
-        dC[i, j] = dC[j, i] = 2.0 if i == j else 1.0  # engineering strain increment 1
-        num = (S_of_C(C + h * dC) - S_of_C(C - h * dC)) / (2 * h)
-        # central differences: error O(h²)·|S'''| ~ 1e-9 relative
-        np.testing.assert_allclose(num, CC[:, :, col], rtol=1e-6, atol=1e-6 * np.abs(CC).max())
+def element_tangent_and_fd(par, dNdX, w, ue, st, dt, h=1e-7):
+    """Element tangent of two elements and its central finite difference of the forces."""
+    ke = element_arrays(par, dNdX, w, ue, st, dt).ke
+    num = np.empty_like(ke)
+    for k in range(8):
+        d = np.zeros((2, 8))
+        d[:, k] = h
+        d = d.reshape(2, 4, 2)
+        fp = element_arrays(par, dNdX, w, ue + d, st, dt, False).fe
+        fm = element_arrays(par, dNdX, w, ue - d, st, dt, False).fe
+        num[:, :, k] = (fp - fm) / (2 * h)
+    return ke, num
 
 
 def test_element_tangent_matches_finite_differences():
@@ -216,17 +240,7 @@ def test_element_tangent_matches_finite_differences():
     ue = 0.1 * rng.standard_normal((2, 4, 2))
     st = ViscousState(0.05 * rng.standard_normal((2, 4, 3)),
                       0.02 * rng.standard_normal((6, 2, 4, 3)))
-    dt = 1e-4
-    ke = element_arrays(par, dNdX, w, ue, st, dt).ke
-    h = 1e-7
-    num = np.empty_like(ke)
-    for k in range(8):
-        d = np.zeros((2, 8))
-        d[:, k] = h
-        d = d.reshape(2, 4, 2)
-        fp = element_arrays(par, dNdX, w, ue + d, st, dt, False).fe
-        fm = element_arrays(par, dNdX, w, ue - d, st, dt, False).fe
-        num[:, :, k] = (fp - fm) / (2 * h)
+    ke, num = element_tangent_and_fd(par, dNdX, w, ue, st, 1e-4)
     np.testing.assert_allclose(num, ke, atol=1e-6 * np.abs(ke).max())
     np.testing.assert_allclose(ke, np.swapaxes(ke, 1, 2), atol=1e-12 * np.abs(ke).max())
 
@@ -356,20 +370,9 @@ def test_quadratic_history_tangent_matches_finite_differences():
                           0.2 * rng.standard_normal((n, 3)), dt_prev)
         p = np.full(n, 0.7)
         dt = 3e-5
-        S0, CC, _, _, _ = update_stress(par, F, p, st, dt)
-        C = np.swapaxes(F, -1, -2) @ F
-
-        def S_of_C(Cm, st=st, p=p, dt=dt):
-            Fp = np.swapaxes(np.linalg.cholesky(Cm), -1, -2)
-            return update_stress(par, Fp, p, st, dt, tangent=False)[0]
-
-        h = 1e-6
-        for col, (i, j) in enumerate([(0, 0), (1, 1), (0, 1)]):
-            dC = np.zeros((2, 2))
-            dC[i, j] = dC[j, i] = 2.0 if i == j else 1.0
-            num = (S_of_C(C + h * dC) - S_of_C(C - h * dC)) / (2 * h)
-            np.testing.assert_allclose(num, CC[:, :, col], rtol=1e-6,
-                                       atol=1e-6 * np.abs(CC).max())
+        S0 = update_stress(par, F, p, st, dt, tangent=False)[0]
+        CC, num = material_tangent_and_fd(par, F, p, st, dt)
+        np.testing.assert_allclose(num, CC, rtol=1e-6, atol=1e-6 * np.abs(CC).max())
         # the previous state changes the stress only when the quadratic update is used
         st_lin = ViscousState(st.s_iso, st.q)
         S_lin = update_stress(par, F, p, st_lin, dt, tangent=False)[0]

@@ -15,7 +15,14 @@ References used (none of them is output of the code under test):
 import numpy as np
 import pytest
 from scipy.integrate import solve_ivp
-from test_fem_material import CASES, _distorted_element, cauchy_closed_form
+from test_fem_material import (
+    CASES,
+    _distorted_element,
+    cauchy_closed_form,
+    element_tangent_and_fd,
+    harmonic_shear_moduli,
+    material_tangent_and_fd,
+)
 
 import rubbercontact as rc
 from rubbercontact.fem.constitutive import (
@@ -61,24 +68,6 @@ def test_glassy_and_relaxed_limits_are_neo_hookean(name):
                                rtol=1e-9, atol=1e-9 * mu_glassy)
 
 
-def _harmonic_shear(par, omega, n_per, n_cycles, g0=1e-5):
-    """(G', G'') fitted to the last cycle of steady harmonic simple shear."""
-    dt = 2 * np.pi / omega / n_per
-    st = relaxed(1, par)
-    ts, ss = [], []
-    for k in range(1, n_cycles * n_per + 1):
-        t = k * dt
-        F = np.array([[[1.0, g0 * np.sin(omega * t)], [0.0, 1.0]]])
-        S, _, _, _, st = update_stress(par, F, np.zeros(1), st, dt, tangent=False)
-        if k > (n_cycles - 1) * n_per:
-            ts.append(t)
-            ss.append(S[0, 2])
-    ts = np.array(ts)
-    A = np.column_stack([np.sin(omega * ts), np.cos(omega * ts)])
-    (g1, g2), *_ = np.linalg.lstsq(A, np.array(ss) / g0, rcond=None)
-    return g1, g2, dt
-
-
 def test_small_strain_is_the_backward_euler_prony_series():
     # Three branches with ωτ = 0.1, 1, 10 and one with ωτ = 1e-4 (ξ ≫ 1, the regime of
     # the SBR's fast branches in sliding); 40 steps per cycle. Each branch's discrete
@@ -89,7 +78,7 @@ def test_small_strain_is_the_backward_euler_prony_series():
     mat = rc.materials.GeneralizedMaxwell(2.0, [3.0, 5.0, 4.0, 50.0], tau)
     par = rg_params(mat)
     n_cycles = int(np.ceil(12 * tau.max() * omega / (2 * np.pi))) + 1
-    g1, g2, dt = _harmonic_shear(par, omega, 40, n_cycles)
+    g1, g2, dt = harmonic_shear_moduli(par, omega, 40, n_cycles)
     zi = np.exp(-1j * omega * dt)
     xi = dt / tau
     discrete = par.mu + np.sum(par.mu * par.beta * (1 - zi) / (1 + xi - zi))
@@ -99,7 +88,7 @@ def test_small_strain_is_the_backward_euler_prony_series():
     # ... and that is first order in Δt away from the Prony series E(ω)/3:
     exact = mat.complex_modulus(omega) / 3.0
     err40 = abs(complex(g1, g2) - exact) / abs(exact)
-    g1b, g2b, _ = _harmonic_shear(par, omega, 160, n_cycles)
+    g1b, g2b, _ = harmonic_shear_moduli(par, omega, 160, n_cycles)
     err160 = abs(complex(g1b, g2b) - exact) / abs(exact)
     assert err160 < 0.02
     assert 2.5 < err40 / err160 < 6.0  # ratio 4 for first order
@@ -177,21 +166,9 @@ def test_constitutive_tangent_matches_finite_differences():
     p = np.full(n, 0.7)
     st = update_stress(par, np.eye(2) + 0.2 * rng.standard_normal((n, 2, 2)), p,
                        relaxed(n, par), 3e-5, tangent=False)[-1]
-    dt = 3e-5
-    _, CC, _, _, _ = update_stress(par, F, p, st, dt)
-    C = np.swapaxes(F, -1, -2) @ F
-
-    def S_of_C(Cm):
-        Fp = np.swapaxes(np.linalg.cholesky(Cm), -1, -2)  # any F with FᵀF = C
-        return update_stress(par, Fp, p, st, dt, tangent=False)[0]
-
-    h = 1e-6
-    for col, (i, j) in enumerate([(0, 0), (1, 1), (0, 1)]):
-        dC = np.zeros((2, 2))
-        dC[i, j] = dC[j, i] = 2.0 if i == j else 1.0
-        num = (S_of_C(C + h * dC) - S_of_C(C - h * dC)) / (2 * h)
-        # the code's tangent is a forward difference with step 1e-7: error ~1e-6 relative
-        np.testing.assert_allclose(num, CC[:, :, col], atol=1e-5 * np.abs(CC).max())
+    CC, num = material_tangent_and_fd(par, F, p, st, 3e-5)
+    # the code's tangent is a forward difference with step 1e-7: error ~1e-6 relative
+    np.testing.assert_allclose(num, CC, atol=1e-5 * np.abs(CC).max())
 
 
 def test_element_tangent_matches_finite_differences_and_is_symmetric():
@@ -202,17 +179,7 @@ def test_element_tangent_matches_finite_differences_and_is_symmetric():
     ue = 0.1 * rng.standard_normal((2, 4, 2))
     st = ViscousState.zeros((2, 4), par.n_branches, RG)
     st = element_arrays(par, dNdX, w, 0.05 * rng.standard_normal((2, 4, 2)), st, 5e-5).state
-    dt = 1e-4
-    ke = element_arrays(par, dNdX, w, ue, st, dt).ke
-    h = 1e-7
-    num = np.empty_like(ke)
-    for k in range(8):
-        d = np.zeros((2, 8))
-        d[:, k] = h
-        d = d.reshape(2, 4, 2)
-        fp = element_arrays(par, dNdX, w, ue + d, st, dt, False).fe
-        fm = element_arrays(par, dNdX, w, ue - d, st, dt, False).fe
-        num[:, :, k] = (fp - fm) / (2 * h)
+    ke, num = element_tangent_and_fd(par, dNdX, w, ue, st, 1e-4)
     np.testing.assert_allclose(num, ke, atol=1e-5 * np.abs(ke).max())
     np.testing.assert_allclose(ke, np.swapaxes(ke, 1, 2), atol=1e-10 * np.abs(ke).max())
 
