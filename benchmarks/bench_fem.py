@@ -31,9 +31,9 @@ from rubbercontact.fem.mesh import periodic_cell
 from rubbercontact.fem.solver import factorize
 
 
-def iteration_cost(nx: int, ny: int, reps: int = 5) -> dict:
+def iteration_cost(nx: int, ny: int, reps: int = 5, viscous_model: str = "simo") -> dict:
     surf = rc.roughness.high_slope_wave()
-    par = MaterialParameters.from_material(rc.materials.sbr())
+    par = MaterialParameters.from_material(rc.materials.sbr(), viscous_model=viscous_model)
     L0 = surf.period
     # face 2 µm below the peak: about a tenth of the face in contact
     cell = periodic_cell(L0, 0.75 * L0, nx, ny, y0=float(surf.amplitudes[0]) - 0.002)
@@ -65,10 +65,13 @@ def iteration_cost(nx: int, ny: int, reps: int = 5) -> dict:
     return out
 
 
-def full_test(nx: int, ny: int, periods: int) -> dict:
+def full_test(nx: int, ny: int, periods: int, viscous_model: str = "simo",
+              steps_per_period: int | None = None) -> dict:
     t0 = time.perf_counter()
     res = rc.fem.sliding_test(rc.roughness.high_slope_wave(), rc.materials.sbr(), 1.0, 10.0,
-                              mesh=(nx, ny), periods=periods)
+                              mesh=(nx, ny), periods=periods, viscous_model=viscous_model,
+                              steps_per_period=steps_per_period)
+    spp = steps_per_period or nx
     wall = time.perf_counter() - t0
     h = res.history
     fr = h["friction"][h["phase"] == 2]
@@ -84,10 +87,11 @@ def full_test(nx: int, ny: int, periods: int) -> dict:
             "steady": s.steady, "max_penetration_mm": s.max_penetration,
             "assembly_time_s": s.assembly_time, "solve_time_s": s.solve_time,
             "wall_time_s": wall, "unknowns": s.n_unknowns,
-            "period_means": [float(np.mean(fr[i * nx:(i + 1) * nx]))
-                             for i in range(len(fr) // nx)],
-            "period_means_contact_fraction": [float(np.mean(al[i * nx:(i + 1) * nx]))
-                                              for i in range(len(al) // nx)]}
+            "viscous_model": viscous_model, "steps_per_period": spp,
+            "period_means": [float(np.mean(fr[i * spp:(i + 1) * spp]))
+                             for i in range(len(fr) // spp)],
+            "period_means_contact_fraction": [float(np.mean(al[i * spp:(i + 1) * spp]))
+                                              for i in range(len(al) // spp)]}
 
 
 def main() -> None:
@@ -96,6 +100,9 @@ def main() -> None:
     ap.add_argument("--iteration-mesh", default="120x90")
     ap.add_argument("--periods", type=int, default=6)
     ap.add_argument("--json", default=None)
+    ap.add_argument("--viscous-model", default="simo", choices=["simo", "reese-govindjee"])
+    ap.add_argument("--steps-per-period", type=int, default=None,
+                    help="default nx (one element of travel per step)")
     args = ap.parse_args()
     try:
         commit = subprocess.run(["git", "rev-parse", "--short", "HEAD"], capture_output=True,
@@ -106,12 +113,12 @@ def main() -> None:
               "machine": f"{platform.processor() or platform.machine()}, "
                          f"python {platform.python_version()}, numpy {np.__version__}"}
     nx, ny = (int(v) for v in args.iteration_mesh.split("x"))
-    report["iteration"] = iteration_cost(nx, ny)
+    report["iteration"] = iteration_cost(nx, ny, viscous_model=args.viscous_model)
     print(json.dumps(report["iteration"]), flush=True)
     report["tests"] = []
     for m in args.meshes:
         nx, ny = (int(v) for v in m.split("x"))
-        r = full_test(nx, ny, args.periods)
+        r = full_test(nx, ny, args.periods, args.viscous_model, args.steps_per_period)
         report["tests"].append(r)
         print(json.dumps(r), flush=True)
         if args.json:
