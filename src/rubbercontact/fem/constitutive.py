@@ -258,12 +258,12 @@ class ViscousState:
     @classmethod
     def zeros(cls, shape: tuple[int, ...], n_branches: int,
               viscous_model: str = "simo") -> ViscousState:
-        cv_inv = None
         if viscous_model == "reese-govindjee":
+            # the branches live in C_v⁻¹; Simo's stress-like q has no branches here
             cv_inv = np.zeros((n_branches,) + shape + (4,))
             cv_inv[..., [0, 1, 3]] = 1.0
-        return cls(np.zeros(shape + (3,)), np.zeros((n_branches,) + shape + (3,)),
-                   cv_inv=cv_inv)
+            return cls(np.zeros(shape + (3,)), np.zeros((0,) + shape + (3,)), cv_inv=cv_inv)
+        return cls(np.zeros(shape + (3,)), np.zeros((n_branches,) + shape + (3,)))
 
     def copy(self) -> ViscousState:
         return ViscousState(self.s_iso.copy(), self.q.copy(),

@@ -26,6 +26,7 @@ surfaces without any FEM (``benchmarks/scale_separation.py``).
 from __future__ import annotations
 
 import numpy as np
+from scipy.ndimage import uniform_filter1d
 
 from .._validation import finite_array
 from ..errors import InputError
@@ -53,33 +54,33 @@ def window_average(field: np.ndarray, period: float, window: float) -> np.ndarra
     if not 0 < window <= period:
         raise InputError(f"window: must be in (0, period = {period:g}] mm, got {window!r}")
     n = f.size
-    half = int(round(window / period * n / 2 - 0.5))
-    w = 2 * half + 1
-    if w <= 1:
-        return f.copy()
+    w = 2 * int(round(window / period * n / 2 - 0.5)) + 1
     if w >= n:
         return np.full(n, f.mean())
-    ext = np.concatenate([f[n - half:], f, f[:half]])
-    c = np.concatenate([[0.0], np.cumsum(ext)])
-    return (c[w:] - c[:-w]) / w
+    return uniform_filter1d(f, size=w, mode="wrap")
 
 
-def law_in_pressure(table: dict) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
-    """``(σ, α, Δτ)`` of a law table sorted by pressure, zero-load row included.
+def law_in_pressure(table: dict, samples: int = 4096
+                    ) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
+    """``(σ, α, Δτ)`` of a law table, increasing in ``σ``, from the hybrid's own interpolant.
 
-    Beyond the table's highest pressure :func:`windowed_hs_terms` holds ``α`` and ``Δτ``
-    (the linear full-contact behaviour: ``Δτ`` no longer depends on ``σ``).
+    The law is sampled through :func:`~rubbercontact.hybrid.law.tabulated_law_from_dict` (the
+    interpolation the pointwise hybrid reads), on the table's separations plus ``samples``
+    uniform ones, up to where its pressure reaches zero; so at a uniform low-slope pressure the
+    windowed reading equals the pointwise one. Beyond the table's highest pressure
+    :func:`windowed_hs_terms` holds ``α`` and ``Δτ``, as the tabulated law does below its
+    smallest separation.
     """
-    sig = np.asarray(table["pressure"], float)
-    alpha = np.asarray(table.get("contact_fraction", np.ones_like(sig)), float)
-    tau = np.asarray(table.get("shear_stress", np.zeros_like(sig)), float)
-    ok = np.isfinite(sig) & np.isfinite(alpha) & np.isfinite(tau)
-    order = np.argsort(sig[ok])
-    sig, alpha, tau = sig[ok][order], alpha[ok][order], tau[ok][order]
-    if sig.size < 2 or sig[0] > 0:
-        sig, alpha, tau = (np.concatenate([[0.0], a]) for a in (sig, alpha, tau))
-        alpha[0] = tau[0] = 0.0
-    return sig, alpha, tau
+    from .law import tabulated_law_from_dict
+
+    law = tabulated_law_from_dict(table)
+    u_tab = law.separation
+    u = np.union1d(u_tab, np.linspace(u_tab[0], u_tab[-1], int(samples)))
+    sig = law.pressure(u)
+    keep = np.concatenate([[True], sig[1:] < sig[:-1]])   # strictly decreasing part
+    u, sig = u[keep], sig[keep]
+    order = slice(None, None, -1)                          # increasing in σ
+    return sig[order], law.contact_fraction(u)[order], law.shear_stress(u)[order]
 
 
 def windowed_hs_terms(pressure: np.ndarray, period: float, window: float, table: dict,
@@ -95,8 +96,9 @@ def windowed_hs_terms(pressure: np.ndarray, period: float, window: float, table:
     window
         High-slope period ``λ_hs`` [mm] (the law's averaging cell).
     table
-        Law table at the solve's speed (keys ``pressure``, ``contact_fraction``,
-        ``shear_stress``; see :func:`~rubbercontact.hybrid.law.law_at_velocity`).
+        Law table at the solve's speed (keys ``separation``, ``pressure``,
+        ``contact_fraction``, ``shear_stress``; see
+        :func:`~rubbercontact.hybrid.law.law_at_velocity`).
     mean_pressure
         ``σ0`` [MPa] > 0.
     """
