@@ -1,0 +1,154 @@
+"""The crest-resolved reading of the law on the paper §3 surface, against the full FEM.
+
+Experimental. ``benchmarks/scale_separation.py`` shows, with a linear law, that the hybrid's
+remaining error at small wavelength ratios is how its low-slope solve shares the load among
+the discrete high-slope crests, and that a small half-space solve with one cell per crest
+(:func:`scale_separation.crest_resolved_loads`) predicts that sharing. Here the same
+reading is applied with the FEM law of the section 3 validation and compared with the full
+FEM, next to the windowed hybrid and the VHS:
+
+    μ = μ_ls (the hybrid's low-slope solve) + <Δτ_hs(P_k)>/σ0,   A = <α_hs(P_k)>.
+
+Needs the section 3 validation results (``docs/validation/section3/results.nc``) and its
+cache (the law is rebuilt from the cached FEM solves exactly as the pipeline does). Run::
+
+    OMP_NUM_THREADS=1 .venv/bin/python benchmarks/crest_section3.py \
+        --report docs/validation/crest_section3.md
+"""
+
+from __future__ import annotations
+
+import argparse
+import subprocess
+import sys
+import warnings
+from datetime import UTC, datetime
+from pathlib import Path
+
+import numpy as np
+import xarray as xr
+
+ROOT = Path(__file__).resolve().parents[1]
+sys.path.insert(0, str(Path(__file__).resolve().parent))
+
+import validate  # noqa: E402
+from scale_separation import crest_resolved_loads  # noqa: E402
+
+from rubbercontact.hybrid.law import (  # noqa: E402
+    continue_with_linear_shape,
+    effective_law,
+    law_at_velocity,
+    screen_monotone,
+)
+from rubbercontact.hybrid.metrics import mean_relative_error  # noqa: E402
+from rubbercontact.hybrid.pipeline import (  # noqa: E402
+    _translated_to_zero_phase,
+    build_material,
+    build_surface,
+    make_runner,
+)
+from rubbercontact.hybrid.windowing import law_in_pressure  # noqa: E402
+
+
+def law_tables(cfg) -> dict:
+    """Per velocity, the law table the pipeline's hybrid reads (from the cached FEM)."""
+    material = build_material(cfg)
+    base, _ = build_surface(cfg)
+    hs0 = _translated_to_zero_phase(base.realizations(1, seed=cfg.seed)[0]
+                                    .partition(cfg.surface.m2_threshold)[0])
+    law = effective_law(hs0, material, np.asarray(cfg.law.pressures, float),
+                        np.asarray(cfg.velocities, float), mesh=cfg.fem.mesh,
+                        height_ratio=cfg.fem.height_ratio, periods=cfg.fem.periods,
+                        steps_per_period=cfg.fem.steps_per_period,
+                        contact_points=cfg.fem.contact_points,
+                        history_order=cfg.fem.history_order,
+                        viscous_model=cfg.fem.viscous_model,
+                        runner=make_runner(cfg, False, False))
+    law = screen_monotone(law)
+    return {float(v): continue_with_linear_shape(law_at_velocity(law, float(v)), hs0, material,
+                                                 float(v), nu=cfg.material.nu)
+            for v in cfg.velocities}
+
+
+def main(argv=None) -> int:
+    ap = argparse.ArgumentParser(description=__doc__.splitlines()[0])
+    ap.add_argument("--results", type=Path,
+                    default=ROOT / "docs" / "validation" / "section3" / "results.nc")
+    ap.add_argument("--cache", type=Path, default=ROOT / ".validation-cache")
+    ap.add_argument("--report", type=Path)
+    args = ap.parse_args(argv)
+    ds = xr.load_dataset(args.results)
+    n_real = ds.sizes["realization"]
+    cfg = validate._config("section3", "quick", 1, args.cache, Path("/tmp/crest_section3"),
+                           n_real)
+    with warnings.catch_warnings():
+        warnings.simplefilter("ignore")
+        tables = law_tables(cfg)
+    material = build_material(cfg)
+    base, _ = build_surface(cfg)
+    parts = [r.partition(cfg.surface.m2_threshold)
+             for r in base.realizations(n_real, seed=cfg.seed)]
+    # the phases must be the ones of the results file
+    assert np.allclose(ds["phase"].values, [r.phases for r in
+                                            base.realizations(n_real, seed=cfg.seed)])
+    mu_c = np.full((ds.sizes["velocity"], n_real, ds.sizes["pressure"]), np.nan)
+    area_c = np.full_like(mu_c, np.nan)
+    for iv, v in enumerate(ds["velocity"].values):
+        sig, alpha, tau = law_in_pressure(tables[float(v)])
+        for ir, (hs, ls) in enumerate(parts):
+            for ip, p in enumerate(ds["pressure"].values):
+                loads = crest_resolved_loads(ls, hs, base.period, tables[float(v)], material,
+                                             float(v), float(p), n=cfg.halfspace.n)
+                mu_ls = float(ds["friction_ls"].sel(model="hybrid", velocity=v,
+                                                    realization=ir, pressure=p))
+                mu_c[iv, ir, ip] = mu_ls + float(np.mean(np.interp(loads, sig, tau))) / p
+                area_c[iv, ir, ip] = float(np.mean(np.interp(loads, sig, alpha)))
+    crest = ds.sel(model=["hybrid-windowed"]).assign_coords(model=["hybrid-crest"])
+    crest["friction"] = (("model", "velocity", "realization", "pressure"), mu_c[None])
+    crest["contact_fraction"] = (("model", "velocity", "realization", "pressure"),
+                                 area_c[None])
+    crest["friction_mean"] = crest["friction"].mean("realization")
+    crest["contact_fraction_mean"] = crest["contact_fraction"].mean("realization")
+    keep = ["friction", "contact_fraction", "friction_mean", "contact_fraction_mean"]
+    both = xr.concat([ds[keep], crest[keep]], dim="model")
+    models = ["vhs", "hybrid-windowed", "hybrid-crest"]
+    commit = subprocess.run(["git", "rev-parse", "--short", "HEAD"], cwd=ROOT,
+                            capture_output=True, text=True).stdout.strip()
+    lines = ["# Crest-resolved reading of the law on the section 3 surface (experimental)", "",
+             f"Generated by `benchmarks/crest_section3.py` "
+             f"({datetime.now(UTC):%Y-%m-%d %H:%M} UTC, commit {commit}) from "
+             f"`{args.results.relative_to(ROOT)}`: {n_real} "
+             "realizations, the quick level's FEM law and full FEM (VALIDATION.md).", "",
+             "Mean μ (A) over the realizations:", "",
+             "| v [mm/s] | σ0 [MPa] | FEM | VHS | windowed | crest-resolved |",
+             "|---|---|---|---|---|---|"]
+    for v in both["velocity"].values:
+        for p in both["pressure"].values:
+            at = both.sel(velocity=v, pressure=p)
+            cells = [f"{float(at['friction_mean'].sel(model=m)):.3f} "
+                     f"({float(at['contact_fraction_mean'].sel(model=m)):.4f})"
+                     for m in ["fem", *models]]
+            lines.append(f"| {v:g} | {p:g} | " + " | ".join(cells) + " |")
+    lines += ["", "Eq. 28 against the FEM:", "",
+              "| v [mm/s] | compared | " + " | ".join(models) + " |", "|---|---|---|---|---|"]
+    areas = validate._friction_at_common_areas(both)
+    for v in both["velocity"].values:
+        s = both.sel(velocity=v)
+        fem = s["friction_mean"].sel(model="fem").values
+        row = [f"{100 * mean_relative_error(fem, s['friction_mean'].sel(model=m).values):.1f} %"
+               for m in models]
+        lines.append(f"| {v:g} | equal σ0 | " + " | ".join(row) + " |")
+        if float(v) in areas:
+            a, mus = areas[float(v)]
+            row = [f"{100 * mean_relative_error(mus['fem'], mus[m]):.1f} %" for m in models]
+            lines.append(f"| {v:g} | equal A ({a.min():.3f}-{a.max():.3f}) | "
+                         + " | ".join(row) + " |")
+    text = "\n".join(lines) + "\n"
+    print(text)
+    if args.report:
+        args.report.write_text(text)
+    return 0
+
+
+if __name__ == "__main__":
+    raise SystemExit(main())
