@@ -350,3 +350,18 @@ def test_complex_preconditioner_fallback(monkeypatch):
         assert f.friction == pytest.approx(r.friction, rel=1e-7)
         assert f.contact_fraction == pytest.approx(r.contact_fraction, rel=1e-7)
         assert f.mean_separation == pytest.approx(r.mean_separation, rel=1e-7)
+
+
+def test_linear_similarity_of_hard_wall_contact():
+    """Linear theory is homogeneous: amplitude and load scaled by s give the same contact set
+    and mean-separation/amplitude ratio, pressure ×s and friction ×s (the basis of the slope
+    study ``benchmarks/slope_nonlinearity.py``). Exact up to the solver tolerance 1e-8."""
+    lam, amp, p = 0.0625, 0.0014, 0.0376          # m2 = 0.1 at about 10 % contact
+    base = solve_sliding(SineSeries([lam], [amp]), None, SBR, 10.0, p, n=1024)
+    for s in (3.0, 13.3):
+        big = solve_sliding(SineSeries([lam], [s * amp]), None, SBR, 10.0, s * p, n=1024)
+        np.testing.assert_array_equal(big.pressure > 0, base.pressure > 0)
+        assert big.contact_fraction == base.contact_fraction
+        assert big.friction == pytest.approx(s * base.friction, rel=1e-6)
+        assert big.mean_separation == pytest.approx(s * base.mean_separation, rel=1e-6)
+        np.testing.assert_allclose(big.pressure, s * base.pressure, atol=1e-6 * s * p)
