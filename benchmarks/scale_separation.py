@@ -36,6 +36,7 @@ import numpy as np
 from scipy.optimize import brentq
 
 import rubbercontact as rc
+from rubbercontact.errors import ConvergenceError, InputError
 from rubbercontact.halfspace import kernels
 from rubbercontact.hybrid.law import linear_law, tabulated_law_from_dict
 from rubbercontact.hybrid.tasks import halfspace_task
@@ -83,7 +84,8 @@ def crest_resolved_loads(ls: SineSeries, hs: SineSeries, period: float, table: d
     m = int(round(period / lam))
     per_cell = n // m
     if m * per_cell != n or abs(m * lam - period) > 1e-9 * period:
-        raise ValueError("period must be a multiple of the cell and n of the cell count")
+        raise InputError(f"period {period} mm: must be a multiple of the high-slope cell "
+                         f"{lam} mm, and n = {n} a multiple of the {m} cells")
     xs = np.arange(per_cell) * (lam / per_cell)
     i0 = int(np.argmax(hs.heights(xs)))
     kernel = kernels.response_kernel(material, (n,), (period,), velocity)
@@ -129,7 +131,8 @@ def crest_resolved_loads(ls: SineSeries, hs: SineSeries, period: float, table: d
                 break
             a *= 0.5
         g, ubar, r, s = g + a * d[:m], ubar + a * d[m], r_new, s_new
-    raise RuntimeError(f"crest-resolved load sharing did not converge (|r| = {norm:.2e})")
+    raise ConvergenceError(f"crest-resolved load sharing: no convergence in 100 Newton "
+                           f"iterations (scaled residual {norm:.2e}, tolerance 1e-10)")
 
 
 def main(argv=None) -> int:
