@@ -49,19 +49,27 @@ CASES = [(0.125, 0.3), (0.125, 0.94), (0.25, 0.3), (0.25, 0.52), (0.25, 0.94),
 PRESSURES = (0.15, 0.35)
 
 
-def crest_loads(x: np.ndarray, pressure: np.ndarray, period: float, phase: float
-                ) -> np.ndarray:
-    """Mean pressure [MPa] on each high-slope cell (one ``λ_hs`` centred on a crest).
+def crest_cells(hs: SineSeries, period: float, n: int) -> tuple[np.ndarray, np.ndarray]:
+    """High-slope cells (one ``λ_hs`` centred on a crest) on ``n`` uniform points over ``period``.
 
-    The high-slope wave is ``A sin(k x + φ)``: crests at ``k x + φ = π/2 (mod 2π)``.
-    ``pressure`` is a periodic profile on the uniform grid ``x`` over ``period``.
+    Returns the cell index of every grid point and the grid index of each cell's crest (the
+    grid maxima of ``hs``), so the diagnostic and the crest-resolved solve share one definition.
     """
-    lam = HS_WAVELENGTH
-    x_c = ((np.pi / 2 - phase) / (2 * np.pi) * lam) % lam
-    # position of each grid point relative to the crest grid, in cells
-    cell = np.floor((x - x_c) / lam + 0.5).astype(int) % int(round(period / lam))
-    dx = period / x.size
-    return np.bincount(cell, weights=pressure * dx) / lam
+    lam = hs.period
+    m = int(round(period / lam))
+    per_cell = n // m
+    if m * per_cell != n or abs(m * lam - period) > 1e-9 * period:
+        raise InputError(f"period {period} mm: must be a multiple of the high-slope cell "
+                         f"{lam} mm, and n = {n} a multiple of the {m} cells")
+    i0 = int(np.argmax(hs.heights(np.arange(per_cell) * (lam / per_cell))))
+    cells = ((np.arange(n) - i0 + per_cell // 2) // per_cell) % m
+    return cells, (i0 + np.arange(m) * per_cell) % n
+
+
+def crest_loads(pressure: np.ndarray, hs: SineSeries, period: float) -> np.ndarray:
+    """Mean pressure [MPa] on each high-slope cell of a periodic profile over ``period``."""
+    cells, _ = crest_cells(hs, period, pressure.size)
+    return np.bincount(cells, weights=pressure) / np.bincount(cells)
 
 
 def crest_resolved_loads(ls: SineSeries, hs: SineSeries, period: float, table: dict,
@@ -80,22 +88,14 @@ def crest_resolved_loads(ls: SineSeries, hs: SineSeries, period: float, table: d
     pressure the law is read at ``σ0`` as in the paper. Newton on ``(g, ū)`` from the
     Winkler start (no interaction), with backtracking.
     """
-    lam = hs.period
-    m = int(round(period / lam))
-    per_cell = n // m
-    if m * per_cell != n or abs(m * lam - period) > 1e-9 * period:
-        raise InputError(f"period {period} mm: must be a multiple of the high-slope cell "
-                         f"{lam} mm, and n = {n} a multiple of the {m} cells")
-    xs = np.arange(per_cell) * (lam / per_cell)
-    i0 = int(np.argmax(hs.heights(xs)))
+    cells, crests = crest_cells(hs, period, n)
+    m = crests.size
+    # response to a unit pressure on cell 0, averaged over every cell: a circulant matrix
     kernel = kernels.response_kernel(material, (n,), (period,), velocity)
-    idx = (np.arange(per_cell) - per_cell // 2) % n
-    box = np.zeros(n)
-    box[idx] = 1.0
-    w = kernels.apply_kernel(kernel, box)
-    col = np.array([w[(idx + d * per_cell) % n].mean() for d in range(m)])
+    w = kernels.apply_kernel(kernel, (cells == 0).astype(float))
+    col = np.bincount(cells, weights=w) / np.bincount(cells)
     C = col[(np.arange(m)[:, None] - np.arange(m)[None, :]) % m]
-    z = ls.heights((i0 + np.arange(m) * per_cell) * (period / n))
+    z = ls.heights(crests * (period / n))
     law = tabulated_law_from_dict(table)
     u_lo, u_hi = table["separation"][0], table["separation"][-1]
 
@@ -189,11 +189,10 @@ def main(argv=None) -> int:
                 # If the law read at the VHS's own crest loads matches the VHS, the law
                 # per crest is right and what is left of a hybrid's error is how its
                 # low-slope solve shares the load among the crests.
-                vhs_loads = crest_loads(np.asarray(vh.x), np.asarray(vh.pressure), lam, ph_hs)
-                hyb_loads = crest_loads(hy["x"].values, hy["pressure_profile"].values, lam,
-                                        ph_hs)
-                res_loads = crest_resolved_loads(ls, hs.with_phases([ph_hs]), lam, table,
-                                                 mat, v, p)
+                hs_r = hs.with_phases([ph_hs])
+                vhs_loads = crest_loads(np.asarray(vh.pressure), hs_r, lam)
+                hyb_loads = crest_loads(hy["pressure_profile"].values, hs_r, lam)
+                res_loads = crest_resolved_loads(ls, hs_r, lam, table, mat, v, p)
                 tau_c, area_c = read(res_loads)
                 acc[p].append((
                     vh.friction, vh.contact_fraction,
