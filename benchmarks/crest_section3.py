@@ -34,15 +34,10 @@ sys.path.insert(0, str(Path(__file__).resolve().parent))
 import validate  # noqa: E402
 from scale_separation import crest_resolved_loads  # noqa: E402
 
-from rubbercontact.hybrid.law import (  # noqa: E402
-    continue_with_linear_shape,
-    effective_law,
-    law_at_velocity,
-    screen_monotone,
-)
 from rubbercontact.hybrid.metrics import mean_relative_error  # noqa: E402
 from rubbercontact.hybrid.pipeline import (  # noqa: E402
     _translated_to_zero_phase,
+    build_law,
     build_material,
     build_surface,
     make_runner,
@@ -52,22 +47,12 @@ from rubbercontact.hybrid.windowing import law_in_pressure  # noqa: E402
 
 def law_tables(cfg) -> dict:
     """Per velocity, the law table the pipeline's hybrid reads (from the cached FEM)."""
-    material = build_material(cfg)
     base, _ = build_surface(cfg)
     hs0 = _translated_to_zero_phase(base.realizations(1, seed=cfg.seed)[0]
                                     .partition(cfg.surface.m2_threshold)[0])
-    law = effective_law(hs0, material, np.asarray(cfg.law.pressures, float),
-                        np.asarray(cfg.velocities, float), mesh=cfg.fem.mesh,
-                        height_ratio=cfg.fem.height_ratio, periods=cfg.fem.periods,
-                        steps_per_period=cfg.fem.steps_per_period,
-                        contact_points=cfg.fem.contact_points,
-                        history_order=cfg.fem.history_order,
-                        viscous_model=cfg.fem.viscous_model,
-                        runner=make_runner(cfg, False, False))
-    law = screen_monotone(law)
-    return {float(v): continue_with_linear_shape(law_at_velocity(law, float(v)), hs0, material,
-                                                 float(v), nu=cfg.material.nu)
-            for v in cfg.velocities}
+    pressures = np.asarray(cfg.loads.pressures, float)
+    return build_law(cfg, hs0, build_material(cfg), pressures,
+                     make_runner(cfg, False, False))[1]
 
 
 def material_model_part(cache: Path) -> list[str]:
@@ -139,9 +124,10 @@ def main(argv=None) -> int:
     base, _ = build_surface(cfg)
     parts = [r.partition(cfg.surface.m2_threshold)
              for r in base.realizations(n_real, seed=cfg.seed)]
-    # the phases must be the ones of the results file
-    assert np.allclose(ds["phase"].values, [r.phases for r in
-                                            base.realizations(n_real, seed=cfg.seed)])
+    if not np.allclose(ds["phase"].values,
+                       [r.phases for r in base.realizations(n_real, seed=cfg.seed)]):
+        raise SystemExit(f"{args.results}: its realizations are not those of the section 3 "
+                         "quick config (seed or surface changed); rerun benchmarks/validate.py")
     mu_c = np.full((ds.sizes["velocity"], n_real, ds.sizes["pressure"]), np.nan)
     area_c = np.full_like(mu_c, np.nan)
     for iv, v in enumerate(ds["velocity"].values):

@@ -158,6 +158,43 @@ def _pressure_grid_for_areas(cfg: RunConfig, surfaces: list[SineSeries],
     return np.geomspace(np.exp(p_lo) / 2, np.exp(p_hi) * 2, n_p)
 
 
+def build_law(cfg: RunConfig, hs0: SineSeries, material: GeneralizedMaxwell,
+              pressures: np.ndarray, runner: Runner, law: xr.Dataset | None = None
+              ) -> tuple[xr.Dataset, dict[float, dict], float | None]:
+    """The high-slope law of a run and the tables the hybrid reads, one per velocity.
+
+    ``law`` (or ``cfg.law.file``) is used when given; otherwise the FEM sweep runs on
+    ``hs0`` at ``cfg.law.pressures`` (default: 8 pressures from half the smallest to 8× the
+    largest load). Non-monotone points are screened out, and past the FEM's highest pressure
+    each table follows the linear law's shape, anchored there.
+
+    Returns
+    -------
+    law, tables, fem_time
+        The screened law dataset, ``{velocity: table}`` and the wall time of the FEM sweep
+        [s] (``None`` when the law was given).
+    """
+    fem_time = None
+    if law is None and cfg.law.file is not None:
+        law = xr.load_dataset(cfg.law.file)
+    if law is None:
+        law_p = (np.asarray(cfg.law.pressures, float) if cfg.law.pressures is not None
+                 else np.geomspace(pressures.min() / 2, pressures.max() * 8, 8))
+        t0 = time.perf_counter()
+        law = effective_law(hs0, material, law_p, np.asarray(cfg.velocities, float),
+                            mesh=cfg.fem.mesh, height_ratio=cfg.fem.height_ratio,
+                            periods=cfg.fem.periods, steps_per_period=cfg.fem.steps_per_period,
+                            contact_points=cfg.fem.contact_points,
+                            history_order=cfg.fem.history_order,
+                            viscous_model=cfg.fem.viscous_model, runner=runner)
+        fem_time = time.perf_counter() - t0
+    law = screen_monotone(law)
+    tables = {float(v): continue_with_linear_shape(law_at_velocity(law, float(v)), hs0,
+                                                   material, float(v), nu=cfg.material.nu)
+              for v in cfg.velocities}
+    return law, tables, fem_time
+
+
 def run(config: RunConfig | dict | str | Path, *, runner: Runner | None = None,
         law: xr.Dataset | None = None, progress: bool | str = "auto",
         retry_failed: bool = False) -> xr.Dataset:
@@ -201,24 +238,10 @@ def run(config: RunConfig | dict | str | Path, *, runner: Runner | None = None,
     # -- effective law of the high-slope scale ---------------------------------------
     law_tables: dict[float, dict | None] = {float(v): None for v in velocities}
     if HYBRID_MODELS & set(models) and hs0.size:
-        if law is None and cfg.law.file is not None:
-            law = xr.load_dataset(cfg.law.file)
-        if law is None:
-            law_p = (np.asarray(cfg.law.pressures, float) if cfg.law.pressures is not None
-                     else np.geomspace(pressures.min() / 2, pressures.max() * 8, 8))
-            t0 = time.perf_counter()
-            law = effective_law(hs0, material, law_p, velocities, mesh=cfg.fem.mesh,
-                                height_ratio=cfg.fem.height_ratio, periods=cfg.fem.periods,
-                                steps_per_period=cfg.fem.steps_per_period,
-                                contact_points=cfg.fem.contact_points,
-                                history_order=cfg.fem.history_order,
-                                viscous_model=cfg.fem.viscous_model, runner=runner)
-            timings["law"] = time.perf_counter() - t0
-        law = screen_monotone(law)
-        for v in velocities:
-            # past the FEM's highest pressure: the linear law's shape, anchored there
-            law_tables[float(v)] = continue_with_linear_shape(
-                law_at_velocity(law, float(v)), hs0, material, float(v), nu=cfg.material.nu)
+        law, tables, fem_time = build_law(cfg, hs0, material, pressures, runner, law)
+        law_tables.update(tables)
+        if fem_time is not None:
+            timings["law"] = fem_time
         law = _law_with_vhs(law, hs0, material, cfg, runner)
 
     # -- one task per (model, velocity, realization, pressure) ------------------------
