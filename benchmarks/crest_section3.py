@@ -91,8 +91,8 @@ def material_model_part(cache: Path) -> list[str]:
                 s = ds.sel(velocity=v, pressure=p, realization=0)
                 fem = float(s["friction"].sel(model="fem"))
                 if fine is not None:
-                    fem = 2 * float(fine["friction"].sel(model="fem", velocity=v, pressure=p,
-                                                        realization=0)) - fem
+                    fem = mm.first_order_limit(fem, float(fine["friction"].sel(
+                        model="fem", velocity=v, pressure=p, realization=0)))
                 loads = crest_resolved_loads(ls, hs, base.period, tables[float(v)], material,
                                              float(v), float(p), n=cfg.halfspace.n)
                 crest = (float(s["friction_ls"].sel(model="hybrid"))
