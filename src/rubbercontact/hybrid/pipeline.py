@@ -257,21 +257,8 @@ def run(config: RunConfig | dict | str | Path, *, runner: Runner | None = None,
                               "mean_pressure": float(p)}
                     keep = ir == 0
                     if m == "fem":
-                        # Translation-invariant: the same cell as the law's when the surface
-                        # is all high-slope, so the cache shares those FEM runs.
-                        kw = {"surface": _translated_to_zero_phase(real).as_dict(), **common,
-                              "mesh": list(cfg.fem.full_mesh or cfg.fem.mesh),
-                              "height_ratio": cfg.fem.height_ratio,
-                              "periods": cfg.fem.periods,
-                              "steps_per_period": (cfg.fem.full_steps_per_period
-                                                   or cfg.fem.steps_per_period),
-                              "contact_points": cfg.fem.contact_points,
-                              "history_order": cfg.fem.history_order}
-                        if cfg.fem.full_grading != 1.0:   # else the law's cache key
-                            kw["grading"] = cfg.fem.full_grading
-                        if cfg.fem.viscous_model != "simo":  # keeps existing cache keys
-                            kw["viscous_model"] = cfg.fem.viscous_model
-                        fn = "rubbercontact.hybrid.tasks:fem_task"
+                        task = full_fem_task(cfg, real, material, float(v), float(p))
+                        fn, kw = task.function, task.kwargs
                     else:
                         surf = real if (m == "vhs" or not _hs.size) else ls
                         kw = {"surface": surf.as_dict(), "period": period, **common,
@@ -331,6 +318,46 @@ def run(config: RunConfig | dict | str | Path, *, runner: Runner | None = None,
         "model_cpu_time_s": json.dumps(per_model_time),
     })
     return ds
+
+
+def full_fem_task(cfg: RunConfig, surface: SineSeries, material: GeneralizedMaxwell,
+                  velocity: float, mean_pressure: float):
+    """The sweep task of one full-FEM sliding test (model ``fem``) with the config's options.
+
+    Parameters
+    ----------
+    cfg
+        Run configuration; its ``[fem]`` table gives the mesh (``full_mesh`` or ``mesh``),
+        grading, steps per period, periods, contact points, history order and model.
+    surface
+        The whole surface of one realization (translated to zero phase here).
+    material
+        Rubber.
+    velocity, mean_pressure
+        Sliding speed [mm/s] and nominal pressure [MPa].
+
+    Returns
+    -------
+    rubbercontact.sweep.Task
+        With the same cache key as the ``fem`` model of :func:`run` for that load.
+    """
+    from ..sweep import Task
+
+    # Translation-invariant: the same cell as the law's when the surface is all
+    # high-slope, so the cache shares those FEM runs.
+    kw = {"surface": _translated_to_zero_phase(surface).as_dict(),
+          "material": material.as_dict(), "velocity": float(velocity),
+          "mean_pressure": float(mean_pressure),
+          "mesh": list(cfg.fem.full_mesh or cfg.fem.mesh),
+          "height_ratio": cfg.fem.height_ratio, "periods": cfg.fem.periods,
+          "steps_per_period": cfg.fem.full_steps_per_period or cfg.fem.steps_per_period,
+          "contact_points": cfg.fem.contact_points, "history_order": cfg.fem.history_order}
+    if cfg.fem.full_grading != 1.0:   # else the law's cache key
+        kw["grading"] = cfg.fem.full_grading
+    if cfg.fem.viscous_model != "simo":  # keeps existing cache keys
+        kw["viscous_model"] = cfg.fem.viscous_model
+    return Task(function="rubbercontact.hybrid.tasks:fem_task", kwargs=kw,
+                label=f"fem v={velocity:g} p={mean_pressure:.4g}")
 
 
 def _as_config(config) -> RunConfig:
