@@ -1,0 +1,203 @@
+"""Is the section 3 full-FEM reference resolved at the smallest contact areas?
+
+The quick level of ``benchmarks/validate.py`` runs the full FEM on the paper's element count,
+120 x 90 on the 0.25 mm cell (2.1 um columns). At 50 mm/s and 0.15 MPa the contact fraction
+is 0.011-0.019, i.e. 2.7-4.7 um of contact in the whole cell: a patch spans one or two
+columns. This study reruns the validation's own full-FEM tasks (same config, cache keys of
+``validate.py`` with ``full_mesh = [NX, NY]``) at a finer mesh for chosen loads, compares
+them realization by realization with the 120 x 90 ones, and recomputes eq. 28 with the
+finer reference where it exists.
+
+Everything goes through the validation cache, so a killed run resumes and a later
+``make validate`` at the finer mesh reuses these solves. Run single-threaded, e.g.::
+
+    OMP_NUM_THREADS=1 .venv/bin/python benchmarks/fem_reference_mesh.py --workers 2 \\
+        --report docs/validation/fem_reference_mesh.md
+"""
+
+from __future__ import annotations
+
+import argparse
+import sys
+from pathlib import Path
+
+import numpy as np
+import xarray as xr
+
+ROOT = Path(__file__).resolve().parents[1]
+sys.path.insert(0, str(Path(__file__).resolve().parent))
+
+import validate  # noqa: E402
+
+import rubbercontact as rc  # noqa: E402
+from rubbercontact.hybrid.law import effective_law  # noqa: E402
+from rubbercontact.hybrid.metrics import mean_relative_error  # noqa: E402
+from rubbercontact.hybrid.pipeline import (  # noqa: E402
+    _translated_to_zero_phase,
+    build_material,
+    full_fem_task,
+    make_runner,
+)
+
+# (velocity [mm/s], pressure [MPa]) in the order they are run: smallest areas first
+DEFAULT_LOADS = ["50:0.15", "50:0.35", "10:0.15"]
+
+
+def _configs(mesh: tuple[int, int], workers: int, cache: Path):
+    coarse = validate._config("section3", "quick", workers, cache, Path("/tmp"))
+    data = coarse.model_dump(mode="json", exclude_none=True)
+    data["fem"]["full_mesh"] = list(mesh)
+    fine = rc.config.parse_config(data, source=f"section3 (quick, full mesh {mesh})")
+    return coarse, fine
+
+
+def _solve(cfg, loads, progress="log") -> dict:
+    """``{(v, p): [(μ, A) per realization]}`` of the config's full FEM (cached)."""
+    mat = build_material(cfg)
+    reals = rc.roughness.section3().realizations(cfg.realizations, seed=cfg.seed)
+    tasks, index = [], []
+    for v, p in loads:
+        for ir, real in enumerate(reals):
+            tasks.append(full_fem_task(cfg, real, mat, v, p))
+            index.append((v, p, ir))
+    results = make_runner(cfg, progress=progress)(tasks)
+    out: dict = {}
+    for (v, p, _ir), res in zip(index, results, strict=True):
+        ok = isinstance(res, xr.Dataset)     # a failure (TaskFailure) counts as missing
+        out.setdefault((v, p), []).append(
+            (float(res["friction"]), float(res["contact_fraction"])) if ok
+            else (np.nan, np.nan))
+    return out
+
+
+def _law_points(cfg, mesh, pressures, velocity) -> xr.Dataset:
+    """The config's law FEM (high-slope wave alone) at ``pressures`` on ``mesh`` (cached)."""
+    reals = rc.roughness.section3().realizations(cfg.realizations, seed=cfg.seed)
+    hs0 = _translated_to_zero_phase(reals[0].partition(cfg.surface.m2_threshold)[0])
+    return effective_law(hs0, build_material(cfg), pressures, [velocity], mesh=mesh,
+                         height_ratio=cfg.fem.height_ratio, periods=cfg.fem.periods,
+                         steps_per_period=cfg.fem.steps_per_period,
+                         contact_points=cfg.fem.contact_points,
+                         history_order=cfg.fem.history_order,
+                         runner=make_runner(cfg, progress="log"))
+
+
+def law_report(cfg, coarse_mesh, fine_mesh, pressures, velocity) -> str:
+    coarse = _law_points(cfg, coarse_mesh, pressures, velocity)
+    fine = _law_points(cfg, fine_mesh, pressures, velocity)
+    nx, ny = coarse_mesh
+    lines = ["", f"## The law cell (high-slope wave alone, {velocity:g} mm/s)", "",
+             f"Law mesh {nx} x {ny} (the quick level's before this study) against "
+             f"{fine_mesh[0]} x {fine_mesh[1]} (the paper's, the quick level's now), both with "
+             f"{cfg.fem.steps_per_period} steps per period (the same dt):", "",
+             f"| p̄ [MPa] | {nx}x{ny} μ (A) | {fine_mesh[0]}x{fine_mesh[1]} μ (A) | ratio |",
+             "|---|---|---|---|"]
+    for p in pressures:
+        c, f = coarse.sel(pressure=p, velocity=velocity), fine.sel(pressure=p, velocity=velocity)
+        lines.append(f"| {p:g} | {float(c['friction']):.3f} ({float(c['contact_fraction']):.4f})"
+                     f" | {float(f['friction']):.3f} ({float(f['contact_fraction']):.4f}) | "
+                     f"{float(f['friction']) / float(c['friction']):.3f} |")
+    return "\n".join(lines) + "\n"
+
+
+def _with_reference(ds: xr.Dataset, fine: dict) -> xr.Dataset:
+    """The validation dataset with the FEM replaced by ``fine`` at its loads."""
+    ds = ds.copy(deep=True)
+    for (v, p), vals in fine.items():
+        mu, a = np.array(vals).T
+        sel = {"model": "fem", "velocity": v, "pressure": p}
+        ds["friction"].loc[sel] = mu
+        ds["contact_fraction"].loc[sel] = a
+    ds["friction_mean"] = ds["friction"].mean("realization")
+    ds["contact_fraction_mean"] = ds["contact_fraction"].mean("realization")
+    return ds
+
+
+def _errors(ds: xr.Dataset) -> dict:
+    out = {}
+    for v, (areas, mus) in validate._friction_at_common_areas(ds).items():
+        out[v] = (areas, {m: mean_relative_error(mus["fem"], mus[m])
+                          for m in ("hybrid", "hybrid-windowed", "vhs")})
+    return out
+
+
+def report(ds: xr.Dataset, coarse: dict, fine: dict, mesh) -> str:
+    nx, ny = mesh
+    lines = ["# Section 3 full-FEM reference: 120 x 90 against a finer mesh", "",
+             "Generated by `benchmarks/fem_reference_mesh.py`: the validation's quick-level "
+             f"full-FEM tasks (5 realizations, rows graded x4, 240 steps per period, 3 "
+             f"periods) rerun at {nx} x {ny} at the loads below; everything else "
+             "(hybrids, VHS, the 0.8 MPa FEM) from `docs/validation/section3/results.nc`.", "",
+             f"| v [mm/s] | σ0 [MPa] | r | FEM 120x90 μ (A) | FEM {nx}x{ny} μ (A) | ratio | "
+             "VHS μ (A) | windowed μ (A) |", "|---|---|---|---|---|---|---|---|"]
+    for (v, p), vals in fine.items():
+        s = ds.sel(velocity=v, pressure=p)
+        for ir, ((mu_f, a_f), (mu_c, a_c)) in enumerate(zip(vals, coarse[(v, p)], strict=True)):
+            vhs = s.sel(model="vhs", realization=ir)
+            win = s.sel(model="hybrid-windowed", realization=ir)
+            lines.append(
+                f"| {v:g} | {p:g} | {ir} | {mu_c:.3f} ({a_c:.4f}) | {mu_f:.3f} ({a_f:.4f}) | "
+                f"{mu_f / mu_c:.3f} | {float(vhs['friction']):.3f} "
+                f"({float(vhs['contact_fraction']):.4f}) | {float(win['friction']):.3f} "
+                f"({float(win['contact_fraction']):.4f}) |")
+        mf, mc = np.nanmean([x[0] for x in vals]), np.nanmean([x[0] for x in coarse[(v, p)]])
+        af, ac = np.nanmean([x[1] for x in vals]), np.nanmean([x[1] for x in coarse[(v, p)]])
+        lines.append(f"| {v:g} | {p:g} | mean | {mc:.3f} ({ac:.4f}) | {mf:.3f} ({af:.4f}) | "
+                     f"{mf / mc:.3f} | {float(s['friction_mean'].sel(model='vhs')):.3f} "
+                     f"({float(s['contact_fraction_mean'].sel(model='vhs')):.4f}) | "
+                     f"{float(s['friction_mean'].sel(model='hybrid-windowed')):.3f} "
+                     f"({float(s['contact_fraction_mean'].sel(model='hybrid-windowed')):.4f}) |")
+    before, after = _errors(ds), _errors(_with_reference(ds, fine))
+    lines += ["", "Eq. 28 at equal contact area (areas log-spaced over the range every "
+              "model's sweep covers, as in VALIDATION.md), with the 120 x 90 reference and "
+              f"with the {nx} x {ny} reference at the refined loads:", "",
+              "| v [mm/s] | reference | areas | pointwise hybrid | windowed hybrid | VHS |",
+              "|---|---|---|---|---|---|"]
+    for name, errs in (("120x90", before), (f"{nx}x{ny} at refined loads", after)):
+        for v, (areas, e) in errs.items():
+            lines.append(f"| {v:g} | {name} | {areas.min():.3f}-{areas.max():.3f} | "
+                         f"{100 * e['hybrid']:.1f} % | {100 * e['hybrid-windowed']:.1f} % | "
+                         f"{100 * e['vhs']:.1f} % |")
+    return "\n".join(lines) + "\n"
+
+
+def _mesh(spec: str) -> tuple[int, int]:
+    nx, ny = (int(x) for x in spec.lower().split("x"))
+    return nx, ny
+
+
+def main(argv=None) -> int:
+    ap = argparse.ArgumentParser(description=__doc__.splitlines()[0])
+    ap.add_argument("loads", nargs="*", default=DEFAULT_LOADS, help="V:P pairs")
+    ap.add_argument("--mesh", default="240x90")
+    ap.add_argument("--workers", type=int, default=1)
+    ap.add_argument("--cache", type=Path, default=ROOT / ".validation-cache")
+    ap.add_argument("--results", type=Path,
+                    default=ROOT / "docs" / "validation" / "section3" / "results.nc")
+    ap.add_argument("--report", type=Path)
+    ap.add_argument("--law-pressures", type=float, nargs="*", default=[],
+                    help="also compare the law cell at these pressures [MPa]")
+    ap.add_argument("--law-velocity", type=float, default=50.0)
+    ap.add_argument("--law-mesh", default="120x90")
+    ap.add_argument("--law-coarse-mesh", default="60x45")
+    ap.add_argument("--skip-full", action="store_true", help="only the law cell part")
+    args = ap.parse_args(argv)
+    mesh = _mesh(args.mesh)
+    loads = [tuple(float(x) for x in s.split(":")) for s in args.loads]
+    coarse_cfg, fine_cfg = _configs(mesh, args.workers, args.cache)
+    text = ""
+    if not args.skip_full:
+        fine = _solve(fine_cfg, loads)
+        coarse = _solve(coarse_cfg, loads, progress=False)     # cache hits
+        text = report(xr.load_dataset(args.results), coarse, fine, mesh)
+    if args.law_pressures:
+        text += law_report(coarse_cfg, _mesh(args.law_coarse_mesh), _mesh(args.law_mesh),
+                           args.law_pressures, args.law_velocity)
+    print(text)
+    if args.report:
+        args.report.write_text(text)
+    return 0
+
+
+if __name__ == "__main__":
+    raise SystemExit(main())
