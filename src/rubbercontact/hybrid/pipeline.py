@@ -25,6 +25,7 @@ import time
 import warnings
 from collections.abc import Callable
 from pathlib import Path
+from typing import TYPE_CHECKING
 
 import numpy as np
 import xarray as xr
@@ -41,6 +42,9 @@ from .law import (
     screen_monotone,
 )
 from .metrics import interpolate_at_areas, mean_relative_error
+
+if TYPE_CHECKING:   # imported lazily at run time, as everywhere in this module
+    from ..sweep import Task
 
 #: Executes a list of sweep tasks; returns per task an ``xr.Dataset`` or a failure record.
 Runner = Callable[[list], list]
@@ -321,7 +325,7 @@ def run(config: RunConfig | dict | str | Path, *, runner: Runner | None = None,
 
 
 def full_fem_task(cfg: RunConfig, surface: SineSeries, material: GeneralizedMaxwell,
-                  velocity: float, mean_pressure: float):
+                  velocity: float, mean_pressure: float) -> Task:
     """The sweep task of one full-FEM sliding test (model ``fem``) with the config's options.
 
     Parameters
