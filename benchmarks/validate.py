@@ -34,7 +34,11 @@ sys.path.insert(0, str(ROOT / "src"))
 
 import rubbercontact as rc  # noqa: E402
 from rubbercontact.config import load_config  # noqa: E402
-from rubbercontact.hybrid.metrics import interpolate_at_areas, mean_relative_error  # noqa: E402
+from rubbercontact.hybrid.metrics import (  # noqa: E402
+    bootstrap_interval,
+    interpolate_at_areas,
+    mean_relative_error,
+)
 from rubbercontact.io.results import write_results  # noqa: E402
 from rubbercontact.plotting.figures import plot_all  # noqa: E402
 
@@ -121,6 +125,21 @@ def _cost_lines(ds) -> list[str]:
     return lines
 
 
+def _common_areas(curves: dict, points: int = 4):
+    """``points`` areas log-spaced over the range every ``(area, μ)`` sweep covers, and
+    each model's μ there (nothing extrapolated); None when the sweeps share no range."""
+    curves = {m: (a[np.isfinite(a) & np.isfinite(mu)], mu[np.isfinite(a) & np.isfinite(mu)])
+              for m, (a, mu) in curves.items()}    # failed loads (NaN) are left out
+    if any(a.size < 2 for a, _ in curves.values()):
+        return None
+    lo = max(a.min() for a, _ in curves.values())
+    hi = min(a.max() for a, _ in curves.values())
+    if not hi > lo:
+        return None
+    areas = np.geomspace(lo, hi, points)
+    return areas, {m: interpolate_at_areas(a, mu, areas) for m, (a, mu) in curves.items()}
+
+
 def _friction_at_common_areas(ds, points: int = 4) -> dict:
     """Per velocity: target areas and each model's mean friction there.
 
@@ -137,22 +156,54 @@ def _friction_at_common_areas(ds, points: int = 4) -> dict:
                    for m in models}
         else:
             s = ds.sel(velocity=v)
-            curves = {}
-            for m in models:   # failed loads (NaN) are left out of that model's sweep
-                a = s["contact_fraction_mean"].sel(model=m).values
-                mu = s["friction_mean"].sel(model=m).values
-                ok = np.isfinite(a) & np.isfinite(mu)
-                curves[m] = (a[ok], mu[ok])
-            if any(a.size < 2 for a, _ in curves.values()):
+            common = _common_areas({m: (s["contact_fraction_mean"].sel(model=m).values,
+                                        s["friction_mean"].sel(model=m).values)
+                                    for m in models}, points)
+            if common is None:
                 continue
-            lo = max(np.nanmin(a) for a, _ in curves.values())
-            hi = min(np.nanmax(a) for a, _ in curves.values())
-            if not hi > lo:
-                continue
-            areas = np.geomspace(lo, hi, points)
-            mus = {m: interpolate_at_areas(a, mu, areas) for m, (a, mu) in curves.items()}
+            areas, mus = common
         ok = np.all([np.isfinite(mus[m]) for m in models], axis=0)
         out[float(v)] = (areas[ok], {m: mus[m][ok] for m in models})
+    return out
+
+
+def _eq28_intervals(ds, models=("hybrid", "hybrid-windowed", "vhs"), level: float = 0.9,
+                    resamples: int = 2000, points: int = 4) -> dict:
+    """``{v: {model: (low, high)}}``: the sampling uncertainty of eq. 28 at equal area.
+
+    A paired bootstrap over realizations (``bootstrap_interval``): each resample redoes the
+    mean curves of every model on the same drawn realizations, the common areas and the
+    error, exactly as ``_friction_at_common_areas`` does for the whole set.
+    """
+    models = [m for m in models if m in ds["model"].values]
+    out = {}
+    for v in ds["velocity"].values:
+        s = ds.sel(velocity=v)
+        if "friction_at_area" in ds:
+            mu_k = {m: s["friction_at_area"].sel(model=m).transpose("realization", ...).values
+                    for m in ds["model"].values}
+
+            def stat(idx, m, mu_k=mu_k):
+                mus = {k: x[idx].mean(axis=0) for k, x in mu_k.items()}
+                ok = np.all([np.isfinite(x) for x in mus.values()], axis=0)
+                return mean_relative_error(mus["fem"][ok], mus[m][ok]) if ok.any() else np.nan
+        else:
+            arr = {m: (s["contact_fraction"].sel(model=m).transpose("realization", ...).values,
+                       s["friction"].sel(model=m).transpose("realization", ...).values)
+                   for m in ds["model"].values}
+
+            def stat(idx, m, arr=arr):
+                common = _common_areas({k: (a[idx].mean(axis=0), mu[idx].mean(axis=0))
+                                        for k, (a, mu) in arr.items()}, points)
+                if common is None:
+                    return np.nan
+                _, mus = common
+                ok = np.all([np.isfinite(x) for x in mus.values()], axis=0)
+                return mean_relative_error(mus["fem"][ok], mus[m][ok]) if ok.any() else np.nan
+        out[float(v)] = {m: bootstrap_interval(lambda idx, m=m: stat(idx, m),
+                                               ds.sizes["realization"], resamples=resamples,
+                                               level=level)[:2]
+                         for m in models}
     return out
 
 
@@ -205,6 +256,24 @@ def _spread_sentence(ds) -> str:
             f"{cells['hybrid-windowed']}).")
 
 
+def _sampling_sentence(ds, target: float = 0.02) -> str:
+    """How well the realizations pin down the FEM mean friction (measured spread)."""
+    f = ds["friction"].sel(model="fem")
+    n = ds.sizes["realization"]
+    cv = (f.std("realization", ddof=1) / f.mean("realization")).max("pressure")
+    parts = [f"{float(v):g} mm/s up to {100 * float(cv.sel(velocity=v)):.0f} %"
+             for v in ds["velocity"].values]
+    need = int(np.ceil((float(cv.max()) / target) ** 2))
+    return (f"**Sampling uncertainty.** The FEM friction differs between realizations by a "
+            f"coefficient of variation of {', '.join(parts)} at one load, so the mean of "
+            f"{n} realizations carries a standard error of up to "
+            f"{100 * float(cv.max()) / np.sqrt(n):.0f} %; about {need} realizations would be "
+            f"needed to know it within {100 * target:.0f} %. The hybrids vary much less between "
+            f"realizations, so their eq. 28 error inherits that uncertainty: see the "
+            f"bootstrap intervals in the table below. The VHS follows the FEM realization by "
+            f"realization, so its interval is narrow.")
+
+
 def section3_report(ds, wall, figs, msgs, level) -> list[str]:
     out = ["## Paper §3: three-wave validation surface", ""]
     out.append(f"Level `{level}`: {ds.sizes['realization']} realizations, velocities "
@@ -240,8 +309,11 @@ def section3_report(ds, wall, figs, msgs, level) -> list[str]:
                 "loads and this level's at the others, eq. 28 at equal area becomes 3.4 % / "
                 "11.6 % for the windowed hybrid and 7.1 % / 16.6 % for the VHS at 10 / 50 "
                 "mm/s, against 3.2 % / 23.8 % and 7.6 % / 29.1 % in the table below "
-                "(docs/validation/fem_reference_mesh.md). The quick level keeps 120 x 90 "
+                "(docs/validation/fem_reference_mesh.md; there the windowed hybrid's 90 % "
+                "bootstrap intervals are 1.8-17.9 % and 2.1-34.0 %, and the paper's 2.9 / "
+                "7.1 % lie inside them). The quick level keeps 120 x 90 "
                 "until all its loads are rerun at 240 x 90 (about 8 h on one core).",
+                "", _sampling_sentence(ds),
                 "", "Why the FEM lies below the VHS: on one sine scaled so that linear theory "
                 "gives the same contact and μ/m2 at every slope, the FEM agrees with the VHS "
                 "within 1 % for m2 <= 0.25 and falls smoothly to 3-5 % below it at the paper's "
@@ -259,8 +331,12 @@ def section3_report(ds, wall, figs, msgs, level) -> list[str]:
                 "windowed hybrid with the RG law is 3.4 % off at equal σ0 "
                 "(docs/validation/material_model.md)."]
     at_areas = _friction_at_common_areas(ds)
+    ci = _eq28_intervals(ds) if ds.sizes["realization"] >= 2 else {}
     out += ["", "Eq. 28 mean relative error against full FEM at equal normal contact area "
-            "(the paper's comparison; areas per velocity in the table below):", "",
+            "(the paper's comparison; areas per velocity in the table below). In brackets "
+            "the 90 % interval of a paired bootstrap over the realizations (every model "
+            "resampled on the same drawn realizations; 2000 resamples): the sampling "
+            "uncertainty of a comparison of realization means.", "",
             "| velocity [mm/s] | hybrid vs FEM | windowed hybrid vs FEM | VHS vs FEM "
             "| paper (hybrid) |", "|---|---|---|---|---|"]
     for v, (areas, mus) in at_areas.items():
@@ -268,9 +344,11 @@ def section3_report(ds, wall, figs, msgs, level) -> list[str]:
              if m in mus and "fem" in mus and areas.size else np.nan
              for m in ("hybrid", "hybrid-windowed", "vhs")}
         paper = PAPER_E.get(float(v))
-        out.append(f"| {v:g} | {100 * e['hybrid']:.1f} % | {100 * e['hybrid-windowed']:.1f} % "
-                   f"| {100 * e['vhs']:.1f} % | "
-                   f"{'' if paper is None else f'{100 * paper:.1f} %'} |")
+        out.append(f"| {v:g} | " + " | ".join(
+            f"{100 * e[m]:.1f} %" + (f" ({100 * ci[v][m][0]:.1f}-{100 * ci[v][m][1]:.1f})"
+                                     if v in ci and m in ci[v] else "")
+            for m in ("hybrid", "hybrid-windowed", "vhs"))
+            + f" | {'' if paper is None else f'{100 * paper:.1f} %'} |")
     e_p = {m: [mean_relative_error(ds["friction_mean"].sel(model="fem", velocity=v).values,
                                    ds["friction_mean"].sel(model=m, velocity=v).values)
                for v in ds["velocity"].values]
