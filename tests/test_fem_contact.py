@@ -203,6 +203,23 @@ def test_westergaard_elastic_indentation():
     assert out.stats.max_penetration < 5e-3 * amp
 
 
+@pytest.mark.parametrize("nx", [50, 100])
+@pytest.mark.parametrize("offset", [0.0, 0.25, 0.5])
+def test_small_contact_area_within_one_element_of_westergaard(nx, offset):
+    # A small contact (2a/λ = 0.04, h/a = 1 and 0.5): each edge falls anywhere inside an
+    # element, and the gap is interpolated linearly between contact points, so the
+    # contact fraction is resolved to half an element per edge: |A − A_W| <= h/λ.
+    # The offsets move the sine against the nodes (0, 1/4, 1/2 element).
+    E, lam, amp, frac = 4.0, 1.0, 0.01, 0.04
+    h = lam / nx
+    surf = rc.roughness.SineSeries([lam], [amp], [np.pi / 2 + 2 * np.pi * offset * h / lam])
+    p_full = np.pi * (4 * E / 3) * amp / lam
+    pbar = p_full * np.sin(np.pi * frac / 2) ** 2
+    out = rc.fem.sliding_test(surf, rc.materials.GeneralizedMaxwell.elastic(E), pbar, 0.0,
+                              mesh=(nx, 45), grading=4.0, contact_points=2)
+    assert abs(out.contact_fraction - frac) <= h / lam
+
+
 def _bad(**kw):
     args = dict(surface=rc.roughness.high_slope_wave(), material=rc.materials.sbr(),
                 mean_pressure=1.0, velocity=10.0, mesh=(30, 23))
