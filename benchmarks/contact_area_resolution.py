@@ -13,9 +13,16 @@ width ``h`` over the contact half-width ``a``:
    agree within 1 % in friction; ``slope_nonlinearity.py``) against the VHS at n = 8192,
    whose area is converged: the viscoelastic contact is asymmetric (a sharp leading edge, a
    slowly opening trailing gap), which the static case does not test.
+3. **Sensitivity of the estimator** to the contact penalty (``penalty_factor`` 100, the
+   default, and 1000) and to its threshold: contact is counted where the gap is below
+   ``c`` times the local chord sag, ``c = 1`` in the package. Inside a contact on a crest
+   a straight segment touches near its middle and its nodes lift off by about one sag, so
+   ``c = 1`` sits on the edge of that classification. The variants are computed from the
+   same solves by wrapping ``fem.sliding.face_contact_fraction`` here (the package is not
+   changed).
 
 Each case appends one JSON line to ``--out`` when it finishes; finished cases are skipped on
-a rerun (resumable). Run (about 15 min on one core)::
+a rerun (resumable). Run (about 30 min on one core)::
 
     OMP_NUM_THREADS=1 .venv/bin/python benchmarks/contact_area_resolution.py \
         --out docs/validation/contact_area_resolution.jsonl \
@@ -35,6 +42,8 @@ from pathlib import Path
 import numpy as np
 
 import rubbercontact as rc
+from rubbercontact.fem import sliding as fem_sliding
+from rubbercontact.fem.contact import contact_fraction
 
 # Westergaard: unit wavelength, small slope (m2 = 0.044), elastic
 W_E, W_LAM, W_AMP = 4.0, 1.0, 0.01
@@ -44,7 +53,72 @@ OFFSETS = (0.0, 0.25, 0.5)           # of an element
 # sliding: the paper's high-slope wavelength at m2 = 0.25, SBR, 50 mm/s
 S_LAM, S_M2, S_VELOCITY = 0.0625, 0.25, 50.0
 S_PRESSURE = 0.06                    # [MPa]: A_VHS ≈ 0.03, a ≈ 0.9 µm
-S_NX = (60, 120, 240)
+S_NX = (60, 120, 240, 480)
+# estimator sensitivity: sag multiples c of the contact threshold, penalties, meshes
+SAG_FACTORS = (1.0, 1.5, 2.0)
+PENALTIES = (100.0, 1000.0)
+T_STATIC_NX = (100, 200, 400)
+T_SLIDING_NX = (60, 120, 240)
+
+
+def _with_threshold_variants(run):
+    """Run ``run()`` recording, at every step, the contact fraction for each ``c``.
+
+    Returns ``(result, {c: mean over the result's averaging window})``: the window is the
+    trailing run of steps whose mean is the result's own contact fraction (``c = 1``).
+    """
+    original = fem_sliding.face_contact_fraction
+    record: dict[float, list[float]] = {c: [] for c in SAG_FACTORS}
+
+    def variants(surface, shift, cs, width):
+        m = cs.points_per_segment
+        x = cs.point_x
+        dx = np.diff(np.append(x[::m], x[0] + width))
+        sag = np.repeat(dx, m) ** 2 * np.abs(surface.curvatures(x + shift)) / 8.0
+        for c in SAG_FACTORS:
+            record[c].append(contact_fraction(x, cs.gap - c * sag, width))
+        return original(surface, shift, cs, width)
+
+    fem_sliding.face_contact_fraction = variants
+    try:
+        out = run()
+    finally:
+        fem_sliding.face_contact_fraction = original
+    history = np.asarray(out.history["contact_fraction"])
+    for w in range(1, history.size + 1):
+        if abs(history[-w:].mean() - out.contact_fraction) <= 1e-12:
+            return out, {c: float(np.mean(record[c][-w:])) for c in SAG_FACTORS}
+    raise RuntimeError("could not locate the averaging window of the contact fraction")
+
+
+def threshold_case(kind: str, nx: int, penalty: float) -> dict:
+    if kind == "threshold-static":
+        p_full = np.pi * (4 * W_E / 3) * W_AMP / W_LAM
+        pbar = p_full * np.sin(np.pi * W_FRACTION / 2) ** 2
+        areas = {}
+        for offset in OFFSETS:
+            surf = rc.roughness.SineSeries(
+                [W_LAM], [W_AMP], [np.pi / 2 + 2 * np.pi * offset / nx])
+            _, a = _with_threshold_variants(lambda s=surf: rc.fem.sliding_test(
+                s, rc.materials.GeneralizedMaxwell.elastic(W_E), pbar, 0.0, mesh=(nx, 45),
+                grading=4.0, contact_points=2, penalty_factor=penalty))
+            areas[str(offset)] = {str(c): v for c, v in a.items()}
+        return {"case": kind, "nx": nx, "offset": penalty, "penalty": penalty,
+                "reference": W_FRACTION, "areas": areas,
+                "h_over_a": W_LAM / nx / (W_FRACTION * W_LAM / 2)}
+    amp = S_M2 * np.sqrt(2) * S_LAM / (2 * np.pi)
+    surf = rc.roughness.SineSeries([S_LAM], [amp])
+    mat = rc.materials.sbr()
+    vhs = rc.halfspace.solve_sliding(surf, None, mat, S_VELOCITY, S_PRESSURE, n=8192)
+    with warnings.catch_warnings():
+        warnings.simplefilter("ignore")
+        out, a = _with_threshold_variants(lambda: rc.fem.sliding_test(
+            surf, mat, S_PRESSURE, S_VELOCITY, mesh=(nx, 45), grading=4.0, contact_points=2,
+            periods=4, penalty_factor=penalty))
+    return {"case": kind, "nx": nx, "offset": penalty, "penalty": penalty,
+            "reference": vhs.contact_fraction, "areas": {"0": {str(c): v for c, v in a.items()}},
+            "fem_friction": out.friction, "vhs_friction": vhs.friction,
+            "h_over_a": S_LAM / nx / (vhs.contact_fraction * S_LAM / 2)}
 
 
 def westergaard_case(nx: int, offset: float) -> dict:
@@ -113,6 +187,20 @@ def report(rows: list[dict]) -> str:
                        f"{(r['fem'] - r['reference']) * r['nx']:+.2f} | "
                        f"{r['fem_friction'] / r['vhs_friction']:.3f} | {r['wall_s']:.0f} |"
                        + ("" if r["steady"] else " not steady"))
+    thresh = sorted((r for r in rows if r["case"].startswith("threshold")),
+                    key=lambda r: (r["case"], r["nx"], r["penalty"]))
+    if thresh:
+        out += ["", "## Sensitivity to the penalty and to the contact threshold", "",
+                "A/A_ref with contact counted where gap < c x chord sag (the package: c = 1); "
+                "static rows list the three node offsets (0, 1/4, 1/2 element).", "",
+                "| case | nx | h/a | penalty factor | "
+                + " | ".join(f"c = {c:g}" for c in SAG_FACTORS) + " |",
+                "|---|---|---|---|" + "---|" * len(SAG_FACTORS)]
+        for r in thresh:
+            cells = ["/".join(f"{v[str(c)] / r['reference']:.3f}" for v in r["areas"].values())
+                     for c in SAG_FACTORS]
+            out.append(f"| {r['case'].split('-')[1]} | {r['nx']} | {r['h_over_a']:.3g} | "
+                       f"{r['penalty']:g} | " + " | ".join(cells) + " |")
     return "\n".join(out) + "\n"
 
 
@@ -121,6 +209,8 @@ def main(argv=None) -> int:
     ap.add_argument("--out", type=Path, default=Path("contact_area_resolution.jsonl"))
     ap.add_argument("--report", type=Path)
     ap.add_argument("--skip-sliding", action="store_true")
+    ap.add_argument("--cases", default="westergaard,threshold-static,sliding,threshold-sliding",
+                    help="comma-separated case kinds to run (the report shows all finished)")
     args = ap.parse_args(argv)
     rows = []
     if args.out.exists():   # a line cut by a kill is not valid JSON: that case reruns
@@ -131,12 +221,18 @@ def main(argv=None) -> int:
                 continue
     done = {(r["case"], r["nx"], r["offset"]) for r in rows}
     todo = [("westergaard", nx, o) for nx in W_NX for o in OFFSETS]
+    todo += [("threshold-static", nx, pf) for nx in T_STATIC_NX for pf in PENALTIES]
     if not args.skip_sliding:
         todo += [("sliding", nx, 0.0) for nx in S_NX]
+        todo += [("threshold-sliding", nx, pf) for nx in T_SLIDING_NX for pf in PENALTIES]
+    kinds = {k.strip() for k in args.cases.split(",")}
     for case, nx, offset in todo:
-        if (case, nx, offset) in done:
+        if (case, nx, offset) in done or case not in kinds:
             continue
-        row = westergaard_case(nx, offset) if case == "westergaard" else sliding_case(nx)
+        if case.startswith("threshold"):
+            row = threshold_case(case, nx, offset)
+        else:
+            row = westergaard_case(nx, offset) if case == "westergaard" else sliding_case(nx)
         print(json.dumps(row), flush=True)
         rows.append(row)
         with args.out.open("a") as fh:   # one whole line per finished case

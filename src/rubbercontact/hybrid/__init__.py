@@ -1,8 +1,8 @@
 """The hybrid multiscale method: effective law of the high-slope scale + half-space on the rest."""
 
 from .law import LawWarning, effective_law, law_at_velocity, screen_monotone
-from .metrics import interpolate_at_areas, mean_relative_error
+from .metrics import bootstrap_interval, interpolate_at_areas, mean_relative_error
 from .pipeline import run
 
 __all__ = ["effective_law", "law_at_velocity", "screen_monotone", "run", "mean_relative_error",
-           "interpolate_at_areas", "LawWarning"]
+           "interpolate_at_areas", "bootstrap_interval", "LawWarning"]
