@@ -32,7 +32,6 @@ a rerun (resumable). Run (about 30 min on one core)::
 from __future__ import annotations
 
 import argparse
-import json
 import subprocess
 import time
 import warnings
@@ -40,6 +39,7 @@ from datetime import UTC, datetime
 from pathlib import Path
 
 import numpy as np
+from _rows import append_row, read_rows
 
 import rubbercontact as rc
 from rubbercontact.fem import sliding as fem_sliding
@@ -212,13 +212,7 @@ def main(argv=None) -> int:
     ap.add_argument("--cases", default="westergaard,threshold-static,sliding,threshold-sliding",
                     help="comma-separated case kinds to run (the report shows all finished)")
     args = ap.parse_args(argv)
-    rows = []
-    if args.out.exists():   # a line cut by a kill is not valid JSON: that case reruns
-        for line in args.out.read_text().splitlines():
-            try:
-                rows.append(json.loads(line))
-            except json.JSONDecodeError:
-                continue
+    rows = read_rows(args.out)
     done = {(r["case"], r["nx"], r["offset"]) for r in rows}
     todo = [("westergaard", nx, o) for nx in W_NX for o in OFFSETS]
     todo += [("threshold-static", nx, pf) for nx in T_STATIC_NX for pf in PENALTIES]
@@ -233,10 +227,8 @@ def main(argv=None) -> int:
             row = threshold_case(case, nx, offset)
         else:
             row = westergaard_case(nx, offset) if case == "westergaard" else sliding_case(nx)
-        print(json.dumps(row), flush=True)
+        append_row(args.out, row)
         rows.append(row)
-        with args.out.open("a") as fh:   # one whole line per finished case
-            fh.write(json.dumps(row) + "\n")
     if args.report:
         args.report.write_text(report(rows))
     return 0

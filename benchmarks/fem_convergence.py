@@ -18,12 +18,12 @@ Run single-threaded, e.g. (about 1 h on one core for the default set)::
 from __future__ import annotations
 
 import argparse
-import json
 import time
 import warnings
 from pathlib import Path
 
 import numpy as np
+from _rows import append_row, read_rows
 
 import rubbercontact as rc
 
@@ -180,21 +180,12 @@ def main(argv=None) -> int:
     ap.add_argument("--no-run", action="store_true",
                     help="only write the report from the finished cases")
     args = ap.parse_args(argv)
-    done = {}
-    if args.out.exists():
-        for line in args.out.read_text().splitlines():
-            try:
-                row = json.loads(line)
-            except json.JSONDecodeError:   # a line cut by a kill: that case runs again
-                continue
-            done[row["case"]] = row
+    done = {row["case"]: row for row in read_rows(args.out)}
     for text in args.cases:
         if text in done or args.no_run:
             continue
         row = run_case(parse_case(text), args.velocity, args.periods)
-        print(json.dumps(row), flush=True)
-        with args.out.open("a") as f:    # one whole line per finished case
-            f.write(json.dumps(row) + "\n")
+        append_row(args.out, row)
         done[text] = row
     if args.report:
         args.report.write_text(report([done[c] for c in args.cases if c in done]))

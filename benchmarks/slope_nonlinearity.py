@@ -21,7 +21,6 @@ study resumes after a kill. Run (about 10 min on one core at 60 x 45)::
 from __future__ import annotations
 
 import argparse
-import json
 import subprocess
 import time
 import warnings
@@ -29,6 +28,7 @@ from datetime import UTC, datetime
 from pathlib import Path
 
 import numpy as np
+from _rows import append_row, read_rows
 
 import rubbercontact as rc
 
@@ -87,23 +87,15 @@ def main(argv=None) -> int:
     ap.add_argument("--p-ref", type=float, nargs="*", default=list(P_REF))
     args = ap.parse_args(argv)
     mesh = tuple(int(v) for v in args.mesh.lower().split("x"))
-    rows = []
-    if args.out.exists():   # a line cut by a kill is not valid JSON: that case reruns
-        for line in args.out.read_text().splitlines():
-            try:
-                rows.append(json.loads(line))
-            except json.JSONDecodeError:
-                continue
+    rows = read_rows(args.out)
     done = {(r["m2"], r["p_ref"], tuple(r["mesh"])) for r in rows}
     for p_ref in args.p_ref:
         for m2 in args.slopes:
             if (m2, p_ref, mesh) in done:
                 continue
             row = run_case(m2, p_ref, mesh)
-            print(json.dumps(row), flush=True)
+            append_row(args.out, row)
             rows.append(row)
-            with args.out.open("a") as fh:   # one whole line per finished case
-                fh.write(json.dumps(row) + "\n")
     if args.report:
         args.report.write_text(report(rows))
     return 0

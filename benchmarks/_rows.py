@@ -1,0 +1,30 @@
+"""Resumable studies: one JSON line per finished case, appended as the case ends.
+
+A kill can cut only the line being written; that line is not valid JSON, so it is skipped
+on reading and its case runs again. Everything finished before is kept.
+"""
+
+from __future__ import annotations
+
+import json
+from pathlib import Path
+
+
+def read_rows(path: Path) -> list[dict]:
+    """The finished cases in ``path`` (none if it does not exist yet)."""
+    rows = []
+    if path.exists():
+        for line in path.read_text().splitlines():
+            try:
+                rows.append(json.loads(line))
+            except json.JSONDecodeError:   # a line cut by a kill: that case runs again
+                continue
+    return rows
+
+
+def append_row(path: Path, row: dict) -> None:
+    """Print ``row`` and append it to ``path`` as one whole line."""
+    text = json.dumps(row)
+    print(text, flush=True)
+    with path.open("a") as fh:
+        fh.write(text + "\n")
