@@ -54,7 +54,8 @@ def _configs(mesh: tuple[int, int], workers: int, cache: Path):
 
 
 def _solve(cfg, loads, progress="log") -> dict:
-    """``{(v, p): [(μ, A) per realization]}`` of the config's full FEM (cached)."""
+    """``{(v, p): [(μ, A, compute time [s]) per realization]}`` of the config's full FEM
+    (cached; the time is that of the original solve)."""
     mat = build_material(cfg)
     reals = rc.roughness.section3().realizations(cfg.realizations, seed=cfg.seed)
     tasks, index = [], []
@@ -67,8 +68,8 @@ def _solve(cfg, loads, progress="log") -> dict:
     for (v, p, _ir), res in zip(index, results, strict=True):
         ok = isinstance(res, xr.Dataset)     # a failure (TaskFailure) counts as missing
         out.setdefault((v, p), []).append(
-            (float(res["friction"]), float(res["contact_fraction"])) if ok
-            else (np.nan, np.nan))
+            (float(res["friction"]), float(res["contact_fraction"]), float(res["wall_time"]))
+            if ok else (np.nan, np.nan, np.nan))
     return out
 
 
@@ -106,7 +107,7 @@ def _with_reference(ds: xr.Dataset, fine: dict) -> xr.Dataset:
     """The validation dataset with the FEM replaced by ``fine`` at its loads."""
     ds = ds.copy(deep=True)
     for (v, p), vals in fine.items():
-        mu, a = np.array(vals).T
+        mu, a, _ = np.array(vals).T
         sel = {"model": "fem", "velocity": v, "pressure": p}
         ds["friction"].loc[sel] = mu
         ds["contact_fraction"].loc[sel] = a
@@ -134,7 +135,8 @@ def report(ds: xr.Dataset, coarse: dict, fine: dict, mesh) -> str:
              "VHS μ (A) | windowed μ (A) |", "|---|---|---|---|---|---|---|---|"]
     for (v, p), vals in fine.items():
         s = ds.sel(velocity=v, pressure=p)
-        for ir, ((mu_f, a_f), (mu_c, a_c)) in enumerate(zip(vals, coarse[(v, p)], strict=True)):
+        for ir, ((mu_f, a_f, _), (mu_c, a_c, _)) in enumerate(zip(vals, coarse[(v, p)],
+                                                                  strict=True)):
             vhs = s.sel(model="vhs", realization=ir)
             win = s.sel(model="hybrid-windowed", realization=ir)
             lines.append(
@@ -149,6 +151,13 @@ def report(ds: xr.Dataset, coarse: dict, fine: dict, mesh) -> str:
                      f"({float(s['contact_fraction_mean'].sel(model='vhs')):.4f}) | "
                      f"{float(s['friction_mean'].sel(model='hybrid-windowed')):.3f} "
                      f"({float(s['contact_fraction_mean'].sel(model='hybrid-windowed')):.4f}) |")
+    t_fine = {k: np.nansum([x[2] for x in vals]) for k, vals in fine.items()}
+    t_coarse = {k: np.nansum([x[2] for x in coarse[k]]) for k in fine}
+    lines += ["", "Compute time of these full-FEM solves (sum over the realizations, one core "
+              "each, as run; two workers on two cores): " + "; ".join(
+                  f"{v:g} mm/s, {p:g} MPa: {t_coarse[(v, p)]:.0f} s at 120 x 90, "
+                  f"{t_fine[(v, p)]:.0f} s at {nx} x {ny}" for (v, p) in fine)
+              + f". Together {sum(t_fine.values()) / sum(t_coarse.values()):.2f}x."]
     refined = _with_reference(ds, fine)
     before, after = _errors(ds), _errors(refined)
     ci = validate._eq28_intervals(refined)
