@@ -202,6 +202,19 @@ def test_viscous_model_reaches_the_fem_tasks_and_keeps_simo_cache_keys(tmp_path)
         rc.config.parse_config(_config(tmp_path, fem={"viscous_model": "maxwell"}))
 
 
+def test_law_grading_reaches_the_law_tasks_and_keeps_ungraded_cache_keys(tmp_path):
+    for grading in (1.0, 4.0):
+        seen = _first_sweep(_config(tmp_path, models=["hybrid"], surface={"preset": "section3"},
+                                    fem={"mesh": [40, 30], "grading": grading}))
+        assert seen
+        for t in seen:
+            # the default is left out of the task, so laws cached before the option
+            # existed stay valid
+            assert t.kwargs.get("grading") == (None if grading == 1.0 else grading)
+    with pytest.raises(rc.errors.InputError, match="grading"):
+        rc.config.parse_config(_config(tmp_path, fem={"grading": 0.0}))
+
+
 def test_target_areas_are_bracketed_at_every_speed(tmp_path):
     # The pressure sweep behind target areas is shared by all speeds; at 1 mm/s the
     # rubber is ~4x softer than at 1000 mm/s, so a grid sized at one speed misses the

@@ -121,6 +121,9 @@ class FemConfig(_Strict):
         "simo", description="finite-strain viscoelasticity: simo (stress-like internal "
                             "variables) or reese-govindjee (the paper's; multiplicative split, "
                             "first order in dt, ~5x the cost)")
+    grading: PositiveFloat = Field(
+        1.0, le=100, description="top/bottom element height ratio of the law cell's mesh "
+                                 "(> 1 refines toward the contact face)")
     full_grading: PositiveFloat = Field(
         1.0, le=100, description="top/bottom element height ratio of the full-surface FEM mesh "
                                  "(> 1 refines toward the contact face)")

@@ -34,7 +34,8 @@ def effective_law(hs_surface: SineSeries, material: GeneralizedMaxwell,
                   mesh: tuple[int, int] = (120, 90), height_ratio: float = 0.75,
                   periods: int = 4, steps_per_period: int | None = None,
                   contact_points: int = 4, history_order: int = 2,
-                  viscous_model: str = "simo", runner=None) -> xr.Dataset:
+                  viscous_model: str = "simo", grading: float = 1.0,
+                  runner=None) -> xr.Dataset:
     """Run the FEM sliding test over ``pressures × velocities`` and tabulate the law.
 
     Parameters
@@ -50,6 +51,10 @@ def effective_law(hs_surface: SineSeries, material: GeneralizedMaxwell,
         Sliding speeds ``v`` [mm/s], >= 0.
     mesh, height_ratio, periods, steps_per_period, contact_points, history_order, viscous_model
         FEM options (see :func:`rubbercontact.fem.sliding_test`).
+    grading
+        Top/bottom element height ratio of the law cell's mesh (> 1 refines toward the
+        contact face, where the deformation concentrates; the same face resolution with
+        fewer rows).
     runner
         Callable ``runner(tasks) -> list`` executing :class:`~rubbercontact.sweep.Task`
         objects, returning per task an ``xr.Dataset`` or a failure record;
@@ -77,6 +82,8 @@ def effective_law(hs_surface: SineSeries, material: GeneralizedMaxwell,
                 "contact_points": int(contact_points), "history_order": int(history_order)}
     if viscous_model != "simo":   # only then: the existing cache keys stay valid
         fem_opts["viscous_model"] = str(viscous_model)
+    if grading != 1.0:            # likewise
+        fem_opts["grading"] = float(grading)
     tasks = [Task(function="rubbercontact.hybrid.tasks:fem_task",
                   kwargs={"surface": hs_surface.as_dict(), "material": material.as_dict(),
                           "velocity": float(vi), "mean_pressure": float(pi), **fem_opts},

@@ -190,7 +190,8 @@ def build_law(cfg: RunConfig, hs0: SineSeries, material: GeneralizedMaxwell,
                             periods=cfg.fem.periods, steps_per_period=cfg.fem.steps_per_period,
                             contact_points=cfg.fem.contact_points,
                             history_order=cfg.fem.history_order,
-                            viscous_model=cfg.fem.viscous_model, runner=runner)
+                            viscous_model=cfg.fem.viscous_model, grading=cfg.fem.grading,
+                            runner=runner)
         fem_time = time.perf_counter() - t0
     law = screen_monotone(law)
     tables = {float(v): continue_with_linear_shape(law_at_velocity(law, float(v)), hs0,
