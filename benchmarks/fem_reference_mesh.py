@@ -12,7 +12,12 @@ Everything goes through the validation cache, so a killed run resumes and a late
 ``make validate`` at the finer mesh reuses these solves. Run single-threaded, e.g.::
 
     OMP_NUM_THREADS=1 .venv/bin/python benchmarks/fem_reference_mesh.py --workers 2 \\
+        50:0.15 50:0.35 10:0.15 --law-pressures 0.05 0.1 0.2 0.5 1 2 4 6 \\
+        --law-velocity 10 50 --law-coarse-mesh 60x45 120x45:g4 \\
         --report docs/validation/fem_reference_mesh.md
+
+The law part compares law cells (the high-slope wave alone) on coarser or graded meshes
+with the paper's 120 x 90.
 """
 
 from __future__ import annotations
@@ -73,7 +78,7 @@ def _solve(cfg, loads, progress="log") -> dict:
     return out
 
 
-def _law_points(cfg, mesh, pressures, velocity) -> xr.Dataset:
+def _law_points(cfg, mesh, pressures, velocity, grading: float = 1.0) -> xr.Dataset:
     """The config's law FEM (high-slope wave alone) at ``pressures`` on ``mesh`` (cached)."""
     reals = rc.roughness.section3().realizations(cfg.realizations, seed=cfg.seed)
     hs0 = _translated_to_zero_phase(reals[0].partition(cfg.surface.m2_threshold)[0])
@@ -81,24 +86,28 @@ def _law_points(cfg, mesh, pressures, velocity) -> xr.Dataset:
                          height_ratio=cfg.fem.height_ratio, periods=cfg.fem.periods,
                          steps_per_period=cfg.fem.steps_per_period,
                          contact_points=cfg.fem.contact_points,
-                         history_order=cfg.fem.history_order,
+                         history_order=cfg.fem.history_order, grading=grading,
                          runner=make_runner(cfg, progress="log"))
 
 
-def law_report(cfg, coarse_mesh, fine_mesh, pressures, velocity) -> str:
-    coarse = _law_points(cfg, coarse_mesh, pressures, velocity)
+def law_report(cfg, coarse_mesh, fine_mesh, pressures, velocity,
+               coarse_grading=1.0) -> str:
+    coarse = _law_points(cfg, coarse_mesh, pressures, velocity, coarse_grading)
     fine = _law_points(cfg, fine_mesh, pressures, velocity)
     nx, ny = coarse_mesh
-    lines = ["", f"## The law cell (high-slope wave alone, {velocity:g} mm/s)", "",
-             f"Law mesh {nx} x {ny} (the quick level's before this study) against "
-             f"{fine_mesh[0]} x {fine_mesh[1]} (the paper's, the quick level's now), both with "
-             f"{cfg.fem.steps_per_period} steps per period (the same dt):", "",
-             f"| p̄ [MPa] | {nx}x{ny} μ (A) | {fine_mesh[0]}x{fine_mesh[1]} μ (A) | ratio |",
+    name = f"{nx}x{ny}" + (f" graded x{coarse_grading:g}" if coarse_grading != 1.0 else "")
+    lines = ["", f"## The law cell (high-slope wave alone, {velocity:g} mm/s): {name}", "",
+             f"Law mesh {name} against {fine_mesh[0]} x {fine_mesh[1]} (the paper's mesh), "
+             f"both with {cfg.fem.steps_per_period} steps per period (the same dt); compute "
+             "time per solve in brackets (as run, with other jobs sharing the two cores, so "
+             "indicative):", "",
+             f"| p̄ [MPa] | {name} μ (A) [s] | {fine_mesh[0]}x{fine_mesh[1]} μ (A) [s] | ratio |",
              "|---|---|---|---|"]
     for p in pressures:
         c, f = coarse.sel(pressure=p, velocity=velocity), fine.sel(pressure=p, velocity=velocity)
         lines.append(f"| {p:g} | {float(c['friction']):.3f} ({float(c['contact_fraction']):.4f})"
-                     f" | {float(f['friction']):.3f} ({float(f['contact_fraction']):.4f}) | "
+                     f" [{float(c['wall_time']):.0f}] | {float(f['friction']):.3f} "
+                     f"({float(f['contact_fraction']):.4f}) [{float(f['wall_time']):.0f}] | "
                      f"{float(f['friction']) / float(c['friction']):.3f} |")
     return "\n".join(lines) + "\n"
 
@@ -216,9 +225,10 @@ def main(argv=None) -> int:
     ap.add_argument("--report", type=Path)
     ap.add_argument("--law-pressures", type=float, nargs="*", default=[],
                     help="also compare the law cell at these pressures [MPa]")
-    ap.add_argument("--law-velocity", type=float, default=50.0)
+    ap.add_argument("--law-velocity", type=float, nargs="*", default=[50.0])
     ap.add_argument("--law-mesh", default="120x90")
-    ap.add_argument("--law-coarse-mesh", default="60x45")
+    ap.add_argument("--law-coarse-mesh", nargs="*", default=["60x45"],
+                    help="meshes compared with --law-mesh, NXxNY[:gG] (G: row grading)")
     ap.add_argument("--skip-full", action="store_true", help="only the law cell part")
     args = ap.parse_args(argv)
     mesh = _mesh(args.mesh)
@@ -230,8 +240,12 @@ def main(argv=None) -> int:
         coarse = _solve(coarse_cfg, loads, progress=False)     # cache hits
         text = report(xr.load_dataset(args.results), coarse, fine, mesh)
     if args.law_pressures:
-        text += law_report(coarse_cfg, _mesh(args.law_coarse_mesh), _mesh(args.law_mesh),
-                           args.law_pressures, args.law_velocity)
+        for spec in args.law_coarse_mesh:
+            mesh_spec, _, grading = spec.partition(":g")
+            for velocity in args.law_velocity:
+                text += law_report(coarse_cfg, _mesh(mesh_spec), _mesh(args.law_mesh),
+                                   args.law_pressures, velocity,
+                                   float(grading) if grading else 1.0)
     print(text)
     if args.report:
         args.report.write_text(text)
