@@ -213,6 +213,9 @@ def test_law_grading_reaches_the_law_tasks_and_keeps_ungraded_cache_keys(tmp_pat
             assert t.kwargs.get("grading") == (None if grading == 1.0 else grading)
     with pytest.raises(rc.errors.InputError, match="grading"):
         rc.config.parse_config(_config(tmp_path, fem={"grading": 0.0}))
+    with pytest.raises(rc.errors.InputError, match="grading"):
+        rc.hybrid.effective_law(rc.roughness.high_slope_wave(), rc.materials.sbr(), [1.0],
+                                [10.0], grading=-1.0)
 
 
 def test_target_areas_are_bracketed_at_every_speed(tmp_path):

@@ -19,7 +19,7 @@ from collections.abc import Sequence
 import numpy as np
 import xarray as xr
 
-from .._validation import finite_array
+from .._validation import finite_array, positive_scalar
 from ..errors import InputError
 from ..materials import GeneralizedMaxwell
 from ..roughness import SineSeries
@@ -75,6 +75,7 @@ def effective_law(hs_surface: SineSeries, material: GeneralizedMaxwell,
         raise InputError(f"velocities: must be >= 0 mm/s, got {v.tolist()}")
     if hs_surface.size == 0:
         raise InputError("hs_surface: the high-slope surface is empty; no law is needed")
+    grading = positive_scalar("grading", grading)   # fail here, not in every FEM task
     from ..sweep import Task
 
     fem_opts = {"mesh": [int(m) for m in mesh], "height_ratio": float(height_ratio),
