@@ -205,7 +205,8 @@ def test_westergaard_elastic_indentation():
 
 @pytest.mark.parametrize("nx", [50, 100])
 @pytest.mark.parametrize("offset", [0.0, 0.25, 0.5])
-def test_small_contact_area_within_one_element_of_westergaard(nx, offset):
+@pytest.mark.parametrize("points", [2, 4])
+def test_small_contact_area_within_one_element_of_westergaard(nx, offset, points):
     # A small contact (2a/λ = 0.04, h/a = 1 and 0.5): each edge falls anywhere inside an
     # element, and the gap is interpolated linearly between contact points, so the
     # contact fraction is resolved to half an element per edge: |A − A_W| <= h/λ.
@@ -216,7 +217,7 @@ def test_small_contact_area_within_one_element_of_westergaard(nx, offset):
     p_full = np.pi * (4 * E / 3) * amp / lam
     pbar = p_full * np.sin(np.pi * frac / 2) ** 2
     out = rc.fem.sliding_test(surf, rc.materials.GeneralizedMaxwell.elastic(E), pbar, 0.0,
-                              mesh=(nx, 45), grading=4.0, contact_points=2)
+                              mesh=(nx, 45), grading=4.0, contact_points=points)
     assert abs(out.contact_fraction - frac) <= h / lam
 
 
