@@ -21,7 +21,9 @@ width ``h`` over the contact half-width ``a``:
    same solves by wrapping ``fem.sliding.face_contact_fraction`` here (the package is not
    changed).
 
-Each case appends one JSON line to ``--out`` when it finishes; finished cases are skipped on
+Cases run with ``--contact-points`` per face segment (default 4, the package's and the
+validation's); the report lists every finished case with its count. Each case appends one
+JSON line to ``--out`` when it finishes; finished cases are skipped on
 a rerun (resumable). Run (about 30 min on one core)::
 
     OMP_NUM_THREADS=1 .venv/bin/python benchmarks/contact_area_resolution.py \
