@@ -185,7 +185,8 @@ def report(ds: xr.Dataset, coarse: dict, fine: dict, mesh) -> str:
               "paired bootstrap over the 5 realizations (2000 resamples; the sampling "
               "uncertainty of comparing realization means): " + "; ".join(
                   f"{v:g} mm/s " + ", ".join(
-                      f"{m} {100 * lo:.1f}-{100 * hi:.1f} %" for m, (lo, hi) in c.items())
+                      f"{m} {validate._interval_text(*interval)} %"
+                      for m, interval in c.items())
                   for v, c in ci.items()) + "."]
     lines += ["", "Sensitivity to the FEM's contact area (eq. 28 compares at equal area, and "
               "the FEM area at the smallest loads moves by several per cent between meshes; "

@@ -176,7 +176,7 @@ def _friction_at_common_areas(ds, points: int = 4) -> dict:
 
 def _eq28_intervals(ds, models=("hybrid", "hybrid-windowed", "vhs"), level: float = 0.9,
                     resamples: int = 2000, points: int = 4) -> dict:
-    """``{v: {model: (low, high)}}``: the sampling uncertainty of eq. 28 at equal area.
+    """``{v: {model: (low, high, used)}}``: the sampling uncertainty of eq. 28 at equal area.
 
     A paired bootstrap over realizations (``bootstrap_interval``): each resample redoes the
     mean curves of every model on the same drawn realizations, the common areas and the
@@ -209,7 +209,7 @@ def _eq28_intervals(ds, models=("hybrid", "hybrid-windowed", "vhs"), level: floa
                 return mean_relative_error(mus["fem"][ok], mus[m][ok]) if ok.any() else np.nan
         out[float(v)] = {m: bootstrap_interval(lambda idx, m=m: stat(idx, m),
                                                ds.sizes["realization"], resamples=resamples,
-                                               level=level)[:2]
+                                               level=level)
                          for m in models}
     return out
 
@@ -261,6 +261,12 @@ def _spread_sentence(ds) -> str:
             f"{spread['hybrid-windowed']:.2f} (realization {low}, the FEM's lowest, at {v:g} "
             f"mm/s: FEM {cells['fem']}, VHS {cells['vhs']}, windowed "
             f"{cells['hybrid-windowed']}).")
+
+
+def _interval_text(low: float, high: float, used: int, resamples: int = 2000) -> str:
+    """``low-high`` in %, and how many resamples defined the error if not all did."""
+    text = f"{100 * low:.1f}-{100 * high:.1f}"
+    return text if used == resamples else f"{text}; {used} of {resamples} resamples"
 
 
 def _sampling_sentence(ds, target: float = 0.02) -> str:
@@ -380,7 +386,7 @@ def section3_report(ds, wall, figs, msgs, level) -> list[str]:
              for m in ("hybrid", "hybrid-windowed", "vhs")}
         paper = PAPER_E.get(float(v))
         out.append(f"| {v:g} | " + " | ".join(
-            f"{100 * e[m]:.1f} %" + (f" ({100 * ci[v][m][0]:.1f}-{100 * ci[v][m][1]:.1f})"
+            f"{100 * e[m]:.1f} %" + (f" ({_interval_text(*ci[v][m])})"
                                      if v in ci and m in ci[v] else "")
             for m in ("hybrid", "hybrid-windowed", "vhs"))
             + f" | {'' if paper is None else f'{100 * paper:.1f} %'} |")
