@@ -39,6 +39,8 @@ def test_small_slope_friction_matches_linear_theory(small_slope):
     assert out.friction == pytest.approx(mu_th, rel=0.05)
     assert out.friction > 0
     assert out.stats.steady
+    # steady means the last two period averages agree within steady_tol (1 %) + 1e-4
+    assert out.stats.period_change <= 0.01 + 1e-4 / out.friction
 
 
 def test_sign_convention_pressure_higher_on_rising_flanks(small_slope):

@@ -169,7 +169,9 @@ def command(
         typer.echo(f"  steps {s.steps}, Newton iterations {s.newton_iterations} "
                    f"({s.newton_iterations / max(s.steps, 1):.1f}/step), factorizations "
                    f"{s.factorizations}, cut-backs {s.cutbacks}, periods {s.periods}"
-                   f"{'' if s.steady else ' (NOT steady)'}")
+                   f"{'' if s.steady else ' (NOT steady)'}"
+                   + (f", friction change over the last period {100 * s.period_change:.2f} %"
+                      if np.isfinite(s.period_change) else ""))
         typer.echo(f"  max penetration {s.max_penetration:.3g} mm (between nodes "
                    f"{s.max_segment_penetration:.3g} mm), wall time "
                    f"{s.wall_time:.1f} s (assembly {s.assembly_time:.1f} s, "

@@ -99,10 +99,14 @@ class SolverStats:
     solve_time: float           # [s]
     periods: int                # sliding periods run
     steady: bool                # successive periods agreed within steady_tol
+    period_change: float        # |Δμ|/|μ| between the last two period averages (NaN: < 2)
     n_unknowns: int
 
     def as_dict(self) -> dict[str, Any]:
-        return {k: getattr(self, k) for k in self.__dataclass_fields__}
+        """Plain values; an undefined float (NaN) is None so the dict is valid JSON."""
+        out = {k: getattr(self, k) for k in self.__dataclass_fields__}
+        return {k: None if isinstance(v, float) and not np.isfinite(v) else v
+                for k, v in out.items()}
 
 
 @dataclass(frozen=True)
@@ -480,6 +484,7 @@ def sliding_test(surface: SineSeries, material: GeneralizedMaxwell, mean_pressur
             dt *= 3.0
     n_periods = 0
     steady = v == 0
+    period_change = np.nan
     # The row-averaged start is written for Simo's stress-like variables.
     if v > 0 and slow_branch_start and params.n_branches and params.viscous_model == "simo":
         # Branches much slower than a period see, in steady sliding, the oscillation of
@@ -515,10 +520,17 @@ def sliding_test(surface: SineSeries, material: GeneralizedMaxwell, mean_pressur
                         and abs(a1 - a0) <= max(steady_tol * abs(a1), 0.25 / nx)):
                     steady = True
                     break
+        change = ""
+        if len(means) >= 2:
+            (m0, a0), (m1, a1) = means[-2], means[-1]
+            period_change = abs(m1 - m0) / max(abs(m1), 1e-12)
+            change = (f"; over the last period the friction changed by "
+                      f"{100 * period_change:.1f} % and the contact fraction from {a0:.4g} "
+                      f"to {a1:.4g}")
         if not steady:
             warnings.warn(f"FEM sliding test: period averages still change by more than "
-                          f"{steady_tol:.0%} after {periods} periods (p̄ = {p} MPa, v = {v} mm/s)",
-                          RuntimeWarning, stacklevel=2)
+                          f"{steady_tol:.0%} after {periods} periods (p̄ = {p} MPa, v = {v} mm/s"
+                          f"{change})", RuntimeWarning, stacklevel=2)
         window = slice(-spp, None)
     else:
         window = slice(-1, None)
@@ -551,7 +563,8 @@ def sliding_test(surface: SineSeries, material: GeneralizedMaxwell, mean_pressur
                         max_segment_penetration=info["max_seg_pen"],
                         wall_time=time.perf_counter() - wall0,
                         assembly_time=counters.assembly_time, solve_time=counters.solve_time,
-                        periods=n_periods, steady=bool(steady), n_unknowns=model.n)
+                        periods=n_periods, steady=bool(steady),
+                        period_change=float(period_change), n_unknowns=model.n)
     return SlidingTestResult(
         friction=mu, shear_stress=mu * p, contact_fraction=alpha, mean_separation=ubar,
         mean_pressure=p, velocity=v, pressure_profile=profile, history=H_, stats=stats,

@@ -413,12 +413,19 @@ def _assemble(models, velocities, realizations, pressures, index, results) -> xr
     names = list(RESULT_VARIABLES) + ["max_local_pressure"]
     data = {k: np.full(shape, np.nan) for k in names}
     status = np.full(shape, "ok", dtype=object)
+    # full-FEM steadiness (1/0; NaN where failed or not recorded) and the relative change
+    # of its friction over the last sliding period
+    fem_diag = {k: np.full(shape[1:], np.nan) for k in ("steady", "period_change")}
     for (m, iv, ir, ip), res in zip(index, results, strict=True):
         im = models.index(m)
         msg = failure_message(res)
         if msg is not None:
             status[im, iv, ir, ip] = msg
             continue
+        if m == "fem":
+            for k, arr in fem_diag.items():
+                if k in res:     # results cached before "period_change" existed lack it
+                    arr[iv, ir, ip] = float(res[k])
         for k in names:
             if k in res:
                 data[k][im, iv, ir, ip] = float(res[k])
@@ -441,10 +448,41 @@ def _assemble(models, velocities, realizations, pressures, index, results) -> xr
     if n_failed:
         warnings.warn(f"{n_failed} of {status.size} solves failed; see the 'status' variable",
                       RuntimeWarning, stacklevel=3)
+    if "fem" in models:
+        ds = _add_fem_steadiness(ds, fem_diag, stacklevel=4)
     for k in ("friction", "contact_fraction", "mean_separation"):
         ds[f"{k}_mean"] = ds[k].mean("realization")
         ds[f"{k}_std"] = ds[k].std("realization")
         ds[f"{k}_mean"].attrs["units"] = ds[f"{k}_std"].attrs["units"] = ds[k].attrs["units"]
+    return ds
+
+
+def _add_fem_steadiness(ds: xr.Dataset, diag: dict, stacklevel: int = 2) -> xr.Dataset:
+    """Store whether each full-FEM test reached steady sliding, and say which did not.
+
+    An unsteady test keeps its result (the last period's averages), as the FEM itself
+    does, but the run says so instead of leaving the warning in a worker's log.
+    """
+    dims = ("velocity", "realization", "pressure")
+    ds["fem_steady"] = (dims, diag["steady"],
+                        {"units": "1", "long_name": "full FEM: successive sliding periods "
+                                                    "agreed within the steadiness tolerance "
+                                                    "(1/0; NaN: failed or not recorded)"})
+    ds["fem_period_change"] = (dims, diag["period_change"],
+                               {"units": "1", "long_name": "full FEM: relative change of the "
+                                                           "friction over the last period"})
+    bad = np.argwhere(diag["steady"] == 0)
+    if bad.size:
+        change = diag["period_change"][tuple(bad.T)]
+        where = ", ".join(
+            f"v={ds['velocity'].values[iv]:g} σ0={ds['pressure'].values[ip]:g} r={ir}"
+            + (f" ({100 * c:.1f} %)" if np.isfinite(c) else "")
+            for (iv, ir, ip), c in zip(bad, change, strict=True))
+        warnings.warn(f"{len(bad)} of {diag['steady'].size} full-FEM tests did not reach "
+                      f"steady sliding within fem.periods (friction change over the last "
+                      f"period in brackets): {where}; their results are the last period's "
+                      f"averages (see 'fem_steady'); more periods would settle them",
+                      RuntimeWarning, stacklevel=stacklevel)
     return ds
 
 
