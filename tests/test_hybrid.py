@@ -79,6 +79,27 @@ def test_law_table_reports_failures_and_rejects_nonmonotone():
         law_at_velocity(law, 50.0)
 
 
+def test_law_table_flags_unsteady_points_and_keeps_them():
+    hs = rc.roughness.high_slope_wave()
+    res = [_fake_fem_result(0.012, 0.3, 0.2, 1.0), _fake_fem_result(0.008, 0.6, 0.9, 3.0)]
+    res[0] = res[0].assign(steady=1.0, period_change=0.002, period_area_change=0.004)
+    res[1] = res[1].assign(steady=0.0, period_change=0.003, period_area_change=0.07)
+    with pytest.warns(LawWarning, match=r"1 of 2 FEM points did not reach steady sliding.*"
+                                        r"v=10 p=3 \(μ 0.3 %, A 7.0 %\)"):
+        law = assemble_law(res, np.array([1.0, 3.0]), np.array([10.0]), hs,
+                           rc.materials.sbr(), {})
+    assert list(law["steady"].values[0]) == [1.0, 0.0]
+    assert law["period_area_change"].values[0, 1] == pytest.approx(0.07)
+    assert np.all(law["status"].values == "ok")       # kept in the table
+    # results cached before the diagnostics existed: NaN, no warning
+    import warnings
+
+    with warnings.catch_warnings():
+        warnings.simplefilter("error")
+        old = _law([(0.012, 0.3, 0.2, 1.0)])
+    assert np.isnan(old["steady"].values).all()
+
+
 def test_screen_monotone_excludes_and_names_the_offending_points():
     # u must fall strictly as p rises. Top point crushed (u rises again at 8 MPa, as the FEM
     # does beyond E_inf): only it goes. A lone outlier in the middle: only it goes, not
@@ -232,7 +253,8 @@ def test_unsteady_full_fem_tests_are_flagged_in_the_results(tmp_path):
                 steady = 0.0 if t.kwargs["mean_pressure"] == 1.0 else 1.0
                 out.append(xr.Dataset({"friction": 0.5, "contact_fraction": 0.05,
                                        "mean_separation": 0.01, "wall_time": 1.0,
-                                       "steady": steady, "period_change": 0.034}))
+                                       "steady": steady, "period_change": 0.034,
+                                       "period_area_change": 0.05}))
             else:
                 module, name = t.function.split(":")
                 out.append(getattr(importlib.import_module(module), name)(**t.kwargs))
@@ -240,7 +262,7 @@ def test_unsteady_full_fem_tests_are_flagged_in_the_results(tmp_path):
 
     cfg = rc.config.parse_config(_config(tmp_path, models=["vhs", "fem"], realizations=1))
     with pytest.warns(RuntimeWarning, match=r"1 of 2 full-FEM tests did not reach steady "
-                                            r"sliding.*v=10 σ0=1 r=0 \(3.4 %\)"):
+                                            r"sliding.*v=10 σ0=1 r=0 \(μ 3.4 %, A 5.0 %\)"):
         ds = rc.hybrid.run(cfg, runner=runner, progress=False)
     np.testing.assert_array_equal(ds["fem_steady"].sel(velocity=10.0, realization=0), [1, 0])
     assert float(ds["fem_period_change"].sel(velocity=10.0, realization=0, pressure=1.0)) \

@@ -100,6 +100,7 @@ class SolverStats:
     periods: int                # sliding periods run
     steady: bool                # successive periods agreed within steady_tol
     period_change: float        # |Δμ|/|μ| between the last two period averages (NaN: < 2)
+    period_area_change: float   # |ΔA|/A, the same for the contact fraction
     n_unknowns: int
 
     def as_dict(self) -> dict[str, Any]:
@@ -484,7 +485,7 @@ def sliding_test(surface: SineSeries, material: GeneralizedMaxwell, mean_pressur
             dt *= 3.0
     n_periods = 0
     steady = v == 0
-    period_change = np.nan
+    period_change = area_change = np.nan
     # The row-averaged start is written for Simo's stress-like variables.
     if v > 0 and slow_branch_start and params.n_branches and params.viscous_model == "simo":
         # Branches much slower than a period see, in steady sliding, the oscillation of
@@ -524,6 +525,7 @@ def sliding_test(surface: SineSeries, material: GeneralizedMaxwell, mean_pressur
         if len(means) >= 2:
             (m0, a0), (m1, a1) = means[-2], means[-1]
             period_change = abs(m1 - m0) / max(abs(m1), 1e-12)
+            area_change = abs(a1 - a0) / max(abs(a1), 1e-12)
             change = (f"; over the last period the friction changed by "
                       f"{100 * period_change:.1f} % and the contact fraction from {a0:.4g} "
                       f"to {a1:.4g}")
@@ -564,7 +566,8 @@ def sliding_test(surface: SineSeries, material: GeneralizedMaxwell, mean_pressur
                         wall_time=time.perf_counter() - wall0,
                         assembly_time=counters.assembly_time, solve_time=counters.solve_time,
                         periods=n_periods, steady=bool(steady),
-                        period_change=float(period_change), n_unknowns=model.n)
+                        period_change=float(period_change),
+                        period_area_change=float(area_change), n_unknowns=model.n)
     return SlidingTestResult(
         friction=mu, shear_stress=mu * p, contact_fraction=alpha, mean_separation=ubar,
         mean_pressure=p, velocity=v, pressure_profile=profile, history=H_, stats=stats,

@@ -26,7 +26,24 @@ from ..roughness import SineSeries
 
 
 class LawWarning(UserWarning):
-    """The law table has failed or non-monotone points, or is being extrapolated."""
+    """The law table has failed, unsteady or non-monotone points, or is being extrapolated."""
+
+
+#: Steadiness diagnostics of an FEM sliding test kept in the law and results tables.
+STEADINESS_VARIABLES = {
+    "steady": "successive sliding periods agreed within the steadiness tolerance "
+              "(1/0; NaN: failed or not recorded)",
+    "period_change": "relative change of the friction over the last sliding period",
+    "period_area_change": "relative change of the contact fraction over the last sliding "
+                          "period",
+}
+
+
+def change_text(friction_change: float, area_change: float) -> str:
+    """`` (μ 1.2 %, A 7.0 %)``: how much an FEM test still moved over its last period."""
+    parts = [f"{name} {100 * x:.1f} %" for name, x in (("μ", friction_change),
+                                                        ("A", area_change)) if np.isfinite(x)]
+    return f" ({', '.join(parts)})" if parts else ""
 
 
 def effective_law(hs_surface: SineSeries, material: GeneralizedMaxwell,
@@ -107,6 +124,7 @@ def assemble_law(results, pressures, velocities, hs_surface: SineSeries,
     shape = (len(velocities), len(pressures))
     data = {k: np.full(shape, np.nan) for k in names}
     status = np.full(shape, "ok", dtype=object)
+    diag = {k: np.full(shape, np.nan) for k in STEADINESS_VARIABLES}
     for idx, ds in enumerate(results):
         i, j = divmod(idx, len(pressures))
         if not isinstance(ds, xr.Dataset):
@@ -114,6 +132,9 @@ def assemble_law(results, pressures, velocities, hs_surface: SineSeries,
             continue
         for k in names:
             data[k][i, j] = float(ds[k])
+        for k in diag:
+            if k in ds:     # results cached before the period changes existed lack them
+                diag[k][i, j] = float(ds[k])
     units = {"mean_separation": "mm", "contact_fraction": "1", "shear_stress": "MPa",
              "friction": "1", "wall_time": "s"}
     law = xr.Dataset(
@@ -122,6 +143,21 @@ def assemble_law(results, pressures, velocities, hs_surface: SineSeries,
                 "pressure": ("pressure", np.asarray(pressures, float), {"units": "MPa"})},
     )
     law["status"] = (("velocity", "pressure"), status.astype(str))
+    for k, text in STEADINESS_VARIABLES.items():
+        law[k] = (("velocity", "pressure"), diag[k], {"units": "1", "long_name": text})
+    bad = np.argwhere(diag["steady"] == 0)
+    if bad.size:
+        # Kept in the table (the last period's averages): in the law cell the friction
+        # settles within a few periods, the contact fraction can keep swinging by several
+        # per cent from one period to the next.
+        where = ", ".join(f"v={velocities[i]:g} p={pressures[j]:g}"
+                          + change_text(diag["period_change"][i, j],
+                                        diag["period_area_change"][i, j])
+                          for i, j in bad)
+        warnings.warn(f"law: {len(bad)} of {diag['steady'].size} FEM points did not reach "
+                      f"steady sliding within fem.periods (change over the last period in "
+                      f"brackets): {where}; they are kept (last period's averages); more "
+                      f"periods would settle them", LawWarning, stacklevel=3)
     law.attrs.update({
         "title": "effective interface law of the high-slope scale (paper eqs. 1-3)",
         "hs_wavelengths_mm": hs_surface.wavelengths.tolist(),

@@ -35,6 +35,8 @@ from ..errors import InputError
 from ..materials import GeneralizedMaxwell, sbr
 from ..roughness import SineSeries, presets
 from .law import (
+    STEADINESS_VARIABLES,
+    change_text,
     check_coverage,
     continue_with_linear_shape,
     effective_law,
@@ -286,7 +288,7 @@ def run(config: RunConfig | dict | str | Path, *, runner: Runner | None = None,
     per_model_time = {m: float(ds["wall_time"].sel(model=m).sum()) for m in models}
     if law is not None:
         for k in ("mean_separation", "contact_fraction", "shear_stress", "friction", "status",
-                  "vhs_friction", "vhs_contact_fraction"):
+                  *STEADINESS_VARIABLES, "vhs_friction", "vhs_contact_fraction"):
             if k not in law:
                 continue
             ds[f"law_{k}"] = law[k].rename(pressure="law_pressure")
@@ -415,7 +417,7 @@ def _assemble(models, velocities, realizations, pressures, index, results) -> xr
     status = np.full(shape, "ok", dtype=object)
     # full-FEM steadiness (1/0; NaN where failed or not recorded) and the relative change
     # of its friction over the last sliding period
-    fem_diag = {k: np.full(shape[1:], np.nan) for k in ("steady", "period_change")}
+    fem_diag = {k: np.full(shape[1:], np.nan) for k in STEADINESS_VARIABLES}
     for (m, iv, ir, ip), res in zip(index, results, strict=True):
         im = models.index(m)
         msg = failure_message(res)
@@ -424,7 +426,7 @@ def _assemble(models, velocities, realizations, pressures, index, results) -> xr
             continue
         if m == "fem":
             for k, arr in fem_diag.items():
-                if k in res:     # results cached before "period_change" existed lack it
+                if k in res:     # results cached before the period changes existed lack them
                     arr[iv, ir, ip] = float(res[k])
         for k in names:
             if k in res:
@@ -464,25 +466,20 @@ def _add_fem_steadiness(ds: xr.Dataset, diag: dict, stacklevel: int = 2) -> xr.D
     does, but the run says so instead of leaving the warning in a worker's log.
     """
     dims = ("velocity", "realization", "pressure")
-    ds["fem_steady"] = (dims, diag["steady"],
-                        {"units": "1", "long_name": "full FEM: successive sliding periods "
-                                                    "agreed within the steadiness tolerance "
-                                                    "(1/0; NaN: failed or not recorded)"})
-    ds["fem_period_change"] = (dims, diag["period_change"],
-                               {"units": "1", "long_name": "full FEM: relative change of the "
-                                                           "friction over the last period"})
+    for k, text in STEADINESS_VARIABLES.items():
+        ds[f"fem_{k}"] = (dims, diag[k], {"units": "1", "long_name": f"full FEM: {text}"})
     bad = np.argwhere(diag["steady"] == 0)
     if bad.size:
-        change = diag["period_change"][tuple(bad.T)]
         where = ", ".join(
             f"v={ds['velocity'].values[iv]:g} σ0={ds['pressure'].values[ip]:g} r={ir}"
-            + (f" ({100 * c:.1f} %)" if np.isfinite(c) else "")
-            for (iv, ir, ip), c in zip(bad, change, strict=True))
+            + change_text(diag["period_change"][iv, ir, ip],
+                          diag["period_area_change"][iv, ir, ip])
+            for iv, ir, ip in bad)
         warnings.warn(f"{len(bad)} of {diag['steady'].size} full-FEM tests did not reach "
-                      f"steady sliding within fem.periods (friction change over the last "
-                      f"period in brackets): {where}; their results are the last period's "
-                      f"averages (see 'fem_steady'); more periods would settle them",
-                      RuntimeWarning, stacklevel=stacklevel)
+                      f"steady sliding within fem.periods (change of friction / contact "
+                      f"fraction over the last period in brackets): {where}; their results "
+                      f"are the last period's averages (see 'fem_steady'); more periods "
+                      f"would settle them", RuntimeWarning, stacklevel=stacklevel)
     return ds
 
 

@@ -168,7 +168,7 @@ def fem_task(surface: dict, material: dict, velocity: float, mean_pressure: floa
         "wall_time": time.perf_counter() - t0,
         "steps": st.steps, "newton_iterations": st.newton_iterations, "cutbacks": st.cutbacks,
         "max_penetration": st.max_penetration, "steady": int(st.steady),
-        "period_change": st.period_change,
+        "period_change": st.period_change, "period_area_change": st.period_area_change,
         "max_segment_penetration": st.max_segment_penetration,
     }
     ds = _scalars(values, {"model": "fem"})
