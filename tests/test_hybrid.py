@@ -193,11 +193,18 @@ def test_full_fem_options_reach_the_fem_task(tmp_path):
     seen = _first_sweep(_config(
         tmp_path, models=["fem"], surface={"preset": "section3"},
         fem={"mesh": [40, 30], "full_mesh": [96, 40], "full_grading": 4.0,
-             "full_steps_per_period": 48, "contact_points": 3, "history_order": 1}))
+             "full_steps_per_period": 48, "contact_points": 3, "history_order": 1,
+             "periods": 12, "full_periods": 3}))
     kw = seen[0].kwargs
     assert seen[0].function.endswith(":fem_task")
     assert (kw["mesh"], kw["grading"], kw["steps_per_period"], kw["contact_points"],
-            kw["history_order"]) == ([96, 40], 4.0, 48, 3, 1)
+            kw["history_order"], kw["periods"]) == ([96, 40], 4.0, 48, 3, 1, 3)
+    # without full_periods the full FEM runs the law's number of periods
+    seen = _first_sweep(_config(tmp_path, models=["fem"], surface={"preset": "section3"},
+                                fem={"mesh": [40, 30], "periods": 5}))
+    assert seen[0].kwargs["periods"] == 5
+    with pytest.raises(rc.errors.InputError, match="full_periods"):
+        rc.config.parse_config(_config(tmp_path, fem={"full_periods": 0}))
 
 
 def test_history_order_reaches_the_law_tasks(tmp_path):

@@ -130,6 +130,11 @@ class FemConfig(_Strict):
     full_steps_per_period: int | None = Field(
         None, ge=4, description="time steps per period of the full-surface FEM "
                                 "(default: steps_per_period)")
+    full_periods: int | None = Field(
+        None, ge=1, le=100, description="maximum sliding distance of the full-surface FEM in "
+                                        "its (longer) periods (default: periods); the law "
+                                        "cell's period is shorter, so equal sliding distance "
+                                        "needs more law periods")
 
 
 class LawConfig(_Strict):

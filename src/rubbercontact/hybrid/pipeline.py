@@ -356,7 +356,8 @@ def full_fem_task(cfg: RunConfig, surface: SineSeries, material: GeneralizedMaxw
           "material": material.as_dict(), "velocity": float(velocity),
           "mean_pressure": float(mean_pressure),
           "mesh": list(cfg.fem.full_mesh or cfg.fem.mesh),
-          "height_ratio": cfg.fem.height_ratio, "periods": cfg.fem.periods,
+          "height_ratio": cfg.fem.height_ratio,
+          "periods": cfg.fem.full_periods or cfg.fem.periods,
           "steps_per_period": cfg.fem.full_steps_per_period or cfg.fem.steps_per_period,
           "contact_points": cfg.fem.contact_points, "history_order": cfg.fem.history_order}
     if cfg.fem.full_grading != 1.0:   # else the law's cache key
@@ -476,10 +477,11 @@ def _add_fem_steadiness(ds: xr.Dataset, diag: dict, stacklevel: int = 2) -> xr.D
                           diag["period_area_change"][iv, ir, ip])
             for iv, ir, ip in bad)
         warnings.warn(f"{len(bad)} of {diag['steady'].size} full-FEM tests did not reach "
-                      f"steady sliding within fem.periods (change of friction / contact "
-                      f"fraction over the last period in brackets): {where}; their results "
-                      f"are the last period's averages (see 'fem_steady'); more periods "
-                      f"would settle them", RuntimeWarning, stacklevel=stacklevel)
+                      f"steady sliding in the periods allowed (fem.full_periods, else "
+                      f"fem.periods); change of friction / contact fraction over the last "
+                      f"period in brackets: {where}. Their results are the last period's "
+                      f"averages (see 'fem_steady'); more periods would settle them",
+                      RuntimeWarning, stacklevel=stacklevel)
     return ds
 
 
