@@ -154,10 +154,11 @@ def assemble_law(results, pressures, velocities, hs_surface: SineSeries,
                           + change_text(diag["period_change"][i, j],
                                         diag["period_area_change"][i, j])
                           for i, j in bad)
+        brackets = " (change over the last period in brackets)" if "(" in where else ""
         warnings.warn(f"law: {len(bad)} of {diag['steady'].size} FEM points did not reach "
-                      f"steady sliding within fem.periods (change over the last period in "
-                      f"brackets): {where}; they are kept (last period's averages); more "
-                      f"periods would settle them", LawWarning, stacklevel=3)
+                      f"steady sliding within fem.periods{brackets}: {where}; they are kept "
+                      f"(last period's averages); more periods would settle them",
+                      LawWarning, stacklevel=3)
     law.attrs.update({
         "title": "effective interface law of the high-slope scale (paper eqs. 1-3)",
         "hs_wavelengths_mm": hs_surface.wavelengths.tolist(),

@@ -476,10 +476,11 @@ def _add_fem_steadiness(ds: xr.Dataset, diag: dict, stacklevel: int = 2) -> xr.D
             + change_text(diag["period_change"][iv, ir, ip],
                           diag["period_area_change"][iv, ir, ip])
             for iv, ir, ip in bad)
+        brackets = ("; change of friction / contact fraction over the last period in "
+                    "brackets" if "(" in where else "")
         warnings.warn(f"{len(bad)} of {diag['steady'].size} full-FEM tests did not reach "
                       f"steady sliding in the periods allowed (fem.full_periods, else "
-                      f"fem.periods); change of friction / contact fraction over the last "
-                      f"period in brackets: {where}. Their results are the last period's "
+                      f"fem.periods){brackets}: {where}. Their results are the last period's "
                       f"averages (see 'fem_steady'); more periods would settle them",
                       RuntimeWarning, stacklevel=stacklevel)
     return ds
