@@ -48,10 +48,13 @@ QUICK = {
     # Full FEM of the three-wave cell is the expensive part. With the quadratic history
     # update its friction is second order in dt (docs/validation/fem_convergence.md: 64 x 48
     # at 0.25 MPa, 10 mm/s, dt = 3.9e-4/2.0e-4/9.8e-5/4.9e-5 s: 0.497/0.616/0.646/0.647).
-    # The quick level runs the full FEM at 120 x 90 graded x4 toward the face and the law at
-    # the paper's 120 x 90, both with dt = 1.04e-4 s at 10 mm/s (240 and 60 steps per
-    # period), the paper's 5 realizations at three loads (30 full-FEM tests, ~4.6 h on one
-    # core, cached). The law at 60 x 45 counted about one column too many of contact per
+    # The quick level runs the full FEM at 240 x 90 graded x4 toward the face, with dt =
+    # 1.04e-4 s at 10 mm/s (240 steps per period), the paper's 5 realizations at three loads
+    # (30 full-FEM tests, ~11 h on one core, cached). The paper's element count, 120 x 90,
+    # is 13 % low at 50 mm/s, 0.15 MPa (one or two columns per contact patch) and 1-2 % low
+    # elsewhere; 240 x 90 is converged within 0.4 % against 480 x 90
+    # (docs/validation/fem_reference_mesh.md, fem_convergence.md). The law at 60 x 45
+    # (60 steps per period) counted about one column too many of contact per
     # patch: at 50 mm/s, 0.5 MPa its contact fraction was 0.047 against 0.042 at 120 x 90
     # (friction within 1.3 % from 0.2 MPa up; docs/validation/fem_reference_mesh.md).
     # The law cell's rows are graded x4 toward the face: 120 x 45 graded gives the 120 x 90
@@ -60,16 +63,21 @@ QUICK = {
     # 0.5 % up to 2 MPa and 1-3.5 % at 4-6 MPa, at about 1/4 of the compute
     # (docs/validation/fem_reference_mesh.md).
     # 8 MPa (2 E_inf) fails in the law cell and is not asked for.
+    # Sliding distance: 3 periods of the 0.25 mm full cell, and the same distance (12
+    # periods) for the 0.0625 mm law cell. With 3 law periods the law at 50 mm/s, 0.1 MPa
+    # was still 8.6 % low in friction and 11 % in area against its 10th period
+    # (docs/validation/fem_steadiness.md); the slowest branch relaxes in 11 ms, a law
+    # period lasts 1.25 ms at 50 mm/s.
     "section3": {"realizations": 5,
                  "loads": {"contact_areas": None, "pressures": [0.15, 0.35, 0.8]},
                  "fem": {"mesh": [120, 45], "grading": 4.0, "steps_per_period": 60,
-                         "full_mesh": [120, 90],
-                         "full_grading": 4.0, "full_steps_per_period": 240, "periods": 3},
+                         "full_mesh": [240, 90], "full_grading": 4.0,
+                         "full_steps_per_period": 240, "periods": 12, "full_periods": 3},
                  "law": {"pressures": [0.05, 0.1, 0.2, 0.5, 1.0, 2.0, 4.0, 6.0]}},
     # the same law cell, mesh and dt as section 3: the law comes from its cache
     "asphalt": {"realizations": 3, "halfspace": {"n": 8192},
                 "fem": {"mesh": [120, 45], "grading": 4.0, "steps_per_period": 60,
-                        "periods": 3},
+                        "periods": 12},
                 "law": {"pressures": [0.1, 0.2, 0.5, 1.0, 2.0, 4.0, 6.0]}},
     # the CAPTIF law cell is 0.5 mm wide: 240 steps per period give dt = 2.1e-4 s at 10 mm/s;
     # at 3 MPa the cell is near its limit (u-bar barely below its 1 MPa value, not steady in
@@ -78,6 +86,17 @@ QUICK = {
                "fem": {"steps_per_period": 240},
                "law": {"pressures": [0.1, 0.3, 1.0, 3.0]}},
 }
+# What the paper's 120 x 90 full FEM would change (docs/validation/fem_reference_mesh.md,
+# the same tasks at 120 x 90 and at the quick level's 240 x 90)
+PAPER_MESH_SENTENCE = (
+    "Over the 5 realizations the paper's 120 x 90 lies below 240 x 90 by 12.7 % at 50 mm/s, "
+    "0.15 MPa (ratios 240/120 of 1.02-1.38 by realization), 1.6 % at 0.35 MPa (1.005-1.044) "
+    "and 1.2 % at 0.8 MPa (1.004-1.018), and at 10 mm/s by 1.6 / 1.1 / 2.2 % at 0.15 / 0.35 "
+    "/ 0.8 MPa (0.997-1.043). With 120 x 90 as the reference, eq. 28 at equal area would be "
+    "1.0 / 24.4 % for the windowed hybrid and 7.4 / 29.1 % for the VHS at 10 / 50 mm/s "
+    "(docs/validation/fem_reference_mesh.md). 240 x 90 took 2.28x the compute of 120 x 90 "
+    "over these 30 tests (34 103 s against 14 987 s), so the cost ratio below is against "
+    "the converged FEM; against the paper's mesh divide it by 2.28.")
 EXAMPLES = {"section3": "section3.toml", "asphalt": "asphalt.toml", "captif": "captif_road.toml"}
 
 
@@ -263,6 +282,140 @@ def _spread_sentence(ds) -> str:
             f"{cells['hybrid-windowed']}).")
 
 
+# FEM contact-area factors of the sensitivity check (about the resolution at h/a ~ 0.5-1)
+AREA_FACTORS = (1.05, 1.0, 0.95, 0.9)
+
+
+def with_area_factor(ds, factor: float):
+    """``ds`` with the FEM's contact fractions multiplied by ``factor`` (friction unchanged)."""
+    ds = ds.copy(deep=True)
+    ds["contact_fraction"].loc[{"model": "fem"}] = ds["contact_fraction"].sel(model="fem") * factor
+    ds["contact_fraction_mean"] = ds["contact_fraction"].mean("realization")
+    return ds
+
+
+def area_sensitivity(ds, models=("hybrid-windowed", "vhs")) -> dict:
+    """``{factor: {v: {model: e}}}``: eq. 28 at equal area with every FEM contact fraction
+    scaled by each of ``AREA_FACTORS``."""
+    out = {}
+    for factor in AREA_FACTORS:
+        at = _friction_at_common_areas(with_area_factor(ds, factor))
+        out[factor] = {v: {m: mean_relative_error(mus["fem"], mus[m]) for m in models}
+                       for v, (_, mus) in at.items()}
+    return out
+
+
+def _area_sensitivity_text(ds) -> str:
+    """How eq. 28 of the windowed hybrid moves with a bias in the FEM area (measured)."""
+    sens = area_sensitivity(ds)
+    v = max(sens[1.0])
+    scaled = [f for f in AREA_FACTORS if f != 1.0]
+    return (f"at {v:g} mm/s, multiplying every FEM contact fraction by "
+            + " / ".join(f"{f:g}" for f in scaled) + " moves the windowed hybrid's error from "
+            f"{100 * sens[1.0][v]['hybrid-windowed']:.1f} % to "
+            + " / ".join(f"{100 * sens[f][v]['hybrid-windowed']:.1f}" for f in scaled)
+            + " % (the VHS's from " f"{100 * sens[1.0][v]['vhs']:.1f} % to "
+            + " / ".join(f"{100 * sens[f][v]['vhs']:.1f}" for f in scaled) + " %).")
+
+
+STEADINESS_ROWS = ROOT / "docs" / "validation" / "fem_steadiness.jsonl"
+
+
+def _steadiness_sentence(ds) -> str:
+    """Which FEM tests ended unsteady, and what running longer showed (measured)."""
+    from _rows import read_rows
+
+    cfg = json.loads(ds.attrs["config"])["fem"]
+    parts = []
+    if "fem_steady" in ds:
+        st = ds["fem_steady"]
+        bad = st.where(st == 0).count(("realization",))
+        loads = [f"{int(bad.sel(velocity=v, pressure=p))} at {v:g} mm/s, {p:g} MPa"
+                 for v in ds["velocity"].values for p in ds["pressure"].values
+                 if int(bad.sel(velocity=v, pressure=p))]
+        full_periods = cfg.get("full_periods") or cfg["periods"]
+        parts.append(f"{int((st == 0).sum())} of {int(st.notnull().sum())} full-FEM tests "
+                     f"({', '.join(loads) or 'none'}) in {full_periods} periods of the full "
+                     "cell")
+    if "law_steady" in ds:
+        lst = ds["law_steady"]
+        parts.append(f"{int((lst == 0).sum())} of {int(lst.notnull().sum())} law points in "
+                     f"{cfg['periods']} periods of the law cell")
+    if not parts:
+        return ""
+    text = ("**Steady sliding.** A test stops once two successive period averages agree "
+            "(friction within 1 %, contact fraction within 1 % or a quarter of one element's "
+            "share of the cell); otherwise it reports the last period's. Not steady here: "
+            + " and ".join(parts) + ".")
+    rows = read_rows(STEADINESS_ROWS)
+    if rows:
+        cells = []
+        for r in rows:
+            mu, area = np.array(r["friction"]), np.array(r["contact_fraction"])
+            cells.append(f"{r['kind']} {r['mesh']} at {r['velocity']:g} mm/s, "
+                         f"{r['pressure']:g} MPa: {100 * (mu[2] / mu[2:].mean() - 1):+.1f} % "
+                         f"/ {100 * (area[2] / area[2:].mean() - 1):+.1f} %, and period 3 "
+                         f"against the last {100 * (mu[2] / mu[-1] - 1):+.1f} % / "
+                         f"{100 * (area[2] / area[-1] - 1):+.1f} %")
+        text += (" Run for " + "/".join(sorted({str(r["periods"]) for r in rows}))
+                 + " periods (docs/validation/fem_steadiness.md), the period-3 average "
+                 "against the mean of periods 3 onward in friction / area: "
+                 + "; ".join(cells) + f". The law cell is a quarter of the full cell "
+                 f"wide: its {cfg['periods']} periods are {cfg['periods'] / 4:g} full-cell "
+                 "periods of sliding.")
+    return text
+
+
+def _per_realization_errors(ds, models=("hybrid-windowed", "vhs"), points: int = 4) -> dict:
+    """``{v: {model: [e_r]}}``: eq. 28 at equal area within each realization.
+
+    The paper's eq. 28 compares realization means. This compares each realization's own
+    load sweep (common areas as in ``_common_areas``), so it says how well a model predicts
+    one surface rather than the ensemble; NaN where that realization's sweeps share no area.
+    """
+    models = [m for m in models if m in ds["model"].values]
+    out: dict = {}
+    for v in ds["velocity"].values:
+        s = ds.sel(velocity=v)
+        errs: dict = {m: [] for m in models}
+        for r in range(ds.sizes["realization"]):
+            sr = s.isel(realization=r)
+            common = _common_areas({m: (sr["contact_fraction"].sel(model=m).values,
+                                        sr["friction"].sel(model=m).values)
+                                    for m in [*models, "fem"]}, points)
+            for m in models:
+                errs[m].append(np.nan if common is None
+                               else mean_relative_error(common[1]["fem"], common[1][m]))
+        out[float(v)] = errs
+    return out
+
+
+def _per_realization_sentence(ds) -> str:
+    """Eq. 28 within each realization, next to the paper's comparison of means (measured)."""
+    if "pressure" not in ds.dims or "fem" not in ds["model"].values:
+        return ""
+    parts = []
+    for v, errs in _per_realization_errors(ds).items():
+        cells = []
+        for m, e in errs.items():
+            e = np.asarray(e)
+            ok = e[np.isfinite(e)]
+            name = "windowed hybrid" if m == "hybrid-windowed" else "VHS"
+            cells.append(f"{name} median {100 * np.median(ok):.1f} % (range "
+                         f"{100 * ok.min():.1f}-{100 * ok.max():.1f} %"
+                         + (f", {ok.size} of {e.size} realizations" if ok.size < e.size
+                            else "") + ")" if ok.size else f"{name} undefined")
+        parts.append(f"at {v:g} mm/s {', '.join(cells)}")
+    return ("**One surface at a time.** Eq. 28 compares the realization means. Within each "
+            "realization (its own load sweep, at equal area) the errors are: "
+            + "; ".join(parts) + ". The VHS sees where the high-slope crests sit on the "
+            "low-slope flanks and follows the FEM from one realization to the next, so its "
+            "range is narrow; the hybrids homogenize the high-slope wave and cannot, so their "
+            "error depends on the realization's phases. On a measured profile with many "
+            "wavelengths per cell that phase dependence averages out along the profile; on "
+            "this three-wave cell it does not.")
+
+
 def _interval_text(low: float, high: float, used: int, resamples: int = 2000) -> str:
     """``low-high`` in %, and how many resamples defined the error if not all did."""
     text = f"{100 * low:.1f}-{100 * high:.1f}"
@@ -298,45 +451,32 @@ def section3_report(ds, wall, figs, msgs, level) -> list[str]:
         out += ["", "Reduced: the paper compares 5 realizations at 10 contact areas (0.01-0.1) "
                 f"with a 120 x 90 FEM; here {ds.sizes['realization']} realization(s) at "
                 f"{ds.sizes['pressure']} loads, the full FEM at "
-                "120 x 90 (30 elements per 0.0625 mm wave, rows graded x4 toward the contact "
-                "face) and the law at 120 x 45 graded x4 (120 elements per wave at the face; "
-                "within 0.6 % in friction of the paper's 120 x 90 up to 4 MPa, at a quarter of "
-                "the cost), both "
-                "with the "
-                "time step dt = 1.04e-4 s at 10 mm/s (240 and 60 steps per period). With the "
+                "240 x 90 (60 elements per 0.0625 mm wave, rows graded x4 toward the contact "
+                "face; twice the paper's columns, see below) and the law at 120 x 45 graded x4 "
+                "(120 elements per wave at the face; within 0.6 % in friction of the paper's "
+                "120 x 90 up to 4 MPa, at a quarter of the cost), both with the time step "
+                "dt = 1.04e-4 s at 10 mm/s (240 and 60 steps per period), and both over "
+                "0.75 mm of sliding at most (3 periods of the full cell, 12 of the law cell; "
+                "a test stops earlier once steady, see below). With the "
                 "quadratic history update the FEM friction is second order in dt: on this "
                 "cell at 0.25 MPa, 10 mm/s, 120 x 90, dt = 2.1e-4/1.04e-4 s gave 0.642/0.660, "
                 "about -1 % at the dt used here against the dt -> 0 extrapolation 0.665. On "
-                "the mesh, 64 x 48 -> 120 x 90 graded x4 (this level; the paper's element "
-                "count) -> 240 x 90 graded x4 (60 per 0.0625 mm wave) gave 0.646/0.661/0.669 "
-                "at 0.25 MPa, and 0.741/0.751 (the last two) at 0.35 MPa (A = 0.03-0.04; "
+                "the mesh, 64 x 48 -> 120 x 90 graded x4 (the paper's element count) -> "
+                "240 x 90 graded x4 (this level) gave 0.646/0.661/0.669 at 0.25 MPa, and "
+                "0.741/0.751 (the last two) at 0.35 MPa (A = 0.03-0.04; "
                 "docs/validation/fem_convergence.md).",
-                "", "**The full-FEM reference is not mesh-converged at the smallest areas.** At "
-                "50 mm/s and 0.15 MPa the contact fraction is 0.011-0.019: 3-5 um of contact "
-                "in the 0.25 mm cell, one or two 2.1 um columns per patch. There 120 x 90 -> "
-                "240 x 90 -> 480 x 90 (graded, same dt) gives 0.433/0.500/0.502 for "
-                "realization 0 (VHS 0.506), and 120 x 90 -> 240 x 90 gives 0.183/0.251 for "
-                "realization 4 (VHS 0.289): this level's FEM is 13-27 % low there, and "
-                "240 x 90 (1.04 um columns, the law cell's) is converged within 0.4 % "
-                "(docs/validation/fem_convergence.md). Over the 5 realizations the 240 x 90 "
-                "FEM at 50 mm/s is 12.7 % above this level's at 0.15 MPa (ratios 1.02-1.38), "
-                "1.6 % at 0.35 MPa (A = 0.022-0.033; ratios 1.005-1.044) and 1.2 % at 0.8 MPa "
-                "(ratios 1.004-1.018), and at 10 mm/s, 0.15 MPa 1.6 % (ratios 1.006-1.043). "
-                "With the 240 x 90 FEM at all 50 mm/s loads and at 10 mm/s, 0.15 MPa (this "
-                "level's at the other two), eq. 28 at equal area becomes 3.4 % / 11.6 % for "
-                "the windowed hybrid and 7.1 % / 16.4 % for the VHS at 10 / 50 mm/s, against "
-                "3.3 % / 24.0 % and 7.6 % / 29.2 % in the table below "
-                "(docs/validation/fem_reference_mesh.md; there the windowed hybrid's 90 % "
-                "bootstrap intervals are 1.7-18.0 % and 1.9-34.2 %, and the paper's 2.9 / "
-                "7.1 % lie inside them). The quick level keeps 120 x 90 "
-                "until its 10 mm/s loads at 0.35 and 0.8 MPa are rerun at 240 x 90 (two of "
-                "ten done; about 4 h on one core, resumable).",
-                "", _sampling_sentence(ds),
+                "", "**Why 240 x 90 and not the paper's 120 x 90.** At 50 mm/s and 0.15 MPa "
+                "the contact fraction is 0.011-0.019: 3-5 um of contact in the 0.25 mm cell, "
+                "one or two 2.1 um columns per patch at 120 x 90. There 120 x 90 -> 240 x 90 "
+                "-> 480 x 90 (graded, same dt) gives 0.433/0.500/0.502 for realization 0 "
+                "(VHS 0.506), and 120 x 90 -> 240 x 90 gives 0.183/0.251 for realization 4 "
+                "(VHS 0.289): 240 x 90 (1.04 um columns, the law cell's) is converged within "
+                "0.4 % (docs/validation/fem_convergence.md). " + PAPER_MESH_SENTENCE,
+                "", _steadiness_sentence(ds),
+                "", _sampling_sentence(ds), "", _per_realization_sentence(ds),
                 "", "**The FEM contact area at the smallest areas.** Eq. 28 compares at equal "
-                "area, so the FEM's area matters as much as its friction: at 50 mm/s, with the "
-                "240 x 90 reference at the loads above, multiplying every FEM contact "
-                "fraction by 1.05 / 0.95 / 0.9 moves the windowed hybrid's error from 11.6 % "
-                "to 15.2 / 8.0 / 4.4 % (docs/validation/fem_reference_mesh.md). The FEM's "
+                "area, so the FEM's area matters as much as its friction: "
+                + _area_sensitivity_text(ds) + " The FEM's "
                 "contact fraction is the gap below the chord sag, interpolated between the "
                 "contact points (4 per segment here). Against exact references "
                 "(docs/validation/contact_area_resolution.md), static against Westergaard "
@@ -349,8 +489,8 @@ def section3_report(ds, wall, figs, msgs, level) -> list[str]:
                 "section 3 FEM at its smallest loads is in "
                 "that range (at 50 mm/s, 0.15 MPa the contact is about 2.8 um wide, a = 1.4 um, "
                 "h/a = 0.75 at 240 x 90, and its area still fell 9 % from 240 to 480 columns in "
-                "realization 0). If it carries the same bias, the 50 mm/s error would be about "
-                "4-8 % (docs/validation/fem_reference_mesh.md). The estimator is also "
+                "realization 0); a bias of 5-10 % there is the 0.95-0.9 rows above. The "
+                "estimator is also "
                 "fragile: inside a contact on a crest the nodes lift off by about one sag, so "
                 "the threshold sits on that "
                 "classification. A 10x stiffer penalty takes 3-8 % of the area away, and "
@@ -437,7 +577,8 @@ def section3_report(ds, wall, figs, msgs, level) -> list[str]:
                 "comes close (2.6/1.8 %); against the FEM on this surface that reading was "
                 "further off than the windowed one (docs/validation/crest_section3.md, 5 "
                 "realizations: 11.3 / 32.3 % at equal area against 3.3 / 24.0 % "
-                "for the windowed one at 10 / 50 mm/s), so the windowed hybrid stays "
+                "for the windowed one at 10 / 50 mm/s, both with the 3-period law and the "
+                "120 x 90 FEM), so the windowed hybrid stays "
                 "the model we report. Neither hybrid sees where the high-slope crests sit on "
                 "the low-slope flanks, which the FEM and the VHS do. " + _spread_sentence(ds),
                 "",
