@@ -39,11 +39,22 @@ STEADINESS_VARIABLES = {
 }
 
 
-def change_text(friction_change: float, area_change: float) -> str:
-    """`` (μ 1.2 %, A 7.0 %)``: how much an FEM test still moved over its last period."""
-    parts = [f"{name} {100 * x:.1f} %" for name, x in (("μ", friction_change),
-                                                        ("A", area_change)) if np.isfinite(x)]
-    return f" ({', '.join(parts)})" if parts else ""
+def describe_unsteady(diag: dict, label) -> tuple[int, str, bool]:
+    """The FEM tests of ``diag`` (arrays of ``STEADINESS_VARIABLES``) that were not steady.
+
+    Returns their number, ``"label (μ 1.2 %, A 7.0 %), ..."`` with ``label(*index)`` naming
+    each and its changes over the last period where recorded, and whether any was recorded
+    (results cached before the changes existed have only the flag).
+    """
+    items, recorded = [], False
+    bad = np.argwhere(diag["steady"] == 0)
+    for idx in map(tuple, bad):
+        parts = [f"{name} {100 * diag[k][idx]:.1f} %"
+                 for name, k in (("μ", "period_change"), ("A", "period_area_change"))
+                 if np.isfinite(diag[k][idx])]
+        recorded |= bool(parts)
+        items.append(label(*idx) + (f" ({', '.join(parts)})" if parts else ""))
+    return len(bad), ", ".join(items), recorded
 
 
 def effective_law(hs_surface: SineSeries, material: GeneralizedMaxwell,
@@ -145,17 +156,14 @@ def assemble_law(results, pressures, velocities, hs_surface: SineSeries,
     law["status"] = (("velocity", "pressure"), status.astype(str))
     for k, text in STEADINESS_VARIABLES.items():
         law[k] = (("velocity", "pressure"), diag[k], {"units": "1", "long_name": text})
-    bad = np.argwhere(diag["steady"] == 0)
-    if bad.size:
+    n_bad, where, recorded = describe_unsteady(
+        diag, lambda i, j: f"v={velocities[i]:g} p={pressures[j]:g}")
+    if n_bad:
         # Kept in the table (the last period's averages): in the law cell the friction
         # settles within a few periods, the contact fraction can keep swinging by several
         # per cent from one period to the next.
-        where = ", ".join(f"v={velocities[i]:g} p={pressures[j]:g}"
-                          + change_text(diag["period_change"][i, j],
-                                        diag["period_area_change"][i, j])
-                          for i, j in bad)
-        brackets = " (change over the last period in brackets)" if "(" in where else ""
-        warnings.warn(f"law: {len(bad)} of {diag['steady'].size} FEM points did not reach "
+        brackets = " (change over the last period in brackets)" if recorded else ""
+        warnings.warn(f"law: {n_bad} of {diag['steady'].size} FEM points did not reach "
                       f"steady sliding within fem.periods{brackets}: {where}; they are kept "
                       f"(last period's averages); more periods would settle them",
                       LawWarning, stacklevel=3)

@@ -36,9 +36,9 @@ from ..materials import GeneralizedMaxwell, sbr
 from ..roughness import SineSeries, presets
 from .law import (
     STEADINESS_VARIABLES,
-    change_text,
     check_coverage,
     continue_with_linear_shape,
+    describe_unsteady,
     effective_law,
     law_at_velocity,
     screen_monotone,
@@ -469,16 +469,13 @@ def _add_fem_steadiness(ds: xr.Dataset, diag: dict, stacklevel: int = 2) -> xr.D
     dims = ("velocity", "realization", "pressure")
     for k, text in STEADINESS_VARIABLES.items():
         ds[f"fem_{k}"] = (dims, diag[k], {"units": "1", "long_name": f"full FEM: {text}"})
-    bad = np.argwhere(diag["steady"] == 0)
-    if bad.size:
-        where = ", ".join(
-            f"v={ds['velocity'].values[iv]:g} σ0={ds['pressure'].values[ip]:g} r={ir}"
-            + change_text(diag["period_change"][iv, ir, ip],
-                          diag["period_area_change"][iv, ir, ip])
-            for iv, ir, ip in bad)
+    v, p = ds["velocity"].values, ds["pressure"].values
+    n_bad, where, recorded = describe_unsteady(
+        diag, lambda iv, ir, ip: f"v={v[iv]:g} σ0={p[ip]:g} r={ir}")
+    if n_bad:
         brackets = ("; change of friction / contact fraction over the last period in "
-                    "brackets" if "(" in where else "")
-        warnings.warn(f"{len(bad)} of {diag['steady'].size} full-FEM tests did not reach "
+                    "brackets" if recorded else "")
+        warnings.warn(f"{n_bad} of {diag['steady'].size} full-FEM tests did not reach "
                       f"steady sliding in the periods allowed (fem.full_periods, else "
                       f"fem.periods){brackets}: {where}. Their results are the last period's "
                       f"averages (see 'fem_steady'); more periods would settle them",
