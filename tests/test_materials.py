@@ -47,6 +47,44 @@ def test_single_branch_closed_form():
     assert m.loss_tangent(1e3) == pytest.approx(0.6, rel=1e-14)
 
 
+def test_creep_of_standard_linear_solid_closed_form():
+    # E_inf + one branch (E1, tau): creep retardation time tau (E_inf + E1)/E_inf and
+    # J(t) = 1/E_inf - (1/E_inf - 1/(E_inf + E1)) exp(-t/lambda). Exact up to root finding.
+    m = rc.materials.GeneralizedMaxwell(2.0, [6.0], [1e-3])
+    lam = 1e-3 * 8.0 / 2.0
+    np.testing.assert_allclose(m.retardation_times(), [lam], rtol=1e-12)
+    t = np.array([0.0, 1e-3, 4e-3, 2e-2])
+    np.testing.assert_allclose(m.creep_compliance(t),
+                               0.5 - (0.5 - 1 / 8.0) * np.exp(-t / lam), rtol=1e-12)
+
+
+def test_creep_compliance_inverts_relaxation(sbr):
+    # Hold a unit stress: Boltzmann superposition of the creep strain through E(t) must give
+    # back sigma = E(t) J(0) + int_0^t E(t - s) J'(s) ds = 1 at every t. Checked on a
+    # three-branch series (quad resolves its time scales; 1e-7 is its tolerance) and the
+    # limits and interlacing on SBR (Table 1, times over eight decades).
+    m = rc.materials.GeneralizedMaxwell(1.0, [3.0, 10.0, 30.0], [1e-1, 1e-2, 1e-3])
+    lam = m.retardation_times()
+    h = 1e-9
+    for t in (5e-4, 5e-3, 0.05, 0.5):
+        def integrand(s, t=t):
+            dj = (m.creep_compliance(s + h) - m.creep_compliance(max(s - h, 0.0))) / (
+                s + h - max(s - h, 0.0))
+            return float(m.relaxation_modulus(t - s) * dj)
+        stress = float(m.relaxation_modulus(t) * m.creep_compliance(0.0)) + quad(
+            integrand, 0.0, t, points=[x for x in lam if x < t], limit=400)[0]
+        assert stress == pytest.approx(1.0, abs=1e-5)
+    lam = sbr.retardation_times()
+    tau = np.sort(sbr.relaxation_times)
+    assert lam.size == tau.size
+    assert np.all(tau < lam) and np.all(lam[:-1] < tau[1:])        # interlacing
+    assert sbr.creep_compliance(0.0) == pytest.approx(1 / sbr.glassy_modulus, rel=1e-10)
+    assert sbr.creep_compliance(10.0) == pytest.approx(1 / 4.17, rel=1e-10)
+    assert np.all(np.diff(sbr.creep_compliance(np.logspace(-11, 0, 200))) >= -1e-15)
+    assert rc.materials.GeneralizedMaxwell(3.0).retardation_times().size == 0
+    assert rc.materials.GeneralizedMaxwell(3.0).creep_compliance(1.0) == pytest.approx(1 / 3)
+
+
 def test_relaxation_modulus_limits_and_kramers_kronig(sbr):
     # E(t=0) = glassy modulus, E(t -> inf) = E_inf.
     assert sbr.relaxation_modulus(0.0) == pytest.approx(sbr.glassy_modulus, rel=1e-14)

@@ -188,6 +188,53 @@ class GeneralizedMaxwell:
         return self.equilibrium_modulus + (
             self.moduli * np.exp(-t[..., None] / self.relaxation_times)).sum(axis=-1)
 
+    def retardation_times(self) -> np.ndarray:
+        """Retardation (creep) times ``λ_k`` [s], ascending; empty for an elastic material.
+
+        Under a constant stress the strain creeps as ``J(t)`` (:meth:`creep_compliance`),
+        whose exponentials decay with these times. They are the zeros ``s_k = −1/λ_k`` of
+        ``Ê(s) = E_∞ + Σ E_i sτ_i/(1 + sτ_i)``, one between each pair of neighbouring poles
+        ``−1/τ_i`` and one between ``−1/τ_max`` and 0, so ``λ_k`` interlace the relaxation
+        times and the longest exceeds the longest ``τ_i``. Found by bracketed root search
+        on each interval (a polynomial in ``s`` would be ill-conditioned for times spread
+        over many decades).
+        """
+        from scipy.optimize import brentq
+
+        tau = np.sort(self.relaxation_times)[::-1]            # longest first
+        moduli = self.moduli[np.argsort(self.relaxation_times)[::-1]]
+        e_inf = self.equilibrium_modulus
+
+        def e_hat(x: float) -> float:                  # Ê(−x), x = 1/λ > 0
+            return e_inf - float(np.sum(moduli * x * tau / (1.0 - x * tau)))
+
+        poles = np.concatenate([[0.0], 1.0 / tau])            # ascending in x
+        roots = []
+        for lo, hi in zip(poles[:-1], poles[1:], strict=True):
+            # Ê(−x) runs from +∞ (or E_∞ at x = 0) down to −∞ across each interval
+            eps = 1e-12 * (hi - lo)
+            roots.append(brentq(e_hat, lo + eps, hi - eps, xtol=1e-15 * hi, rtol=1e-13,
+                                maxiter=500))
+        return np.sort(1.0 / np.asarray(roots))
+
+    def creep_compliance(self, t) -> np.ndarray:
+        """``J(t)`` [1/MPa]: the strain per unit stress applied at ``t = 0`` and held.
+
+        ``J(0) = 1/E_glassy``, ``J(∞) = 1/E_∞``;
+        ``J(t) = 1/E_∞ + Σ_k r_k exp(−t/λ_k)`` with the residues
+        ``r_k = 1/(s_k Ê'(s_k))`` of ``1/(s Ê(s))`` at ``s_k = −1/λ_k``.
+        """
+        t = np.asarray(t, dtype=float)
+        if np.any(t < 0):
+            raise InputError("t: creep compliance is defined for t >= 0 only")
+        lam = self.retardation_times()
+        s_k = -1.0 / lam
+        de_hat = (self.moduli * self.relaxation_times
+                  / (1.0 + s_k[:, None] * self.relaxation_times) ** 2).sum(axis=1)
+        residues = 1.0 / (s_k * de_hat)
+        return 1.0 / self.equilibrium_modulus + (
+            residues * np.exp(-t[..., None] / lam)).sum(axis=-1)
+
     def as_dict(self) -> dict:
         """Plain-data form (for configs, hashing and NetCDF attributes)."""
         return {"name": self.name, "equilibrium_modulus": self.equilibrium_modulus,
