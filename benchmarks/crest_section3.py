@@ -144,8 +144,7 @@ def main(argv=None) -> int:
     crest["friction"] = (("model", "velocity", "realization", "pressure"), mu_c[None])
     crest["contact_fraction"] = (("model", "velocity", "realization", "pressure"),
                                  area_c[None])
-    crest["friction_mean"] = crest["friction"].mean("realization")
-    crest["contact_fraction_mean"] = crest["contact_fraction"].mean("realization")
+    crest = validate.with_realization_means(crest)
     keep = ["friction", "contact_fraction", "friction_mean", "contact_fraction_mean"]
     both = xr.concat([ds[keep], crest[keep]], dim="model")
     models = ["vhs", "hybrid-windowed", "hybrid-crest"]

@@ -43,7 +43,6 @@ import validate  # noqa: E402
 
 import rubbercontact as rc  # noqa: E402
 from rubbercontact.hybrid.law import effective_law  # noqa: E402
-from rubbercontact.hybrid.metrics import mean_relative_error  # noqa: E402
 from rubbercontact.hybrid.pipeline import (  # noqa: E402
     _translated_to_zero_phase,
     build_material,
@@ -134,17 +133,7 @@ def _with_reference(ds: xr.Dataset, fine: dict) -> xr.Dataset:
         sel = {"model": "fem", "velocity": v, "pressure": p}
         ds["friction"].loc[sel] = mu
         ds["contact_fraction"].loc[sel] = a
-    ds["friction_mean"] = ds["friction"].mean("realization")
-    ds["contact_fraction_mean"] = ds["contact_fraction"].mean("realization")
-    return ds
-
-
-def _errors(ds: xr.Dataset) -> dict:
-    out = {}
-    for v, (areas, mus) in validate._friction_at_common_areas(ds).items():
-        out[v] = (areas, {m: mean_relative_error(mus["fem"], mus[m])
-                          for m in ("hybrid", "hybrid-windowed", "vhs")})
-    return out
+    return validate.with_realization_means(ds)
 
 
 def report(ds: xr.Dataset, coarse: dict, fine: dict, name: str, base: str,
@@ -191,7 +180,7 @@ def report(ds: xr.Dataset, coarse: dict, fine: dict, name: str, base: str,
     if len(reals) < ds.sizes["realization"]:
         return "\n".join(lines) + "\n"
     paper, refined = _with_reference(ds, coarse), _with_reference(ds, fine)
-    before, after = _errors(paper), _errors(refined)
+    before, after = validate.eq28_at_equal_area(paper), validate.eq28_at_equal_area(refined)
     ci = validate._eq28_intervals(refined)
     lines += ["", "Eq. 28 at equal contact area (areas log-spaced over the range every "
               f"model's sweep covers, as in VALIDATION.md), with the {base} reference and "

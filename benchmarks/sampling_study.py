@@ -33,7 +33,6 @@ import validate  # noqa: E402
 from fem_reference_mesh import _mesh, _mesh_name  # noqa: E402
 
 import rubbercontact as rc  # noqa: E402
-from rubbercontact.hybrid.metrics import mean_relative_error  # noqa: E402
 
 MODELS = ("hybrid-windowed", "vhs", "hybrid")
 
@@ -53,21 +52,6 @@ def study_config(velocities, realizations: int, mesh, grading: float, workers: i
                                                 f"{grading:g})")
 
 
-def _subset(ds: xr.Dataset, n: int) -> xr.Dataset:
-    """The first ``n`` realizations with their means redone."""
-    sub = ds.isel(realization=slice(0, n)).copy()
-    sub["friction_mean"] = sub["friction"].mean("realization")
-    sub["contact_fraction_mean"] = sub["contact_fraction"].mean("realization")
-    return sub
-
-
-def _eq28(ds: xr.Dataset) -> dict:
-    """``{v: (areas, {model: e})}`` at equal area, as in VALIDATION.md."""
-    out = {}
-    for v, (areas, mus) in validate._friction_at_common_areas(ds).items():
-        out[v] = (areas, {m: mean_relative_error(mus["fem"], mus[m])
-                          for m in MODELS if m in mus})
-    return out
 
 
 def _spread_lines(ds: xr.Dataset) -> list[str]:
@@ -126,9 +110,9 @@ def report(ds: xr.Dataset, ref: xr.Dataset | None, name: str, base: str,
              "", "| v [mm/s] | realizations | areas | windowed hybrid | VHS | pointwise hybrid |",
              "|---|---|---|---|---|---|"]
     for k in sorted({5, n}):
-        sub = _subset(ds, k)
+        sub = validate.with_realization_means(ds.isel(realization=slice(0, k)))
         ci = validate._eq28_intervals(sub, models=MODELS)
-        for v, (areas, e) in _eq28(sub).items():
+        for v, (areas, e) in validate.eq28_at_equal_area(sub, MODELS).items():
             lines.append(f"| {v:g} | {k} | {areas.min():.3f}-{areas.max():.3f} | " + " | ".join(
                 f"{100 * e[m]:.1f} % ({validate._interval_text(*ci[v][m])})" for m in MODELS)
                 + " |")
