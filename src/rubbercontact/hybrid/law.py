@@ -202,8 +202,12 @@ def screen_monotone(law: xr.Dataset) -> xr.Dataset:
     kept (ties: the subset with the lower pressures, where the FEM is most reliable);
     every other point keeps its numbers in the table but gets the status
     ``"excluded: non-monotone ..."`` and is named in a :class:`LawWarning`. Typical
-    cause: mean pressures beyond the rubber's equilibrium modulus, where the FEM cell is
-    crushed and the time averages are not steady.
+    cause: mean pressures near or beyond the rubber's equilibrium modulus. There the
+    friction stress ``μp̄`` creeps the cell into a bulk shear ``3μp̄/E∞`` of order 1 (on
+    the longest retardation time, 16 ms for SBR), and that finite shear lifts the face
+    off: the steady ``ū`` itself rises with ``p̄`` (docs/validation/fem_steadiness.md: at
+    10 mm/s ``ū`` goes from 3.8 to 12.0 um over 20 periods at 4 MPa, beyond the 11.4 um
+    it settles to at 2 MPa).
 
     Returns a copy of ``law`` with the updated ``status``.
     """
@@ -224,7 +228,9 @@ def screen_monotone(law: xr.Dataset) -> xr.Dataset:
                 f"law at v={v:g} mm/s: FEM points at p={[float(pressures[j]) for j in dropped]}"
                 f" MPa are excluded, their mean separations "
                 f"{[float(u[j]) for j in dropped]} mm break the strict decrease of u with p "
-                f"(check the FEM convergence and steadiness at those loads)",
+                f"(check the FEM convergence and steadiness at those loads; near the "
+                f"equilibrium modulus the cell creeps into a bulk shear of order 1 under the "
+                f"friction stress and its face lifts off, see screen_monotone)",
                 LawWarning, stacklevel=2)
     law["status"] = (law["status"].dims, status.astype(str))
     return law
