@@ -55,7 +55,8 @@ def _case(spec: str) -> dict:
 
 def _key(case: dict, periods: int) -> tuple:
     return (case["kind"], case["velocity"], case["pressure"], case["realization"],
-            case["mesh"], case.get("grading", 4.0), periods)
+            case["mesh"], case.get("grading", 4.0), case.get("viscous_model", "simo"),
+            periods)
 
 
 def run_case(case: dict, periods: int) -> dict:
@@ -71,6 +72,7 @@ def run_case(case: dict, periods: int) -> dict:
                                   case["pressure"], case["velocity"], mesh=(nx, ny),
                                   grading=case["grading"], periods=periods,
                                   min_periods=periods,
+                                  viscous_model=case.get("viscous_model", "simo"),
                                   steps_per_period=spp, height_ratio=0.75)
     h = out.history
     sliding = h["phase"] == 2
@@ -83,8 +85,9 @@ def run_case(case: dict, periods: int) -> dict:
 
 
 def _mesh_label(row: dict) -> str:
-    grading = row.get("grading", 4.0)
-    return row["mesh"] + ("" if grading == 4.0 else f" g{grading:g}")
+    grading, model = row.get("grading", 4.0), row.get("viscous_model", "simo")
+    return (row["mesh"] + ("" if grading == 4.0 else f" g{grading:g}")
+            + ("" if model == "simo" else f" ({model})"))
 
 
 def _summary(row: dict) -> str:
@@ -137,7 +140,8 @@ def _time_scales(rows: list[dict]) -> str:
     if drifts:
         text += (" The mean separation of the long law runs approaches its final value with "
                  "an e-folding time of " + ", ".join(
-                     f"{1e3 * t:.1f} ms ({r['velocity']:g} mm/s, {r['pressure']:g} MPa, "
+                     f"{1e3 * t:.1f} ms ({_mesh_label(r)}, {r['velocity']:g} mm/s, "
+                     f"{r['pressure']:g} MPa, "
                      f"ū {1e3 * r['mean_separation'][0]:.2f} -> "
                      f"{1e3 * r['mean_separation'][-1]:.2f} um, A "
                      f"{r['contact_fraction'][0]:.3f} -> {r['contact_fraction'][-1]:.3f}, "
@@ -148,6 +152,18 @@ def _time_scales(rows: list[dict]) -> str:
                  "to the finite-strain coupling of the large bulk shear with the contact."
                  " With enough sliding it makes ū rise with p̄ near E∞ (the law screens "
                  "those points out as non-monotone).")
+    finals: dict = {}
+    for r in rows:
+        if "mean_separation" in r and r["kind"] == "law":
+            finals.setdefault((r.get("viscous_model", "simo"), _mesh_label(r), r["velocity"]),
+                              {})[r["pressure"]] = r["mean_separation"][-1]
+    pairs = [(k, u) for k, u in finals.items() if len(u) > 1]
+    if pairs:
+        text += (" Final ū against p̄ in the long runs: " + "; ".join(
+            f"{label}, {v:g} mm/s: " + " / ".join(f"{1e3 * u[p]:.2f}" for p in sorted(u))
+            + f" um at {' / '.join(f'{p:g}' for p in sorted(u))} MPa ("
+            + ("falls" if all(np.diff([u[p] for p in sorted(u)]) < 0) else "rises")
+            + " with p̄)" for (_model, label, v), u in pairs) + ".")
     return text
 
 
@@ -185,6 +201,8 @@ def main(argv=None) -> int:
     ap = argparse.ArgumentParser(description=__doc__.splitlines()[0])
     ap.add_argument("cases", nargs="+", help="KIND:V:P[:R[:NXxNY[:G]]]")
     ap.add_argument("--periods", type=int, default=10)
+    ap.add_argument("--viscous-model", choices=["simo", "reese-govindjee"], default="simo",
+                    help="finite-strain viscoelastic model of the cases given")
     ap.add_argument("--out", type=Path, default=ROOT / "docs" / "validation" /
                     "fem_steadiness.jsonl")
     ap.add_argument("--report", type=Path)
@@ -193,6 +211,7 @@ def main(argv=None) -> int:
         raise SystemExit(f"--periods must exceed {VALIDATION_PERIODS}")
     done = {_key(r, r["periods"]) for r in read_rows(args.out)}
     for case in map(_case, args.cases):
+        case["viscous_model"] = args.viscous_model
         if _key(case, args.periods) not in done:
             append_row(args.out, run_case(case, args.periods))
     text = report(read_rows(args.out))

@@ -207,7 +207,9 @@ def screen_monotone(law: xr.Dataset) -> xr.Dataset:
     the longest retardation time, 16 ms for SBR), and that finite shear lifts the face
     off: the steady ``ū`` itself rises with ``p̄`` (docs/validation/fem_steadiness.md: at
     10 mm/s ``ū`` goes from 3.8 to 12.0 um over 20 periods at 4 MPa, beyond the 11.4 um
-    it settles to at 2 MPa).
+    it settles to at 2 MPa). That is the default Simo-type model; with
+    ``viscous_model = "reese-govindjee"`` the face lifts off less and ``ū`` still falls
+    from 2 to 4 MPa (9.8 to 7.3 um), at about four times the cost.
 
     Returns a copy of ``law`` with the updated ``status``.
     """
@@ -230,7 +232,8 @@ def screen_monotone(law: xr.Dataset) -> xr.Dataset:
                 f"{[float(u[j]) for j in dropped]} mm break the strict decrease of u with p "
                 f"(check the FEM convergence and steadiness at those loads; near the "
                 f"equilibrium modulus the cell creeps into a bulk shear of order 1 under the "
-                f"friction stress and its face lifts off, see screen_monotone)",
+                f"friction stress and its face lifts off, see screen_monotone; "
+                f"fem.viscous_model = 'reese-govindjee' lifts off less)",
                 LawWarning, stacklevel=2)
     law["status"] = (law["status"].dims, status.astype(str))
     return law
