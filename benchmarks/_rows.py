@@ -1,4 +1,5 @@
-"""Resumable studies: one JSON line per finished case, appended as the case ends.
+"""Resumable studies: one JSON line per finished case, appended as the case ends, and
+the study's Markdown report printed and written in one step.
 
 A kill can cut only the line being written; that line is not valid JSON, so it is skipped
 on reading and its case runs again. Everything finished before is kept.
@@ -28,3 +29,15 @@ def append_row(path: Path, row: dict) -> None:
     print(text, flush=True)
     with path.open("a") as fh:
         fh.write(text + "\n")
+
+
+def publish(text: str, path: Path | None) -> int:
+    """Print a study's report and, when ``path`` is given, write it there atomically
+    (a temporary file renamed over the old report); the exit status for ``main``."""
+    print(text)
+    if path is not None:
+        path.parent.mkdir(parents=True, exist_ok=True)
+        tmp = path.with_name(path.name + ".tmp")
+        tmp.write_text(text)
+        tmp.replace(path)
+    return 0

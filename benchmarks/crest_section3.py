@@ -32,6 +32,7 @@ ROOT = Path(__file__).resolve().parents[1]
 sys.path.insert(0, str(Path(__file__).resolve().parent))
 
 import validate  # noqa: E402
+from _rows import publish  # noqa: E402
 from scale_separation import crest_resolved_loads  # noqa: E402
 
 from rubbercontact.hybrid.metrics import mean_relative_error  # noqa: E402
@@ -182,10 +183,7 @@ def main(argv=None) -> int:
     if not args.skip_material_model:
         lines += ["", *material_model_part(args.cache)]
     text = "\n".join(lines) + "\n"
-    print(text)
-    if args.report:
-        args.report.write_text(text)
-    return 0
+    return publish(text, args.report)
 
 
 if __name__ == "__main__":

@@ -40,6 +40,7 @@ ROOT = Path(__file__).resolve().parents[1]
 sys.path.insert(0, str(Path(__file__).resolve().parent))
 
 import validate  # noqa: E402
+from _rows import publish  # noqa: E402
 
 import rubbercontact as rc  # noqa: E402
 from rubbercontact.hybrid.law import effective_law  # noqa: E402
@@ -272,10 +273,7 @@ def main(argv=None) -> int:
             for velocity in args.law_velocity:
                 text += law_report(coarse_cfg, law_mesh, fine_law_mesh, args.law_pressures,
                                    velocity, law_grading, args.law_periods, fine_law_grading)
-    print(text)
-    if args.report:
-        args.report.write_text(text)
-    return 0
+    return publish(text, args.report)
 
 
 if __name__ == "__main__":

@@ -31,7 +31,7 @@ from datetime import UTC, datetime
 from pathlib import Path
 
 import numpy as np
-from _rows import append_row, read_rows
+from _rows import append_row, publish, read_rows
 
 import rubbercontact as rc
 from rubbercontact.hybrid.pipeline import _translated_to_zero_phase
@@ -215,10 +215,7 @@ def main(argv=None) -> int:
         if _key(case, args.periods) not in done:
             append_row(args.out, run_case(case, args.periods))
     text = report(read_rows(args.out))
-    print(text)
-    if args.report:
-        args.report.write_text(text)
-    return 0
+    return publish(text, args.report)
 
 
 if __name__ == "__main__":

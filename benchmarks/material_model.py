@@ -37,6 +37,8 @@ import numpy as np
 ROOT = Path(__file__).resolve().parents[1]
 sys.path.insert(0, str(ROOT / "src"))
 
+from _rows import publish  # noqa: E402
+
 import rubbercontact as rc  # noqa: E402
 from rubbercontact.config import load_config  # noqa: E402
 from rubbercontact.sweep import ExecutorConfig, ResultCache, Task, run_sweep  # noqa: E402
@@ -234,11 +236,7 @@ def main(argv=None) -> int:
                               f"{float(s_.sel(model='hybrid-windowed')):.3f}"]
                 lines.append(f"| {v:g} | {p:g} | " + " | ".join(cells) + " |")
     text = "\n".join(lines) + "\n"
-    print(text)
-    if args.report:
-        args.report.parent.mkdir(parents=True, exist_ok=True)
-        args.report.write_text(text)
-    return 0
+    return publish(text, args.report)
 
 
 if __name__ == "__main__":

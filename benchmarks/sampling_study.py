@@ -30,6 +30,7 @@ ROOT = Path(__file__).resolve().parents[1]
 sys.path.insert(0, str(Path(__file__).resolve().parent))
 
 import validate  # noqa: E402
+from _rows import publish  # noqa: E402
 from fem_reference_mesh import _mesh, _mesh_name  # noqa: E402
 
 import rubbercontact as rc  # noqa: E402
@@ -152,10 +153,7 @@ def main(argv=None) -> int:
     ref = xr.load_dataset(args.reference) if args.reference.exists() else None
     base = "240x90 graded x4"
     text = report(ds, ref, _mesh_name(mesh, grading), base, msgs)
-    print(text)
-    if args.report:
-        args.report.write_text(text)
-    return 0
+    return publish(text, args.report)
 
 
 if __name__ == "__main__":
