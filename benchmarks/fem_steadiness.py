@@ -125,7 +125,8 @@ def _time_scales(rows: list[dict]) -> str:
     mat = rc.materials.sbr()
     tau, lam = mat.relaxation_times.max(), mat.retardation_times().max()
     j_inf = 1.0 / mat.equilibrium_modulus
-    ends = {v: VALIDATION_PERIODS * 0.25 / v for v in (10.0, 50.0)}
+    ends = {v: VALIDATION_PERIODS * _period_s({"kind": "full", "velocity": v})
+            for v in (10.0, 50.0)}
     text = (f"**Time scales.** The SBR's longest relaxation time is {1e3 * tau:.1f} ms, but "
             "under the constant mean shear stress of sliding (τ = μ p̄) the cell creeps, and "
             f"creep runs on retardation times: the longest is {1e3 * lam:.1f} ms "

@@ -20,6 +20,7 @@ run resumes. Run single-threaded, e.g.::
 from __future__ import annotations
 
 import argparse
+import json
 import sys
 from pathlib import Path
 
@@ -151,7 +152,12 @@ def main(argv=None) -> int:
                        args.cache, args.outdir)
     ds, _wall, _figs, msgs = validate._run("sampling_study", cfg, args.outdir.parent)
     ref = xr.load_dataset(args.reference) if args.reference.exists() else None
-    base = "240x90 graded x4"
+    if ref is not None:
+        fem = json.loads(ref.attrs["config"])["fem"]
+        base = _mesh_name(tuple(fem.get("full_mesh") or fem["mesh"]),
+                          fem.get("full_grading", 1.0))
+    else:
+        base = ""
     text = report(ds, ref, _mesh_name(mesh, grading), base, msgs)
     return publish(text, args.report)
 

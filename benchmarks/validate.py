@@ -402,13 +402,15 @@ def _steadiness_sentence(ds) -> str:
                  + "; ".join(cells) + f". The law cell is a quarter of the full cell "
                  f"wide: its {cfg['periods']} periods are {cfg['periods'] / 4:g} full-cell "
                  "periods of sliding.")
-    mat = rc.materials.sbr()
+    mat = rc.materials.GeneralizedMaxwell(**json.loads(ds.attrs["material"]))
+    v_max = float(ds["velocity"].max())
+    distance = (cfg.get("full_periods") or cfg["periods"]) * float(ds.attrs["period_mm"])
     text += (" The tests drift on the cell's creep time, not its relaxation time: under the "
              "mean friction stress the cell creeps in shear, and the SBR's longest "
              f"retardation time is {1e3 * mat.retardation_times().max():.1f} ms against "
-             f"{1e3 * mat.relaxation_times.max():.1f} ms (after 0.75 mm of sliding at 50 mm/s "
-             f"the creep compliance is at "
-             f"{100 * float(mat.creep_compliance(0.75 / 50)) * mat.equilibrium_modulus:.0f}"
+             f"{1e3 * mat.relaxation_times.max():.1f} ms (after {distance:g} mm of sliding at "
+             f"{v_max:g} mm/s the creep compliance is at "
+             f"{100 * float(mat.creep_compliance(distance / v_max)) * mat.equilibrium_modulus:.0f}"
              " % of 1/E∞). Near E∞ the bulk shear reaches 1-2 and the face lifts off as it "
              "creeps in (docs/validation/fem_steadiness.md): that is why the law's points at "
              "4-6 MPa come out non-monotone. It is a property of the default Simo-type model "
