@@ -88,6 +88,22 @@ def test_elastic_material_gives_zero_friction():
     assert abs(out.friction) < 1e-8
 
 
+def test_min_sliding_time_sets_the_sliding_distance():
+    # An elastic cell is steady from the first period, so without a minimum time the test
+    # stops after 2 periods. 20 ms at 10 mm/s over a 0.0625 mm cell is 3.2 periods:
+    # rounded up to whole periods (the check compares period averages), 4 periods, even
+    # though only 2 were allowed.
+    mat = rc.materials.GeneralizedMaxwell.elastic(4.17)
+    surf = rc.roughness.SineSeries([LAM], [0.003])
+    kw = {"mesh": (16, 8), "periods": 2, "steps_per_period": 8}
+    assert rc.fem.sliding_test(surf, mat, 0.3, 10.0, **kw).stats.periods == 2
+    out = rc.fem.sliding_test(surf, mat, 0.3, 10.0, min_sliding_time=0.02, **kw)
+    assert out.stats.periods == 4 and out.stats.steady
+    for bad in (-0.01, float("nan")):
+        with pytest.raises(rc.errors.InputError, match="min_sliding_time"):
+            rc.fem.sliding_test(surf, mat, 0.3, 10.0, min_sliding_time=bad, **kw)
+
+
 def test_static_test_has_no_friction_and_relaxed_state():
     # v = 0: fully relaxed static indentation; with the equilibrium modulus alone the
     # result equals that of the elastic material E∞ (exact relaxation in one big step).

@@ -246,6 +246,27 @@ def test_law_grading_reaches_the_law_tasks_and_keeps_ungraded_cache_keys(tmp_pat
                                 [10.0], grading=-1.0)
 
 
+def test_min_creep_times_reach_every_fem_task_and_keep_cache_keys(tmp_path):
+    # fem.min_creep_times k: every FEM test slides at least k longest retardation times of
+    # the material (SBR: 16.3 ms) before its steadiness check. Unset, the task carries no
+    # such argument, so results cached before the option existed stay valid.
+    lam = float(rc.materials.sbr().retardation_times().max())
+    assert 0.015 < lam < 0.018            # measured 16.3 ms (tests/test_materials.py)
+    for k, models in ((None, ["hybrid"]), (None, ["fem"]), (5.0, ["hybrid"]), (5.0, ["fem"])):
+        fem = {"mesh": [40, 30]} | ({} if k is None else {"min_creep_times": k})
+        seen = _first_sweep(_config(tmp_path, models=models, surface={"preset": "section3"},
+                                    fem=fem))
+        assert seen
+        for t in seen:
+            if k is None:
+                assert "min_sliding_time" not in t.kwargs
+            else:
+                assert t.kwargs["min_sliding_time"] == pytest.approx(k * lam, rel=1e-12)
+    for bad in (0.0, -1.0, 100.0):
+        with pytest.raises(rc.errors.InputError, match="min_creep_times"):
+            rc.config.parse_config(_config(tmp_path, fem={"min_creep_times": bad}))
+
+
 def test_unsteady_full_fem_tests_are_flagged_in_the_results(tmp_path):
     # A full-FEM test that has not settled keeps its numbers (the last period's averages)
     # but must not pass as "ok" silently: the results say which loads, and by how much the

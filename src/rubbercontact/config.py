@@ -135,6 +135,13 @@ class FemConfig(_Strict):
                                         "its (longer) periods (default: periods); the law "
                                         "cell's period is shorter, so equal sliding distance "
                                         "needs more law periods")
+    min_creep_times: float | None = Field(
+        None, gt=0, le=50,
+        description="slide every FEM test (law and full) at least this many of the "
+                    "material's longest retardation time before its steadiness check, "
+                    "raising periods / full_periods where needed: under the friction stress "
+                    "the cell creeps in shear on that time, more slowly than successive "
+                    "period averages reveal (5 settles it to ~1 %; default: off)")
 
 
 class LawConfig(_Strict):

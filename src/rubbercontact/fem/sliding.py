@@ -244,7 +244,8 @@ def _check_inputs(surface, material, mean_pressure, velocity, mesh, height_ratio
 def sliding_test(surface: SineSeries, material: GeneralizedMaxwell, mean_pressure: float,
                  velocity: float, mesh: tuple[int, int] = (120, 90), height_ratio: float = 0.75,
                  periods: int = 6, steps_per_period: int | None = None, *,
-                 min_periods: int = 2, steady_tol: float = 0.01, settle_time: float | None = None,
+                 min_periods: int = 2, min_sliding_time: float = 0.0, steady_tol: float = 0.01,
+                 settle_time: float | None = None,
                  press_steps: int = 4, bulk_modulus: float | None = None,
                  penalty_factor: float = 100.0, grading: float = 1.0, newton_tol: float = 1e-6,
                  max_newton: int = 25, max_cutbacks: int = 6, newton_max_step: float = 0.2,
@@ -269,11 +270,17 @@ def sliding_test(surface: SineSeries, material: GeneralizedMaxwell, mean_pressur
     height_ratio
         Cell height / width (paper: 0.75).
     periods
-        Maximum number of sliding periods.
+        Maximum number of sliding periods (raised to cover ``min_sliding_time``).
     steps_per_period
         Steps per period of travel (default ``nx``: one element of travel per step).
     min_periods
         Minimum sliding periods before steadiness is checked.
+    min_sliding_time
+        Minimum sliding time [s] before steadiness is checked, rounded up to whole periods
+        (``periods`` is raised to match). Under the friction stress the cell creeps in
+        shear on the material's longest retardation time, more slowly than any period
+        average reveals: a few of those times (e.g. ``5 *
+        material.retardation_times().max()``) settle it (docs/validation/fem_steadiness.md).
     steady_tol
         Relative agreement of successive period averages that ends the test.
     settle_time
@@ -339,6 +346,13 @@ def sliding_test(surface: SineSeries, material: GeneralizedMaxwell, mean_pressur
     p, v, nx, ny, hr, spp = _check_inputs(surface, material, mean_pressure, velocity, mesh,
                                           height_ratio, periods, min_periods, steps_per_period)
     steady_tol = positive_scalar("steady_tol", steady_tol)
+    min_sliding_time = positive_scalar("min_sliding_time", min_sliding_time, allow_zero=True,
+                                       unit="s")
+    if v > 0 and min_sliding_time > 0:
+        # whole periods: the steadiness check compares period averages
+        need = int(np.ceil(min_sliding_time * v / surface.period - 1e-9))
+        min_periods = max(int(min_periods), need)
+        periods = max(int(periods), min_periods)
     if isinstance(contact_points, bool) or int(contact_points) != contact_points \
             or contact_points < 1:
         raise InputError(f"contact_points: must be an integer >= 1, got {contact_points!r}")

@@ -63,7 +63,7 @@ def effective_law(hs_surface: SineSeries, material: GeneralizedMaxwell,
                   periods: int = 4, steps_per_period: int | None = None,
                   contact_points: int = 4, history_order: int = 2,
                   viscous_model: str = "simo", grading: float = 1.0,
-                  runner=None) -> xr.Dataset:
+                  min_sliding_time: float = 0.0, runner=None) -> xr.Dataset:
     """Run the FEM sliding test over ``pressures × velocities`` and tabulate the law.
 
     Parameters
@@ -83,6 +83,9 @@ def effective_law(hs_surface: SineSeries, material: GeneralizedMaxwell,
         Top/bottom element height ratio of the law cell's mesh (> 1 refines toward the
         contact face, where the deformation concentrates; the same face resolution with
         fewer rows).
+    min_sliding_time
+        Minimum sliding time [s] of every test before its steadiness check (see
+        :func:`rubbercontact.fem.sliding_test`); 0: none.
     runner
         Callable ``runner(tasks) -> list`` executing :class:`~rubbercontact.sweep.Task`
         objects, returning per task an ``xr.Dataset`` or a failure record;
@@ -104,6 +107,8 @@ def effective_law(hs_surface: SineSeries, material: GeneralizedMaxwell,
     if hs_surface.size == 0:
         raise InputError("hs_surface: the high-slope surface is empty; no law is needed")
     grading = positive_scalar("grading", grading)   # fail here, not in every FEM task
+    min_sliding_time = positive_scalar("min_sliding_time", min_sliding_time, allow_zero=True,
+                                       unit="s")
     from ..sweep import Task
 
     fem_opts = {"mesh": [int(m) for m in mesh], "height_ratio": float(height_ratio),
@@ -113,6 +118,8 @@ def effective_law(hs_surface: SineSeries, material: GeneralizedMaxwell,
         fem_opts["viscous_model"] = str(viscous_model)
     if grading != 1.0:            # likewise
         fem_opts["grading"] = float(grading)
+    if min_sliding_time > 0:      # likewise
+        fem_opts["min_sliding_time"] = min_sliding_time
     tasks = [Task(function="rubbercontact.hybrid.tasks:fem_task",
                   kwargs={"surface": hs_surface.as_dict(), "material": material.as_dict(),
                           "velocity": float(vi), "mean_pressure": float(pi), **fem_opts},
@@ -165,7 +172,8 @@ def assemble_law(results, pressures, velocities, hs_surface: SineSeries,
         brackets = " (change over the last period in brackets)" if recorded else ""
         warnings.warn(f"law: {n_bad} of {diag['steady'].size} FEM points did not reach "
                       f"steady sliding within fem.periods{brackets}: {where}; they are kept "
-                      f"(last period's averages); more periods would settle them",
+                      f"(last period's averages); more periods, or fem.min_creep_times, would "
+                      f"settle them",
                       LawWarning, stacklevel=3)
     law.attrs.update({
         "title": "effective interface law of the high-slope scale (paper eqs. 1-3)",

@@ -193,7 +193,7 @@ def build_law(cfg: RunConfig, hs0: SineSeries, material: GeneralizedMaxwell,
                             contact_points=cfg.fem.contact_points,
                             history_order=cfg.fem.history_order,
                             viscous_model=cfg.fem.viscous_model, grading=cfg.fem.grading,
-                            runner=runner)
+                            min_sliding_time=min_sliding_time(cfg, material), runner=runner)
         fem_time = time.perf_counter() - t0
     law = screen_monotone(law)
     tables = {float(v): continue_with_linear_shape(law_at_velocity(law, float(v)), hs0,
@@ -327,6 +327,15 @@ def run(config: RunConfig | dict | str | Path, *, runner: Runner | None = None,
     return ds
 
 
+def min_sliding_time(cfg: RunConfig, material: GeneralizedMaxwell) -> float:
+    """Minimum sliding time [s] of every FEM test: ``fem.min_creep_times`` times the
+    material's longest retardation time (0 when unset or for an elastic material)."""
+    if cfg.fem.min_creep_times is None:
+        return 0.0
+    times = material.retardation_times()
+    return float(cfg.fem.min_creep_times * times.max()) if times.size else 0.0
+
+
 def full_fem_task(cfg: RunConfig, surface: SineSeries, material: GeneralizedMaxwell,
                   velocity: float, mean_pressure: float) -> Task:
     """The sweep task of one full-FEM sliding test (model ``fem``) with the config's options.
@@ -364,6 +373,8 @@ def full_fem_task(cfg: RunConfig, surface: SineSeries, material: GeneralizedMaxw
         kw["grading"] = cfg.fem.full_grading
     if cfg.fem.viscous_model != "simo":  # keeps existing cache keys
         kw["viscous_model"] = cfg.fem.viscous_model
+    if cfg.fem.min_creep_times is not None:    # likewise
+        kw["min_sliding_time"] = min_sliding_time(cfg, material)
     return Task(function="rubbercontact.hybrid.tasks:fem_task", kwargs=kw,
                 label=f"fem v={velocity:g} p={mean_pressure:.4g}")
 
@@ -478,7 +489,8 @@ def _add_fem_steadiness(ds: xr.Dataset, diag: dict, stacklevel: int = 2) -> xr.D
         warnings.warn(f"{n_bad} of {diag['steady'].size} full-FEM tests did not reach "
                       f"steady sliding in the periods allowed (fem.full_periods, else "
                       f"fem.periods){brackets}: {where}. Their results are the last period's "
-                      f"averages (see 'fem_steady'); more periods would settle them",
+                      f"averages (see 'fem_steady'); more periods, or fem.min_creep_times, would "
+                      f"settle them",
                       RuntimeWarning, stacklevel=stacklevel)
     return ds
 

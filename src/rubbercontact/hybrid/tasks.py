@@ -148,14 +148,16 @@ def fem_task(surface: dict, material: dict, velocity: float, mean_pressure: floa
              mesh: list[int] | tuple[int, int] = (120, 90), height_ratio: float = 0.75,
              periods: int = 4, steps_per_period: int | None = None,
              contact_points: int = 4, grading: float = 1.0,
-             history_order: int = 2, viscous_model: str = "simo") -> xr.Dataset:
+             history_order: int = 2, viscous_model: str = "simo",
+             min_sliding_time: float = 0.0) -> xr.Dataset:
     """One FEM micromechanical sliding test (paper §2.4), reduced to its time averages."""
     from .. import fem
 
     t0 = time.perf_counter()
     kwargs = {"mesh": tuple(mesh), "height_ratio": height_ratio, "periods": int(periods),
               "contact_points": int(contact_points), "grading": float(grading),
-              "history_order": int(history_order), "viscous_model": str(viscous_model)}
+              "history_order": int(history_order), "viscous_model": str(viscous_model),
+              "min_sliding_time": float(min_sliding_time)}
     if steps_per_period is not None:
         kwargs["steps_per_period"] = steps_per_period
     out = fem.sliding_test(_surface(surface), _material(material), mean_pressure, velocity,
