@@ -158,3 +158,20 @@ def test_worker_crash_is_reported_not_cached(tmp_path, monkeypatch):
     assert isinstance(failure, TaskFailure) and not failure.cached
     assert "did not complete on the cluster" in failure.message
     assert cache.info().n_entries == 2  # the crash says nothing about the inputs
+
+
+def test_only_the_heartbeat_after_close_record_is_dropped():
+    # The local cluster's workers drop the harmless heartbeat error of a closing cluster
+    # (dask/distributed#7192) and nothing else: other errors still reach the log.
+    import logging
+
+    from rubbercontact.sweep._dask_plugins import HeartbeatAfterCloseFilter
+
+    def record(msg):
+        return logging.LogRecord("distributed.worker", logging.ERROR, __file__, 1, msg, None,
+                                 None)
+
+    f = HeartbeatAfterCloseFilter()
+    assert not f.filter(record("Failed to communicate with scheduler during heartbeat."))
+    assert f.filter(record("Compute Failed"))
+    assert f.filter(record("Worker stream died during communication"))

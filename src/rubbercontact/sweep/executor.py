@@ -236,6 +236,9 @@ def _dask_client(mode: str, address: str | None, workers: int,
                                processes=config.processes, dashboard_address=None,
                                silence_logs=40)  # logging.ERROR: no worker chatter
     with cluster, Client(cluster) as client:
+        from ._dask_plugins import QuietShutdown
+
+        client.register_plugin(QuietShutdown(), name="rubbercontact-quiet-shutdown")
         yield client
 
 
