@@ -108,6 +108,24 @@ def _against_reference(ds: xr.Dataset, ref: xr.Dataset, name: str, base: str,
     return lines
 
 
+def _law_against_reference(ds: xr.Dataset, ref: xr.Dataset) -> list[str]:
+    """The law points of this run against the reference's (same velocities and pressures)."""
+    lines = ["| v [mm/s] | p̄ [MPa] | μ reference → this run | α reference → this run | "
+             "ū [um] reference → this run | status (this run) |", "|---|---|---|---|---|---|"]
+    for v in ds["velocity"].values:
+        for p in ds["law_pressure"].values:
+            sel = {"velocity": v, "law_pressure": p}
+            a, b = ref.sel(sel), ds.sel(sel)
+            mu = (float(a["law_friction"]), float(b["law_friction"]))
+            al = (float(a["law_contact_fraction"]), float(b["law_contact_fraction"]))
+            u = (1e3 * float(a["law_mean_separation"]), 1e3 * float(b["law_mean_separation"]))
+            lines.append(f"| {v:g} | {p:g} | {mu[0]:.3f} → {mu[1]:.3f} "
+                         f"({100 * (mu[1] / mu[0] - 1):+.1f} %) | {al[0]:.4f} → {al[1]:.4f} "
+                         f"({100 * (al[1] / al[0] - 1):+.1f} %) | {u[0]:.2f} → {u[1]:.2f} | "
+                         f"{str(b['law_status'].values)} |")
+    return lines
+
+
 def run_name(config: dict) -> str:
     """Full-FEM mesh and sliding of a run, from its config (``ds.attrs["config"]``)."""
     fem = config["fem"]
@@ -152,6 +170,9 @@ def report(ds: xr.Dataset, ref: xr.Dataset | None, warnings_seen: list[str]) -> 
         # the hybrid differs only when the law did (e.g. longer sliding)
         same_law = ref["law_friction"].equals(ds["law_friction"]) if "law_friction" in ref \
             and "law_friction" in ds else True
+        if not same_law:
+            lines += ["", f"## The law: this run ({name}) against the reference ({base})", ""]
+            lines += _law_against_reference(ds, ref)
         for model in ("fem",) if same_law else ("fem", "hybrid-windowed"):
             lines += ["", f"## {model}: this run ({name}) against the reference ({base})",
                       ""] + _against_reference(ds, ref, "this run", "reference", model)
