@@ -381,3 +381,42 @@ def test_linear_law_hybrid_reproduces_the_vhs_when_scales_separate():
                              interface_law=table)
         assert float(hyb["friction"]) == pytest.approx(vhs.friction, rel=0.03)
         assert float(hyb["contact_fraction"]) == pytest.approx(vhs.contact_fraction, rel=0.03)
+
+
+def test_tests_that_slid_less_than_three_retardation_times_are_named(tmp_path):
+    # The period rule can pass while the bulk still creeps on the longest retardation time
+    # (SBR: 16.3 ms), so a law whose FEM tests slid less than 3 of those says so, naming
+    # the shortest; static (0 s) and unrecorded (NaN) tests are not counted.
+    from rubbercontact.hybrid.law import assemble_law, describe_creep_unsettled
+
+    mat = rc.materials.sbr()
+    lam = float(mat.retardation_times().max())
+    diag = {"sliding_time": np.array([[0.2 * lam, 3.5 * lam, np.nan, 0.0, 2.9 * lam]])}
+    n, where = describe_creep_unsettled(diag, mat, lambda i, j: f"p{j}")
+    assert n == 2 and where.startswith("p0 (3.3 ms), p4")
+    assert describe_creep_unsettled(diag, rc.materials.GeneralizedMaxwell.elastic(4.0),
+                                    lambda i, j: "")[0] == 0
+
+    def res(t):
+        return xr.Dataset({"mean_separation": 0.01, "contact_fraction": 0.1,
+                           "shear_stress": 0.05, "friction": 0.5, "wall_time": 1.0,
+                           "steady": 1.0, "period_change": 0.0, "period_area_change": 0.0,
+                           "sliding_time": t})
+
+    hs = rc.roughness.high_slope_wave()
+    with pytest.warns(rc.hybrid.LawWarning, match=r"law: 1 of 2 FEM tests slid less than 3 "
+                                                  r"times .* \(16.3 ms\).*v=50 p=1"):
+        law = assemble_law([res(10 * lam), res(0.5 * lam)], [0.5, 1.0], [50.0], hs, mat, {})
+    assert law["sliding_time"].attrs["units"] == "s"
+
+
+def test_fem_task_records_its_sliding_time():
+    # 2 periods of the 0.0625 mm cell at 10 mm/s: 12.5 ms (an elastic cell is steady
+    # after the minimum of 2 periods).
+    from rubbercontact.hybrid.tasks import fem_task
+
+    surf = rc.roughness.SineSeries([0.0625], [0.003])
+    out = fem_task(surf.as_dict(), rc.materials.GeneralizedMaxwell.elastic(4.17).as_dict(),
+                   10.0, 0.3, mesh=(16, 8), periods=2, steps_per_period=8)
+    assert float(out["sliding_time"]) == pytest.approx(2 * 0.0625 / 10.0, rel=1e-12)
+    assert out["sliding_time"].attrs["units"] == "s"

@@ -35,9 +35,12 @@ from ..errors import InputError
 from ..materials import GeneralizedMaxwell, sbr
 from ..roughness import SineSeries, presets
 from .law import (
+    STEADINESS_UNITS,
     STEADINESS_VARIABLES,
     check_coverage,
     continue_with_linear_shape,
+    creep_message,
+    describe_creep_unsettled,
     describe_unsteady,
     effective_law,
     law_at_velocity,
@@ -283,7 +286,7 @@ def run(config: RunConfig | dict | str | Path, *, runner: Runner | None = None,
     results = runner(tasks)
     timings["models"] = time.perf_counter() - t0
 
-    ds = _assemble(models, velocities, realizations, pressures, index, results)
+    ds = _assemble(models, velocities, realizations, pressures, index, results, material)
     ds = _add_profiles(ds, index, results)
     per_model_time = {m: float(ds["wall_time"].sel(model=m).sum()) for m in models}
     if law is not None:
@@ -422,7 +425,8 @@ def _law_with_vhs(law: xr.Dataset, hs: SineSeries, material: GeneralizedMaxwell,
     return law
 
 
-def _assemble(models, velocities, realizations, pressures, index, results) -> xr.Dataset:
+def _assemble(models, velocities, realizations, pressures, index, results,
+              material: GeneralizedMaxwell | None = None) -> xr.Dataset:
     shape = (len(models), len(velocities), len(realizations), len(pressures))
     names = list(RESULT_VARIABLES) + ["max_local_pressure"]
     data = {k: np.full(shape, np.nan) for k in names}
@@ -463,7 +467,7 @@ def _assemble(models, velocities, realizations, pressures, index, results) -> xr
         warnings.warn(f"{n_failed} of {status.size} solves failed; see the 'status' variable",
                       RuntimeWarning, stacklevel=3)
     if "fem" in models:
-        ds = _add_fem_steadiness(ds, fem_diag, stacklevel=4)
+        ds = _add_fem_steadiness(ds, fem_diag, material, stacklevel=4)
     for k in ("friction", "contact_fraction", "mean_separation"):
         ds[f"{k}_mean"] = ds[k].mean("realization")
         ds[f"{k}_std"] = ds[k].std("realization")
@@ -471,7 +475,8 @@ def _assemble(models, velocities, realizations, pressures, index, results) -> xr
     return ds
 
 
-def _add_fem_steadiness(ds: xr.Dataset, diag: dict, stacklevel: int = 2) -> xr.Dataset:
+def _add_fem_steadiness(ds: xr.Dataset, diag: dict, material: GeneralizedMaxwell | None = None,
+                        stacklevel: int = 2) -> xr.Dataset:
     """Store whether each full-FEM test reached steady sliding, and say which did not.
 
     An unsteady test keeps its result (the last period's averages), as the FEM itself
@@ -479,7 +484,8 @@ def _add_fem_steadiness(ds: xr.Dataset, diag: dict, stacklevel: int = 2) -> xr.D
     """
     dims = ("velocity", "realization", "pressure")
     for k, text in STEADINESS_VARIABLES.items():
-        ds[f"fem_{k}"] = (dims, diag[k], {"units": "1", "long_name": f"full FEM: {text}"})
+        ds[f"fem_{k}"] = (dims, diag[k], {"units": STEADINESS_UNITS.get(k, "1"),
+                                           "long_name": f"full FEM: {text}"})
     v, p = ds["velocity"].values, ds["pressure"].values
     n_bad, where, recorded = describe_unsteady(
         diag, lambda iv, ir, ip: f"v={v[iv]:g} σ0={p[ip]:g} r={ir}")
@@ -492,6 +498,12 @@ def _add_fem_steadiness(ds: xr.Dataset, diag: dict, stacklevel: int = 2) -> xr.D
                       f"averages (see 'fem_steady'); more periods, or fem.min_creep_times, would "
                       f"settle them",
                       RuntimeWarning, stacklevel=stacklevel)
+    if material is not None:
+        n_short, where = describe_creep_unsettled(
+            diag, material, lambda iv, ir, ip: f"v={v[iv]:g} σ0={p[ip]:g} r={ir}")
+        if n_short:
+            warnings.warn(creep_message(n_short, diag["steady"].size, where, material,
+                                        "full FEM"), RuntimeWarning, stacklevel=stacklevel)
     return ds
 
 

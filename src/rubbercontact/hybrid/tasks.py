@@ -160,8 +160,8 @@ def fem_task(surface: dict, material: dict, velocity: float, mean_pressure: floa
               "min_sliding_time": float(min_sliding_time)}
     if steps_per_period is not None:
         kwargs["steps_per_period"] = steps_per_period
-    out = fem.sliding_test(_surface(surface), _material(material), mean_pressure, velocity,
-                           **kwargs)
+    surf = _surface(surface)
+    out = fem.sliding_test(surf, _material(material), mean_pressure, velocity, **kwargs)
     st = out.stats
     values = {
         "friction": out.friction, "shear_stress": out.shear_stress,
@@ -172,8 +172,11 @@ def fem_task(surface: dict, material: dict, velocity: float, mean_pressure: floa
         "max_penetration": st.max_penetration, "steady": int(st.steady),
         "period_change": st.period_change, "period_area_change": st.period_area_change,
         "max_segment_penetration": st.max_segment_penetration,
+        # how long it slid (the bulk creeps on the longest retardation time; see law.py)
+        "sliding_time": st.periods * surf.period / velocity if velocity > 0 else 0.0,
     }
     ds = _scalars(values, {"model": "fem"})
+    ds["sliding_time"].attrs["units"] = "s"
     ds["max_penetration"].attrs["units"] = "mm"
     ds["max_segment_penetration"].attrs["units"] = "mm"
     prof = out.pressure_profile
