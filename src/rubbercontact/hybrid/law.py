@@ -75,7 +75,8 @@ def creep_message(n: int, total: int, where: str, material: GeneralizedMaxwell,
             f"longest retardation time ({lam:.1f} ms), shortest first: {where}. The bulk may "
             f"still be creeping under the friction stress although successive periods "
             f"agree (at 50 mm/s on the section 3 wave, sliding 5 retardation times moved the "
-            f"law by up to -17 % in friction and -38 % in area at 2-6 MPa); "
+            f"law by up to -17 % in friction and -38 % in area at 2-6 MPa, the full FEM by "
+            f"up to -3 % and -9 %; docs/validation/creep_settled.md); "
             f"fem.min_creep_times slides longer")
 
 
