@@ -265,6 +265,12 @@ def test_min_creep_times_reach_every_fem_task_and_keep_cache_keys(tmp_path):
     for bad in (0.0, -1.0, 100.0):
         with pytest.raises(rc.errors.InputError, match="min_creep_times"):
             rc.config.parse_config(_config(tmp_path, fem={"min_creep_times": bad}))
+    # an elastic material does not creep: no minimum
+    from rubbercontact.hybrid.pipeline import min_sliding_time
+
+    cfg = rc.config.parse_config(_config(tmp_path, fem={"min_creep_times": 5.0}))
+    assert min_sliding_time(cfg, rc.materials.GeneralizedMaxwell.elastic(4.0)) == 0.0
+    assert min_sliding_time(cfg, rc.materials.sbr()) == pytest.approx(5 * lam, rel=1e-12)
 
 
 def test_unsteady_full_fem_tests_are_flagged_in_the_results(tmp_path):
