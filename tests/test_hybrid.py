@@ -393,15 +393,17 @@ def test_tests_that_slid_less_than_three_retardation_times_are_named(tmp_path):
     # The period rule can pass while the bulk still creeps on the longest retardation time
     # (SBR: 16.3 ms), so a law whose FEM tests slid less than 3 of those says so, naming
     # the shortest; static (0 s) and unrecorded (NaN) tests are not counted.
-    from rubbercontact.hybrid.law import assemble_law, describe_creep_unsettled
+    from rubbercontact.hybrid.law import assemble_law, creep_unsettled_message
 
     mat = rc.materials.sbr()
     lam = float(mat.retardation_times().max())
     diag = {"sliding_time": np.array([[0.2 * lam, 3.5 * lam, np.nan, 0.0, 2.9 * lam]])}
-    n, where = describe_creep_unsettled(diag, mat, lambda i, j: f"p{j}")
-    assert n == 2 and where.startswith("p0 (3.3 ms), p4")
-    assert describe_creep_unsettled(diag, rc.materials.GeneralizedMaxwell.elastic(4.0),
-                                    lambda i, j: "")[0] == 0
+    msg = creep_unsettled_message(diag, mat, lambda i, j: f"p{j}", "law")
+    assert msg.startswith("law: 2 of 5 FEM tests") and "first: p0 (3.3 ms), p4 (" in msg
+    assert creep_unsettled_message(diag, rc.materials.GeneralizedMaxwell.elastic(4.0),
+                                   lambda i, j: "", "law") is None
+    assert creep_unsettled_message({"sliding_time": np.array([4 * lam])}, mat,
+                                   lambda i: "", "law") is None
 
     def res(t):
         return xr.Dataset({"mean_separation": 0.01, "contact_fraction": 0.1,

@@ -44,40 +44,33 @@ STEADINESS_UNITS = {"sliding_time": "s"}
 CREEP_SETTLED_TIMES = 3.0
 
 
-def describe_creep_unsettled(diag: dict, material: GeneralizedMaxwell, label,
-                             times: float = CREEP_SETTLED_TIMES) -> tuple[int, str]:
-    """The FEM tests of ``diag`` that slid less than ``times`` longest retardation times.
+def creep_unsettled_message(diag: dict, material: GeneralizedMaxwell, label, what: str,
+                            times: float = CREEP_SETTLED_TIMES) -> str | None:
+    """One warning naming the FEM tests of ``diag`` that slid less than ``times`` longest
+    retardation times of ``material`` (shortest first, at most 6 named), or None.
 
     The period rule (two successive period averages within 1 %) can pass while the cell
-    still creeps in shear under the friction stress on the material's longest retardation
-    time, which is slower than a period at high speed: on the section 3 wave at 50 mm/s,
-    sliding five retardation times instead of about one moved the law by up to -17 % in
-    friction and -38 % in area at 2-6 MPa (docs/validation/creep_settled.md).
-
-    Returns their number and ``"label (t ms), ..."`` (at most 6 named); 0 when the sliding
-    time was not recorded or the material is elastic.
+    still creeps in shear under the friction stress on that time, which is slower than a
+    period at high speed (docs/validation/creep_settled.md). Tests whose sliding time was
+    not recorded (NaN) or that did not slide (0) are not counted; an elastic material does
+    not creep.
     """
     lam = material.retardation_times()
     t = np.asarray(diag.get("sliding_time", np.nan), float)
     if lam.size == 0 or not np.any(np.isfinite(t)):
-        return 0, ""
-    short = np.argwhere(np.isfinite(t) & (t > 0) & (t < times * lam.max()))
-    order = sorted(map(tuple, short), key=lambda idx: t[idx])
-    named = ", ".join(f"{label(*idx)} ({1e3 * t[idx]:.1f} ms)" for idx in order[:6])
-    return len(order), named + (", ..." if len(order) > 6 else "")
-
-
-def creep_message(n: int, total: int, where: str, material: GeneralizedMaxwell,
-                  what: str, times: float = CREEP_SETTLED_TIMES) -> str:
-    """One warning for the tests :func:`describe_creep_unsettled` found."""
-    lam = 1e3 * float(material.retardation_times().max())
-    return (f"{what}: {n} of {total} FEM tests slid less than {times:g} times the material's "
-            f"longest retardation time ({lam:.1f} ms), shortest first: {where}. The bulk may "
-            f"still be creeping under the friction stress although successive periods "
-            f"agree (at 50 mm/s on the section 3 wave, sliding 5 retardation times moved the "
-            f"law by up to -17 % in friction and -38 % in area at 2-6 MPa, the full FEM by "
-            f"up to -3 % and -9 %; docs/validation/creep_settled.md); "
-            f"fem.min_creep_times slides longer")
+        return None
+    short = sorted(map(tuple, np.argwhere(np.isfinite(t) & (t > 0) & (t < times * lam.max()))),
+                   key=lambda idx: t[idx])
+    if not short:
+        return None
+    where = ", ".join(f"{label(*idx)} ({1e3 * t[idx]:.1f} ms)" for idx in short[:6])
+    return (f"{what}: {len(short)} of {t.size} FEM tests slid less than {times:g} times the "
+            f"material's longest retardation time ({1e3 * lam.max():.1f} ms), shortest first: "
+            f"{where}{', ...' if len(short) > 6 else ''}. The bulk may still be creeping "
+            f"under the friction stress although successive periods agree (at 50 mm/s on the "
+            f"section 3 wave, sliding 5 retardation times moved the law by up to -17 % in "
+            f"friction and -38 % in area at 2-6 MPa, the full FEM by up to -3 % and -9 %; "
+            f"docs/validation/creep_settled.md); fem.min_creep_times slides longer")
 
 
 def describe_unsteady(diag: dict, label) -> tuple[int, str, bool]:
@@ -217,11 +210,10 @@ def assemble_law(results, pressures, velocities, hs_surface: SineSeries,
                       f"(last period's averages); more periods, or fem.min_creep_times, would "
                       f"settle them",
                       LawWarning, stacklevel=3)
-    n_short, where = describe_creep_unsettled(
-        diag, material, lambda i, j: f"v={velocities[i]:g} p={pressures[j]:g}")
-    if n_short:
-        warnings.warn(creep_message(n_short, diag["steady"].size, where, material, "law"),
-                      LawWarning, stacklevel=3)
+    creep = creep_unsettled_message(
+        diag, material, lambda i, j: f"v={velocities[i]:g} p={pressures[j]:g}", "law")
+    if creep:
+        warnings.warn(creep, LawWarning, stacklevel=3)
     law.attrs.update({
         "title": "effective interface law of the high-slope scale (paper eqs. 1-3)",
         "hs_wavelengths_mm": hs_surface.wavelengths.tolist(),

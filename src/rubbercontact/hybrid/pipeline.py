@@ -39,8 +39,7 @@ from .law import (
     STEADINESS_VARIABLES,
     check_coverage,
     continue_with_linear_shape,
-    creep_message,
-    describe_creep_unsettled,
+    creep_unsettled_message,
     describe_unsteady,
     effective_law,
     law_at_velocity,
@@ -498,12 +497,10 @@ def _add_fem_steadiness(ds: xr.Dataset, diag: dict, material: GeneralizedMaxwell
                       f"averages (see 'fem_steady'); more periods, or fem.min_creep_times, would "
                       f"settle them",
                       RuntimeWarning, stacklevel=stacklevel)
-    if material is not None:
-        n_short, where = describe_creep_unsettled(
-            diag, material, lambda iv, ir, ip: f"v={v[iv]:g} σ0={p[ip]:g} r={ir}")
-        if n_short:
-            warnings.warn(creep_message(n_short, diag["steady"].size, where, material,
-                                        "full FEM"), RuntimeWarning, stacklevel=stacklevel)
+    creep = None if material is None else creep_unsettled_message(
+        diag, material, lambda iv, ir, ip: f"v={v[iv]:g} σ0={p[ip]:g} r={ir}", "full FEM")
+    if creep:
+        warnings.warn(creep, RuntimeWarning, stacklevel=stacklevel)
     return ds
 
 
