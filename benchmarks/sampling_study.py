@@ -155,12 +155,10 @@ def report(ds: xr.Dataset, ref: xr.Dataset | None, warnings_seen: list[str]) -> 
              "", "| v [mm/s] | realizations | areas | windowed hybrid | VHS | pointwise hybrid |",
              "|---|---|---|---|---|---|"]
     for k in sorted({min(5, n), n}):
-        sub = validate.with_realization_means(ds.isel(realization=slice(0, k)))
-        ci = validate._eq28_intervals(sub, models=MODELS) if k >= 2 else {}
-        for v, (areas, e) in validate.eq28_at_equal_area(sub, MODELS).items():
+        for v, (areas, e, ci) in validate.eq28_first(ds, k, MODELS).items():
             lines.append(f"| {v:g} | {k} | {areas.min():.3f}-{areas.max():.3f} | " + " | ".join(
-                f"{100 * e[m]:.1f} %" + (f" ({validate._interval_text(*ci[v][m])})"
-                                         if v in ci else "") for m in MODELS) + " |")
+                f"{100 * e[m]:.1f} %" + (f" ({validate._interval_text(*ci[m])})"
+                                         if m in ci else "") for m in MODELS) + " |")
     if n >= 2:
         lines += ["", "Spread between realizations (sample standard deviation; s.e. = "
                   "s.d./√n, the standard error of the realization mean):", ""]

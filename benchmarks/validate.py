@@ -315,22 +315,23 @@ def _hybrid_with_linear_law(ds, n: int = 4096) -> dict:
     return out
 
 
+def _percent_off(ratio) -> str:
+    """``"+18 / +20 / +22"``: ``ratio - 1`` in per cent, one value per load."""
+    return " / ".join(f"{100 * (float(x) - 1):+.0f}" for x in np.ravel(ratio))
+
+
 def _linear_law_area_sentence(ds, lin: dict) -> str:
     """The windowed reading's area excess with the linear law, against the VHS (measured)."""
-    parts = []
-    for v in ds["velocity"].values:
-        r = [lin[(float(v), float(p))]["hybrid-windowed"][1]
-             / float(ds["contact_fraction_mean"].sel(model="vhs", velocity=v, pressure=p)) - 1
-             for p in ds["pressure"].values]
-        parts.append(f"{float(v):g} mm/s " + " / ".join(f"{100 * x:+.0f}" for x in r) + " %")
+    vhs = ds["contact_fraction_mean"].sel(model="vhs")
+    parts = [f"{float(v):g} mm/s " + _percent_off(
+        [lin[(float(v), float(p))]["hybrid-windowed"][1] for p in ds["pressure"].values]
+        / vhs.sel(velocity=v).values) + " %" for v in ds["velocity"].values]
     fem = ""
     if "fem" in ds["model"].values:
-        r = ds["contact_fraction_mean"].sel(model="fem") / ds["contact_fraction_mean"].sel(
-            model="vhs") - 1
+        r = ds["contact_fraction_mean"].sel(model="fem") / vhs
         fem = (" Against the FEM it shows less where the FEM's own area lies above the "
                "VHS's: the FEM / VHS area is " + "; ".join(
-                   f"{float(v):g} mm/s " + " / ".join(
-                       f"{100 * float(x):+.0f}" for x in r.sel(velocity=v).values) + " %"
+                   f"{float(v):g} mm/s " + _percent_off(r.sel(velocity=v).values) + " %"
                    for v in ds["velocity"].values)
                + " (see the FEM contact area paragraph above).")
     return ("With the linear law, where a well-separated hybrid would reproduce the VHS, the "
@@ -373,6 +374,17 @@ def eq28_at_equal_area(ds, models=("hybrid", "hybrid-windowed", "vhs")) -> dict:
     return {v: (areas, {m: mean_relative_error(mus["fem"], mus[m]) for m in models
                         if m in mus})
             for v, (areas, mus) in _friction_at_common_areas(ds).items()}
+
+
+def eq28_first(ds, k: int | None = None,
+               models=("hybrid", "hybrid-windowed", "vhs")) -> dict:
+    """``{v: (areas, {model: e}, {model: (low, high, used)})}``: eq. 28 at equal area over
+    the first ``k`` realizations (all: None), with its bootstrap interval (none for one
+    realization)."""
+    sub = ds if k is None else with_realization_means(ds.isel(realization=slice(0, k)))
+    ci = _eq28_intervals(sub, models=models) if sub.sizes["realization"] >= 2 else {}
+    return {v: (areas, e, ci.get(v, {}))
+            for v, (areas, e) in eq28_at_equal_area(sub, models).items()}
 
 
 def with_area_factor(ds, factor: float):
@@ -527,13 +539,11 @@ def _area_at_equal_load_sentence(ds) -> str:
     """The windowed hybrid against the FEM at equal load, area and friction (measured)."""
     m = ds.sel(model="hybrid-windowed")
     f = ds.sel(model="fem")
-    ra = (m["contact_fraction_mean"] / f["contact_fraction_mean"] - 1) * 100
-    rm = (m["friction_mean"] / f["friction_mean"] - 1) * 100
+    ra = m["contact_fraction_mean"] / f["contact_fraction_mean"]
+    rm = m["friction_mean"] / f["friction_mean"]
     per_v = "; ".join(
-        f"at {float(v):g} mm/s its contact area is "
-        + " / ".join(f"{x:+.0f}" for x in ra.sel(velocity=v).values)
-        + " % off the FEM's and its friction "
-        + " / ".join(f"{x:+.0f}" for x in rm.sel(velocity=v).values) + " %"
+        f"at {float(v):g} mm/s its contact area is {_percent_off(ra.sel(velocity=v).values)}"
+        f" % off the FEM's and its friction {_percent_off(rm.sel(velocity=v).values)} %"
         for v in ds["velocity"].values)
     loads = " / ".join(f"{p:g}" for p in ds["pressure"].values)
     return (f"**Area, not friction.** The windowed hybrid against the FEM at equal load "
@@ -647,7 +657,6 @@ def section3_report(ds, wall, figs, msgs, level) -> list[str]:
                 "windowed hybrid with the RG law is 3.4 % off at equal σ0 "
                 "(docs/validation/material_model.md)."]
     at_areas = _friction_at_common_areas(ds)
-    ci = _eq28_intervals(ds) if ds.sizes["realization"] >= 2 else {}
     out += ["", "Eq. 28 mean relative error against full FEM at equal normal contact area "
             "(the paper's comparison; areas per velocity in the table below). In brackets "
             "the 90 % interval of a paired bootstrap over the realizations (every model "
@@ -657,23 +666,18 @@ def section3_report(ds, wall, figs, msgs, level) -> list[str]:
             "| velocity [mm/s] | realizations | hybrid vs FEM | windowed hybrid vs FEM "
             "| VHS vs FEM | paper (hybrid) |", "|---|---|---|---|---|---|"]
     n = ds.sizes["realization"]
-    first = {}
+    tables = [(n, eq28_first(ds))]
     if n > PAPER_REALIZATIONS:    # the paper's count, for comparison
-        sub = with_realization_means(ds.isel(realization=slice(0, PAPER_REALIZATIONS)))
-        first = {"e": eq28_at_equal_area(sub), "ci": _eq28_intervals(sub)}
-    for v, (areas, mus) in at_areas.items():
-        e = {m: mean_relative_error(mus["fem"], mus[m])
-             if m in mus and "fem" in mus and areas.size else np.nan
-             for m in ("hybrid", "hybrid-windowed", "vhs")}
+        tables.append((f"first {PAPER_REALIZATIONS}", eq28_first(ds, PAPER_REALIZATIONS)))
+    for v in at_areas:
         paper = PAPER_E.get(float(v))
-        rows = [(n, e, ci)]
-        if v in first.get("e", {}):
-            rows.append((f"first {PAPER_REALIZATIONS}", first["e"][v][1], first["ci"]))
-        for k, (label, e_row, ci_row) in enumerate(rows):
+        for k, (label, table) in enumerate(tables):
+            if v not in table:
+                continue
+            _areas, e, ci = table[v]
             out.append(f"| {v:g} | {label} | " + " | ".join(
-                f"{100 * e_row.get(m, np.nan):.1f} %"
-                + (f" ({_interval_text(*ci_row[v][m])})"
-                   if v in ci_row and m in ci_row[v] else "")
+                f"{100 * e.get(m, np.nan):.1f} %"
+                + (f" ({_interval_text(*ci[m])})" if m in ci else "")
                 for m in ("hybrid", "hybrid-windowed", "vhs"))
                 + f" | {'' if paper is None or k else f'{100 * paper:.1f} %'} |")
     e_p = {m: [mean_relative_error(ds["friction_mean"].sel(model="fem", velocity=v).values,
