@@ -80,6 +80,11 @@ def test_run_end_to_end_tiny(tmp_path, capsys):
     out = capsys.readouterr().out
     assert "eq. 28 error of hybrid vs FEM" in out
     ds = xr.load_dataset(tmp_path / "out" / "results.nc")
+    # The law on its own, next to the results, for reuse as law.file.
+    from rubbercontact.io.results import read_law
+    law = read_law(tmp_path / "out" / "law.nc")
+    np.testing.assert_array_equal(law["friction"], ds["law_friction"])
+    assert "law: " in out
     assert list(ds["model"].values) == ["vhs", "hybrid", "fem"]
     assert ds.attrs["rubbercontact_version"] == __version__ and "config" in ds.attrs
     assert ds["friction"].attrs["units"] == "1" and ds["pressure"].attrs["units"] == "MPa"

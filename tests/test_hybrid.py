@@ -428,3 +428,86 @@ def test_fem_task_records_its_sliding_time():
                    10.0, 0.3, mesh=(16, 8), periods=2, steps_per_period=8)
     assert float(out["sliding_time"]) == pytest.approx(2 * 0.0625 / 10.0, rel=1e-12)
     assert out["sliding_time"].attrs["units"] == "s"
+
+
+def _law_run_config(tmp_path, name, **over):
+    # The paper's high-slope wave alone on a coarse cell: a cheap viscoelastic law.
+    cfg = _config(tmp_path, surface={"preset": "high_slope_wave"}, models=["hybrid"],
+                  realizations=1, loads={"pressures": [0.3, 1.0]},
+                  fem={"mesh": [30, 23], "periods": 2}, law={"pressures": [0.3, 1.0]},
+                  execution={"workers": 1, "cache": str(tmp_path / f"cache-{name}")})
+    cfg.update(over)
+    return cfg
+
+
+def _recording_runner(cfg, seen):
+    from rubbercontact.hybrid.pipeline import make_runner
+
+    inner = make_runner(rc.config.parse_config(cfg), progress=False)
+
+    def runner(tasks, **kw):
+        seen.extend(tasks)
+        return inner(tasks, **kw)
+    return runner
+
+
+def test_saved_law_is_reused_without_fem_on_a_surface_sharing_its_high_slope_wave(tmp_path):
+    from rubbercontact.hybrid.law import law_from_results
+    from rubbercontact.io.results import read_law, write_law, write_results
+
+    built = rc.hybrid.run(_law_run_config(tmp_path, "built"), progress=False)
+    law_nc = write_law(law_from_results(built), tmp_path / "law.nc")
+    results_nc = write_results(built, tmp_path / "results.nc")
+    # The file round trip keeps the table and its provenance.
+    law = read_law(law_nc)
+    np.testing.assert_array_equal(law["mean_separation"], built["law_mean_separation"])
+    assert float(law.attrs["hs_max_height_mm"]) > 0 and "fem_options" in law.attrs
+
+    # Reused from either file (fresh caches, so nothing comes from a cache): no FEM task
+    # runs and the hybrid is bit-identical, since it reads the same table.
+    for name, path in (("law", law_nc), ("results", results_nc)):
+        cfg = _law_run_config(tmp_path, name, law={"file": str(path)})
+        seen = []
+        ds = rc.hybrid.run(cfg, runner=_recording_runner(cfg, seen), progress=False)
+        assert seen and not [t for t in seen if t.function.endswith(":fem_task")]
+        for k in ("friction", "contact_fraction", "mean_separation"):
+            np.testing.assert_array_equal(ds[k].values, built[k].values)
+
+    # The section 3 surface carries the same high-slope wave (plus two low-slope ones in
+    # random phase): the law applies to it as it is.
+    cfg = _law_run_config(tmp_path, "s3", surface={"preset": "section3"},
+                          models=["hybrid", "hybrid-windowed"], law={"file": str(law_nc)})
+    seen = []
+    ds = rc.hybrid.run(cfg, runner=_recording_runner(cfg, seen), progress=False)
+    assert not [t for t in seen if t.function.endswith(":fem_task")]
+    assert np.all(ds["status"].values == "ok")
+
+
+@pytest.mark.parametrize("over, message", [
+    ({"material": {"preset": None, "equilibrium_modulus": 4.17}}, "rubber"),
+    ({"velocities": [10.0, 50.0]}, r"no FEM points at \[50.0\] mm/s"),
+    ({"surface": {"wavelengths": [0.0625], "amplitudes": [0.02]}}, "high-slope waves"),
+])
+def test_reused_law_built_for_another_wave_rubber_or_speed_is_rejected(tmp_path, over, message):
+    from rubbercontact.hybrid.law import law_from_results
+    from rubbercontact.io.results import write_law
+
+    built = rc.hybrid.run(_law_run_config(tmp_path, "built"), progress=False)
+    law_nc = write_law(law_from_results(built), tmp_path / "law.nc")
+    seen = []
+    cfg = _law_run_config(tmp_path, "other", law={"file": str(law_nc)}, **over)
+    with pytest.raises(InputError, match=message):
+        rc.hybrid.run(cfg, runner=_recording_runner(cfg, seen), progress=False)
+    assert not seen     # rejected before any solve
+
+
+def test_a_file_without_a_law_is_rejected_with_what_it_lacks(tmp_path):
+    from rubbercontact.io.results import read_law, write_results
+
+    vhs = rc.hybrid.run(_law_run_config(tmp_path, "vhs", models=["vhs"]), progress=False)
+    write_results(vhs, tmp_path / "vhs.nc")
+    with pytest.raises(InputError, match="carries no law"):
+        read_law(tmp_path / "vhs.nc")
+    xr.Dataset({"mean_separation": ("x", [1.0])}).to_netcdf(tmp_path / "other.nc")
+    with pytest.raises(InputError, match="not a law table"):
+        read_law(tmp_path / "other.nc")

@@ -30,7 +30,7 @@ def command(
     """Run the hybrid multiscale pipeline (and VHS/FEM reference models) from a config."""
     from ..config import default_config, load_config
     from ..hybrid import run
-    from ..io.results import write_results
+    from ..io.results import write_law, write_results
     from ..plotting.figures import plot_all, summary_table
 
     cfg = load_config(config) if config is not None else default_config()
@@ -63,6 +63,12 @@ def command(
     write_results(ds, results_path, overwrite=overwrite)
     typer.echo(summary_table(ds))
     typer.echo(f"results: {results_path}")
+    if "law_attrs" in ds.attrs:
+        # The expensive part, on its own: reusable as law.file for any surface sharing
+        # this high-slope scale and rubber.
+        from ..hybrid.law import law_from_results
+
+        typer.echo(f"law: {write_law(law_from_results(ds), outdir / 'law.nc')}")
     if figures and cfg.output.figures:
         for p in plot_all(ds, outdir):
             typer.echo(f"figure: {p}")

@@ -35,9 +35,12 @@ from ..errors import InputError
 from ..materials import GeneralizedMaxwell, sbr
 from ..roughness import SineSeries, presets
 from .law import (
+    LAW_VARIABLES,
     STEADINESS_UNITS,
     STEADINESS_VARIABLES,
+    as_law,
     check_coverage,
+    check_law_matches,
     continue_with_linear_shape,
     creep_unsettled_message,
     describe_unsteady,
@@ -171,7 +174,9 @@ def build_law(cfg: RunConfig, hs0: SineSeries, material: GeneralizedMaxwell,
               ) -> tuple[xr.Dataset, dict[float, dict], float | None]:
     """The high-slope law of a run and the tables the hybrid reads, one per velocity.
 
-    ``law`` (or ``cfg.law.file``) is used when given; otherwise the FEM sweep runs on
+    ``law`` (or ``cfg.law.file``, a ``law.nc`` or a run's ``results.nc``) is used when
+    given, after checking that it was built for ``hs0``, this rubber and every speed of the
+    run (:func:`~rubbercontact.hybrid.law.check_law_matches`); otherwise the FEM sweep runs on
     ``hs0`` at ``cfg.law.pressures`` (default: 8 pressures from half the smallest to 8× the
     largest load). Non-monotone points are screened out, and past the FEM's highest pressure
     each table follows the linear law's shape, anchored there.
@@ -184,8 +189,14 @@ def build_law(cfg: RunConfig, hs0: SineSeries, material: GeneralizedMaxwell,
     """
     fem_time = None
     if law is None and cfg.law.file is not None:
-        law = xr.load_dataset(cfg.law.file)
-    if law is None:
+        from ..io.results import read_law
+
+        law = read_law(cfg.law.file)
+        check_law_matches(law, hs0, material, cfg.velocities, source=f"law.file {cfg.law.file}")
+    elif law is not None:
+        law = as_law(law)
+        check_law_matches(law, hs0, material, cfg.velocities)
+    else:
         law_p = (np.asarray(cfg.law.pressures, float) if cfg.law.pressures is not None
                  else np.geomspace(pressures.min() / 2, pressures.max() * 8, 8))
         t0 = time.perf_counter()
@@ -218,7 +229,8 @@ def run(config: RunConfig | dict | str | Path, *, runner: Runner | None = None,
         Executes lists of sweep tasks; default: Dask executor + result cache from
         ``config.execution``.
     law
-        A precomputed law table (skips the FEM on the high-slope scale).
+        A precomputed law table, or the results of a run that built one (skips the FEM on
+        the high-slope scale); it must match the run's high-slope scale, rubber and speeds.
     progress
         Progress display of the sweeps (``"auto"``, True, False).
     retry_failed
@@ -289,13 +301,14 @@ def run(config: RunConfig | dict | str | Path, *, runner: Runner | None = None,
     ds = _add_profiles(ds, index, results)
     per_model_time = {m: float(ds["wall_time"].sel(model=m).sum()) for m in models}
     if law is not None:
-        for k in ("mean_separation", "contact_fraction", "shear_stress", "friction", "status",
-                  *STEADINESS_VARIABLES, "vhs_friction", "vhs_contact_fraction"):
-            if k not in law:
-                continue
-            ds[f"law_{k}"] = law[k].rename(pressure="law_pressure")
+        for k in LAW_VARIABLES:
+            if k in law:
+                ds[f"law_{k}"] = law[k].rename(pressure="law_pressure")
         ds = ds.assign_coords(law_pressure=("law_pressure", law["pressure"].values,
                                             {"units": "MPa"}))
+        # what law_from_results needs to give the law back, checkable on reuse
+        ds.attrs["law_attrs"] = json.dumps({k: np.asarray(v).tolist() if not isinstance(v, str)
+                                            else v for k, v in law.attrs.items()})
         per_model_time["law (FEM, counted once)"] = float(np.nansum(law["wall_time"].values))
         hybrid = [m for m in models if m in HYBRID_MODELS]
         if hybrid:   # the same low-slope solve for both variants: check once

@@ -67,3 +67,28 @@ def read_results(path: str | Path) -> xr.Dataset:
         return xr.load_dataset(path)
     except (OSError, ValueError) as exc:
         raise InputError(f"results file {path}: not a readable NetCDF file ({exc})") from None
+
+
+def write_law(law: xr.Dataset, path: str | Path, *, overwrite: bool = True) -> Path:
+    """Write a law table (:func:`~rubbercontact.hybrid.effective_law`) atomically, with
+    provenance: reusable as ``law.file`` by any run on the same high-slope scale and rubber."""
+    from ..hybrid.law import as_law
+
+    path = Path(path)
+    path.parent.mkdir(parents=True, exist_ok=True)
+    out = _netcdf_safe(as_law(law))
+    for k, v in provenance().items():
+        out.attrs.setdefault(k, v)
+    return write_netcdf_atomic(out, path, overwrite=overwrite)
+
+
+def read_law(path: str | Path) -> xr.Dataset:
+    """Load a law table from a ``law.nc`` (:func:`write_law`) or from a run's ``results.nc``.
+
+    Raises :class:`~rubbercontact.errors.InputError` when the file is missing, unreadable or
+    carries no law with its provenance.
+    """
+    from ..hybrid.law import as_law
+
+    ds = read_results(path)
+    return as_law(ds, source=f"law file {path}")
