@@ -15,7 +15,10 @@ test by test.
 retardation times of the material instead of the validation's fixed 0.75 mm: at 50 mm/s
 those tests end inside the bulk creep transient (docs/validation/fem_steadiness.md). With
 ``--reference`` set to the fixed-distance run it measures what settling changes, in the
-full FEM and in the windowed hybrid.
+full FEM and in the windowed hybrid. ``--law-min-creep-times K`` does so for the law's points
+alone (at 10 mm/s the full FEM's three 25 ms periods already slide 4.6 retardation times,
+while the period rule stops the law after three of its 6.25 ms periods): the law is built
+first on its own and the run reads it as ``law.file``.
 
 Everything goes through the validation cache (the law is the validation's unless the
 sliding changes), so a killed run resumes. Run single-threaded, e.g.::
@@ -42,15 +45,19 @@ from _rows import publish  # noqa: E402
 from fem_reference_mesh import _mesh, _mesh_name  # noqa: E402
 
 import rubbercontact as rc  # noqa: E402
+from rubbercontact.hybrid.law import law_from_results  # noqa: E402
+from rubbercontact.io.results import write_law  # noqa: E402
 
 MODELS = ("hybrid-windowed", "vhs", "hybrid")
 
 
 def study_config(velocities, realizations: int, mesh, grading: float, workers: int,
-                 cache: Path, outdir: Path, min_creep_times: float | None = None):
+                 cache: Path, outdir: Path, min_creep_times: float | None = None,
+                 law_file: Path | None = None):
     """The quick validation's section 3 config at ``velocities`` with ``realizations``
     realizations and the full FEM on ``mesh`` / ``grading``; with ``min_creep_times``
-    every FEM test (law and full) slides that many longest retardation times."""
+    every FEM test (law and full) slides that many longest retardation times; with
+    ``law_file`` the hybrids read that law instead of building one."""
     quick = validate._config("section3", "quick", workers, cache, outdir, realizations)
     data = quick.model_dump(mode="json", exclude_none=True)
     data["velocities"] = [float(v) for v in velocities]
@@ -59,6 +66,8 @@ def study_config(velocities, realizations: int, mesh, grading: float, workers: i
     data["output"]["directory"] = str(outdir)
     if min_creep_times is not None:
         data["fem"]["min_creep_times"] = float(min_creep_times)
+    if law_file is not None:
+        data["law"] = {"file": str(law_file)}
     return rc.config.parse_config(data, source=f"section3 (quick, {realizations} "
                                                 f"realizations, full mesh {mesh}, grading "
                                                 f"{grading:g})")
@@ -108,6 +117,14 @@ def _against_reference(ds: xr.Dataset, ref: xr.Dataset, name: str, base: str,
     return lines
 
 
+def _same_tests(ds: xr.Dataset, ref: xr.Dataset, model: str) -> bool:
+    """Whether ``model`` gave identical numbers in both runs on the realizations both ran."""
+    n = min(ds.sizes["realization"], ref.sizes["realization"])
+    sel = {"model": model, "realization": slice(0, n), "velocity": ds["velocity"].values}
+    return all(np.array_equal(ds[k].sel(sel).values, ref[k].sel(sel).values)
+               for k in ("friction", "contact_fraction"))
+
+
 def _law_against_reference(ds: xr.Dataset, ref: xr.Dataset) -> list[str]:
     """The law points of this run against the reference's (same velocities and pressures)."""
     lines = ["| v [mm/s] | p̄ [MPa] | μ reference → this run | α reference → this run | "
@@ -126,22 +143,38 @@ def _law_against_reference(ds: xr.Dataset, ref: xr.Dataset) -> list[str]:
     return lines
 
 
-def run_name(config: dict) -> str:
-    """Full-FEM mesh and sliding of a run, from its config (``ds.attrs["config"]``)."""
-    fem = config["fem"]
+def law_sliding(ds: xr.Dataset) -> float:
+    """The law's minimum sliding time [s] (0: the period rule alone), from its provenance."""
+    attrs = json.loads(ds.attrs.get("law_attrs", "{}"))
+    return float(json.loads(attrs.get("fem_options", "{}")).get("min_sliding_time", 0.0))
+
+
+def run_name(ds: xr.Dataset) -> str:
+    """Full-FEM mesh and sliding of a run (and the law's when it slid longer)."""
+    fem = json.loads(ds.attrs["config"])["fem"]
     name = _mesh_name(tuple(fem.get("full_mesh") or fem["mesh"]), fem.get("full_grading", 1.0))
     k = fem.get("min_creep_times")
-    return name + (f", at least {k:g} retardation times of sliding" if k else
-                   f", {fem.get('full_periods') or fem['periods']} periods at most")
+    name += (f", at least {k:g} retardation times of sliding" if k else
+             f", {fem.get('full_periods') or fem['periods']} periods at most")
+    law_time = law_sliding(ds)
+    if law_time and not k:
+        name += f"; the law slid at least {1e3 * law_time:.1f} ms"
+    return name
 
 
 def report(ds: xr.Dataset, ref: xr.Dataset | None, warnings_seen: list[str]) -> str:
     n = ds.sizes["realization"]
-    name = run_name(json.loads(ds.attrs["config"]))
+    name = run_name(ds)
     creep = json.loads(ds.attrs["config"])["fem"].get("min_creep_times")
-    title = (f"# Section 3 with {n} realization{'s' if n > 1 else ''}" if not creep else
-             f"# Section 3 with creep-settled sliding ({creep:g} retardation times, {n} "
-             f"realization{'s' if n > 1 else ''})")
+    plural = "s" if n > 1 else ""
+    if creep:
+        title = (f"# Section 3 with creep-settled sliding ({creep:g} retardation times, {n} "
+                 f"realization{plural})")
+    elif law_sliding(ds):
+        title = (f"# Section 3 with a creep-settled law ({1e3 * law_sliding(ds):.1f} ms of "
+                 f"sliding per law point, {n} realization{plural})")
+    else:
+        title = f"# Section 3 with {n} realization{plural}"
     lines = [title, "",
              "Generated by `benchmarks/sampling_study.py`: the quick validation's section 3 "
              f"case (law, loads {', '.join(f'{p:g}' for p in ds['pressure'].values)} MPa, "
@@ -168,7 +201,7 @@ def report(ds: xr.Dataset, ref: xr.Dataset | None, warnings_seen: list[str]) -> 
               "from the cache; two workers on two cores, so indicative):", ""]
     lines += validate._cost_lines(ds)
     if ref is not None:
-        base = run_name(json.loads(ref.attrs["config"]))
+        base = run_name(ref)
         # the hybrid differs only when the law did (e.g. longer sliding)
         same_law = ref["law_friction"].equals(ds["law_friction"]) if "law_friction" in ref \
             and "law_friction" in ds else True
@@ -176,6 +209,10 @@ def report(ds: xr.Dataset, ref: xr.Dataset | None, warnings_seen: list[str]) -> 
             lines += ["", f"## The law: this run ({name}) against the reference ({base})", ""]
             lines += _law_against_reference(ds, ref)
         for model in ("fem",) if same_law else ("fem", "hybrid-windowed"):
+            if model == "fem" and not same_law and _same_tests(ds, ref, model):
+                lines += ["", "The full FEM is the reference's, test for test (the law alone "
+                          "changed)."]
+                continue
             lines += ["", f"## {model}: this run ({name}) against the reference ({base})",
                       ""] + _against_reference(ds, ref, "this run", "reference", model)
         m = min(n, ref.sizes["realization"])
@@ -192,6 +229,16 @@ def report(ds: xr.Dataset, ref: xr.Dataset | None, warnings_seen: list[str]) -> 
     return "\n".join(lines) + "\n"
 
 
+def creep_settled_law(args, mesh, grading) -> Path:
+    """Build the law alone (no full FEM), every point sliding ``--law-min-creep-times``
+    retardation times; return its ``law.nc`` in ``--outdir``."""
+    cfg = study_config(args.velocities, 1, mesh, grading, args.workers, args.cache,
+                       args.outdir / "law", args.law_min_creep_times)
+    cfg = cfg.model_copy(update={"models": ["hybrid-windowed"]})
+    ds = rc.hybrid.run(cfg, progress="log")
+    return write_law(law_from_results(ds), args.outdir / "law.nc")
+
+
 def main(argv=None) -> int:
     ap = argparse.ArgumentParser(description=__doc__.splitlines()[0])
     ap.add_argument("--velocities", type=float, nargs="+", default=[50.0])
@@ -200,6 +247,9 @@ def main(argv=None) -> int:
     ap.add_argument("--min-creep-times", type=float,
                     help="slide every FEM test this many longest retardation times "
                          "(fem.min_creep_times; default: the validation's sliding)")
+    ap.add_argument("--law-min-creep-times", type=float,
+                    help="slide the law's FEM points (only) this many longest retardation "
+                         "times; the full FEM keeps the validation's sliding")
     ap.add_argument("--workers", type=int, default=1)
     ap.add_argument("--cache", type=Path, default=ROOT / ".validation-cache")
     ap.add_argument("--outdir", type=Path, default=ROOT / "results" / "sampling_study",
@@ -211,8 +261,11 @@ def main(argv=None) -> int:
     ap.add_argument("--report", type=Path)
     args = ap.parse_args(argv)
     mesh, grading = _mesh(args.mesh, 4.0)
+    law_file = None
+    if args.law_min_creep_times is not None:
+        law_file = creep_settled_law(args, mesh, grading)
     cfg = study_config(args.velocities, args.realizations, mesh, grading, args.workers,
-                       args.cache, args.outdir, args.min_creep_times)
+                       args.cache, args.outdir, args.min_creep_times, law_file)
     ds, _wall, _figs, msgs = validate._run(args.outdir.name, cfg, args.outdir.parent)
     ref = xr.load_dataset(args.reference) if args.reference.exists() else None
     return publish(report(ds, ref, msgs), args.report)
