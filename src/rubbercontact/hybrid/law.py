@@ -70,7 +70,7 @@ def creep_unsettled_message(diag: dict, material: GeneralizedMaxwell, label, wha
             f"{where}{', ...' if len(short) > 6 else ''}. The bulk may still be creeping "
             f"under the friction stress although successive periods agree (at 50 mm/s on the "
             f"section 3 wave, sliding 5 retardation times moved the law by up to -17 % in "
-            f"friction and -38 % in area at 2-6 MPa, the full FEM by up to -3 % and -9 %; "
+            f"friction and -38 % in area at 2-6 MPa, the full FEM by up to -11 % and -10 %; "
             f"docs/validation/creep_settled.md); fem.min_creep_times slides longer")
 
 
