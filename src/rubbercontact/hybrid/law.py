@@ -199,8 +199,10 @@ def assemble_law(results, pressures, velocities, hs_surface: SineSeries,
     for k, text in STEADINESS_VARIABLES.items():
         law[k] = (("velocity", "pressure"), diag[k],
                   {"units": STEADINESS_UNITS.get(k, "1"), "long_name": text})
-    n_bad, where, recorded = describe_unsteady(
-        diag, lambda i, j: f"v={velocities[i]:g} p={pressures[j]:g}")
+    def label(i, j):
+        return f"v={velocities[i]:g} p={pressures[j]:g}"
+
+    n_bad, where, recorded = describe_unsteady(diag, label)
     if n_bad:
         # Kept in the table (the last period's averages): in the law cell the friction
         # settles within a few periods, the contact fraction can keep swinging by several
@@ -211,8 +213,7 @@ def assemble_law(results, pressures, velocities, hs_surface: SineSeries,
                       f"(last period's averages); more periods, or fem.min_creep_times, would "
                       f"settle them",
                       LawWarning, stacklevel=3)
-    creep = creep_unsettled_message(
-        diag, material, lambda i, j: f"v={velocities[i]:g} p={pressures[j]:g}", "law")
+    creep = creep_unsettled_message(diag, material, label, "law")
     if creep:
         warnings.warn(creep, LawWarning, stacklevel=3)
     law.attrs.update({

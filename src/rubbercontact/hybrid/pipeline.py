@@ -188,14 +188,14 @@ def build_law(cfg: RunConfig, hs0: SineSeries, material: GeneralizedMaxwell,
         [s] (``None`` when the law was given).
     """
     fem_time = None
+    source = "law"
     if law is None and cfg.law.file is not None:
-        from ..io.results import read_law
+        from ..io.results import read_results
 
-        law = read_law(cfg.law.file)
-        check_law_matches(law, hs0, material, cfg.velocities, source=f"law.file {cfg.law.file}")
-    elif law is not None:
-        law = as_law(law)
-        check_law_matches(law, hs0, material, cfg.velocities)
+        law, source = read_results(cfg.law.file), f"law.file {cfg.law.file}"
+    if law is not None:
+        law = as_law(law, source)
+        check_law_matches(law, hs0, material, cfg.velocities, source)
     else:
         law_p = (np.asarray(cfg.law.pressures, float) if cfg.law.pressures is not None
                  else np.geomspace(pressures.min() / 2, pressures.max() * 8, 8))
@@ -438,7 +438,7 @@ def _law_with_vhs(law: xr.Dataset, hs: SineSeries, material: GeneralizedMaxwell,
 
 
 def _assemble(models, velocities, realizations, pressures, index, results,
-              material: GeneralizedMaxwell | None = None) -> xr.Dataset:
+              material: GeneralizedMaxwell) -> xr.Dataset:
     shape = (len(models), len(velocities), len(realizations), len(pressures))
     names = list(RESULT_VARIABLES) + ["max_local_pressure"]
     data = {k: np.full(shape, np.nan) for k in names}
@@ -487,7 +487,7 @@ def _assemble(models, velocities, realizations, pressures, index, results,
     return ds
 
 
-def _add_fem_steadiness(ds: xr.Dataset, diag: dict, material: GeneralizedMaxwell | None = None,
+def _add_fem_steadiness(ds: xr.Dataset, diag: dict, material: GeneralizedMaxwell,
                         stacklevel: int = 2) -> xr.Dataset:
     """Store whether each full-FEM test reached steady sliding, and say which did not.
 
@@ -499,8 +499,10 @@ def _add_fem_steadiness(ds: xr.Dataset, diag: dict, material: GeneralizedMaxwell
         ds[f"fem_{k}"] = (dims, diag[k], {"units": STEADINESS_UNITS.get(k, "1"),
                                            "long_name": f"full FEM: {text}"})
     v, p = ds["velocity"].values, ds["pressure"].values
-    n_bad, where, recorded = describe_unsteady(
-        diag, lambda iv, ir, ip: f"v={v[iv]:g} σ0={p[ip]:g} r={ir}")
+    def label(iv, ir, ip):
+        return f"v={v[iv]:g} σ0={p[ip]:g} r={ir}"
+
+    n_bad, where, recorded = describe_unsteady(diag, label)
     if n_bad:
         brackets = ("; change of friction / contact fraction over the last period in "
                     "brackets" if recorded else "")
@@ -510,8 +512,7 @@ def _add_fem_steadiness(ds: xr.Dataset, diag: dict, material: GeneralizedMaxwell
                       f"averages (see 'fem_steady'); more periods, or fem.min_creep_times, would "
                       f"settle them",
                       RuntimeWarning, stacklevel=stacklevel)
-    creep = None if material is None else creep_unsettled_message(
-        diag, material, lambda iv, ir, ip: f"v={v[iv]:g} σ0={p[ip]:g} r={ir}", "full FEM")
+    creep = creep_unsettled_message(diag, material, label, "full FEM")
     if creep:
         warnings.warn(creep, RuntimeWarning, stacklevel=stacklevel)
     return ds

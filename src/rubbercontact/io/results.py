@@ -70,16 +70,11 @@ def read_results(path: str | Path) -> xr.Dataset:
 
 
 def write_law(law: xr.Dataset, path: str | Path, *, overwrite: bool = True) -> Path:
-    """Write a law table (:func:`~rubbercontact.hybrid.effective_law`) atomically, with
-    provenance: reusable as ``law.file`` by any run on the same high-slope scale and rubber."""
+    """Write a law table (:func:`~rubbercontact.hybrid.effective_law`) as :func:`write_results`
+    does: reusable as ``law.file`` by any run on the same high-slope scale and rubber."""
     from ..hybrid.law import as_law
 
-    path = Path(path)
-    path.parent.mkdir(parents=True, exist_ok=True)
-    out = _netcdf_safe(as_law(law))
-    for k, v in provenance().items():
-        out.attrs.setdefault(k, v)
-    return write_netcdf_atomic(out, path, overwrite=overwrite)
+    return write_results(as_law(law), path, overwrite=overwrite)
 
 
 def read_law(path: str | Path) -> xr.Dataset:
