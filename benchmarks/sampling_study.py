@@ -21,7 +21,8 @@ while the period rule stops the law after three of its 6.25 ms periods): the law
 first on its own and the run reads it as ``law.file``.
 
 Everything goes through the validation cache (the law is the validation's unless the
-sliding changes), so a killed run resumes. Run single-threaded, e.g.::
+sliding changes), seeded from the tracked FEM results of ``validate.py``, so a killed run
+resumes. Run single-threaded, e.g.::
 
     OMP_NUM_THREADS=1 .venv/bin/python benchmarks/sampling_study.py --workers 2 \\
         --velocities 50 --realizations 10 --report docs/validation/sampling_study.md
@@ -260,6 +261,7 @@ def main(argv=None) -> int:
                          "with test by test")
     ap.add_argument("--report", type=Path)
     args = ap.parse_args(argv)
+    validate.seed_cache(validate.REFERENCE_CACHE, args.cache)
     mesh, grading = _mesh(args.mesh, 4.0)
     law_file = None
     if args.law_min_creep_times is not None:

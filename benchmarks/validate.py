@@ -13,6 +13,11 @@ Cases (each a bundled example config, optionally reduced):
 ``--level quick`` reduces realizations, meshes and load points so that the whole set runs
 in well under an hour on 2 cores. Results are cached (``--cache``), so a rerun or a
 killed run resumes.
+
+The FEM solves behind the committed VALIDATION.md are kept, checksummed, in
+``docs/validation/reference-cache`` (a few MB): every run first copies those the working
+cache lacks (``--reference-cache``), so a fresh clone re-renders the report in minutes
+instead of hours of FEM. ``--export-reference`` copies the FEM solves a run used into it.
 """
 
 from __future__ import annotations
@@ -39,10 +44,15 @@ from rubbercontact.hybrid.metrics import (  # noqa: E402
     interpolate_at_areas,
     mean_relative_error,
 )
+from rubbercontact.hybrid.pipeline import make_runner  # noqa: E402
 from rubbercontact.io.results import write_results  # noqa: E402
 from rubbercontact.plotting.figures import plot_all  # noqa: E402
+from rubbercontact.sweep import ResultCache  # noqa: E402
 
 PAPER_E = {10.0: 0.029, 50.0: 0.071}
+REFERENCE_CACHE = ROOT / "docs" / "validation" / "reference-cache"
+#: The expensive tasks worth keeping: the law points and the full-FEM tests.
+FEM_FUNCTIONS = ("fem_task",)
 PAPER_REALIZATIONS = 5
 
 QUICK = {
@@ -161,11 +171,19 @@ def _config(case: str, level: str, workers: int, cache: Path, outdir: Path,
     return rc.config.parse_config(data, source=f"{case} ({level})")
 
 
-def _run(case, cfg, outdir: Path):
+def _run(case, cfg, outdir: Path, used_keys: set[str] | None = None):
+    """Run ``cfg``; with ``used_keys`` add the key of every task the run asked for."""
+    runner = make_runner(cfg, progress="log")
+
+    def recording_runner(tasks, description="sweep"):
+        if used_keys is not None:
+            used_keys.update(t.key() for t in tasks)
+        return runner(tasks, description)
+
     t0 = time.perf_counter()
     with warnings.catch_warnings(record=True) as caught:
         warnings.simplefilter("always")
-        ds = rc.hybrid.run(cfg, progress="log")
+        ds = rc.hybrid.run(cfg, runner=recording_runner)
     wall = time.perf_counter() - t0
     path = outdir / case / "results.nc"
     write_results(ds, path, overwrite=True)
@@ -886,7 +904,13 @@ def main(argv=None) -> int:
     ap.add_argument("--report", type=Path, default=ROOT / "VALIDATION.md")
     ap.add_argument("--realizations", type=int, default=None,
                     help="override the number of random-phase realizations of every case")
+    ap.add_argument("--reference-cache", type=Path, default=REFERENCE_CACHE,
+                    help="tracked FEM results copied into --cache before the run")
+    ap.add_argument("--export-reference", action="store_true",
+                    help="copy the FEM solves this run used into --reference-cache")
     args = ap.parse_args(argv)
+    seed_cache(args.reference_cache, args.cache)
+    used: set[str] = set()
     cases = [c.strip() for c in args.only.split(",") if c.strip()]
     commit = subprocess.run(["git", "rev-parse", "--short", "HEAD"], cwd=ROOT,
                             capture_output=True, text=True).stdout.strip() or "unknown"
@@ -902,7 +926,7 @@ def main(argv=None) -> int:
         cfg = _config(case, args.level, args.workers, args.cache, args.output,
                       args.realizations)
         print(f"== {case}", flush=True)
-        ds, wall, figs, msgs = _run(case, cfg, args.output)
+        ds, wall, figs, msgs = _run(case, cfg, args.output, used)
         if case == "section3":
             part = section3_report(ds, wall, figs, msgs, args.level)
         elif case == "asphalt":
@@ -915,7 +939,18 @@ def main(argv=None) -> int:
         (args.output / case / "report.md").write_text("\n".join([*part, stamp, ""]))
         _assemble(lines, args.output, args.report)
     print(f"wrote {args.report}")
+    if args.export_reference:
+        report = ResultCache(args.cache).copy_to(ResultCache(args.reference_cache),
+                                                 FEM_FUNCTIONS, keys=used)
+        print(f"FEM solves into {args.reference_cache}: {report}")
     return 0
+
+
+def seed_cache(reference: Path, cache: Path) -> None:
+    """Copy the tracked FEM results ``cache`` lacks (checked; corrupt ones are skipped)."""
+    if reference.is_dir():
+        report = ResultCache(reference).copy_to(ResultCache(cache), FEM_FUNCTIONS)
+        print(f"reference FEM solves {reference} -> {cache}: {report}", flush=True)
 
 
 if __name__ == "__main__":

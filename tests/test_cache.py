@@ -216,3 +216,54 @@ def test_atomic_write_gives_normal_permissions(tmp_path):
     os.umask(umask)
     path = write_netcdf_atomic(_ds(), tmp_path / "perm.nc")
     assert path.stat().st_mode & 0o777 == 0o666 & ~umask
+
+
+# -- copying between caches -----------------------------------------------------------------
+def test_copy_to_seeds_an_empty_cache_with_checked_entries(tmp_path):
+    src, tasks = _populate(tmp_path / "src")
+    dest = ResultCache(tmp_path / "dest")
+    report = src.copy_to(dest)
+    assert (report.copied, report.present, report.corrupt) == (2, 0, 0)  # failure not copied
+    for t in tasks[:2]:
+        xr.testing.assert_identical(dest.load(t.key()).result, src.load(t.key()).result)
+    assert dest.load(tasks[2].key()) is None and dest.info().n_temporary == 0
+    # A rerun copies nothing and a sweep on the seeded cache computes nothing.
+    assert src.copy_to(dest).present == 2
+    res = run_sweep(tasks[:2], cache=dest, executor=SYNC, progress=False)
+    assert res.n_cached == 2 and res.n_computed == 0
+
+
+def test_copy_to_never_copies_or_deletes_a_corrupt_source_entry(tmp_path):
+    src, tasks = _populate(tmp_path / "src")
+    bad = src.path_for(tasks[0].key())
+    with xr.open_dataset(bad) as ds:
+        tampered = ds.load()
+    tampered["friction"] = tampered["friction"] + 1.0   # checksum no longer matches
+    write_netcdf_atomic(tampered, bad, overwrite=True)
+    dest = ResultCache(tmp_path / "dest")
+    report = src.copy_to(dest, include_failed=True)
+    assert (report.copied, report.corrupt) == (2, 1)
+    assert dest.load(tasks[0].key()) is None and bad.exists()   # source left as it was
+    assert isinstance(dest.load(tasks[2].key()).result, TaskFailure)
+
+
+def test_copy_to_selects_by_function_and_key(tmp_path):
+    src, tasks = _populate(tmp_path / "src")
+    assert src.copy_to(ResultCache(tmp_path / "a"), functions=("fem_task",)).copied == 0
+    assert src.copy_to(ResultCache(tmp_path / "b"), functions=("toy_kernel",)).copied == 2
+    only = ResultCache(tmp_path / "c")
+    assert src.copy_to(only, keys={tasks[1].key()}).copied == 1
+    assert only.load(tasks[1].key()) is not None and only.load(tasks[0].key()) is None
+
+
+def test_cli_cache_copy(tmp_path, capsys):
+    from rubbercontact.cli import app, main
+
+    _populate(tmp_path / "src")
+    runner = CliRunner()
+    out = runner.invoke(app, ["cache", "copy", str(tmp_path / "src"), str(tmp_path / "dst"),
+                              "--function", "toy_kernel"])
+    assert out.exit_code == 0, out.output
+    assert "2 copied, 0 already present, 0 corrupt" in out.output
+    assert main(["cache", "copy", str(tmp_path / "nowhere"), str(tmp_path / "d")]) == 2
+    assert "not a directory" in capsys.readouterr().err

@@ -45,3 +45,25 @@ def clear(cache: Path | None = typer.Option(None, "--cache", help=_CACHE_HELP),
         raise typer.Exit(1)
     deleted = store.clear(failed_only=failed_only)
     typer.echo(f"deleted {deleted} {what} from {store.directory}")
+
+
+@app.command("copy")
+def copy(source: Path = typer.Argument(..., help="Cache directory to copy from."),
+         destination: Path = typer.Argument(..., help="Cache directory to copy into."),
+         function: list[str] = typer.Option(
+             [], "--function", help="Only tasks whose function name ends with this, e.g. "
+                                     "fem_task (repeatable; default: every task)."),
+         include_failed: bool = typer.Option(False, "--include-failed",
+                                             help="Also copy recorded failures.")) -> None:
+    """Copy the valid entries DESTINATION lacks from SOURCE (checked, atomic).
+
+    Keeps expensive results (e.g. the FEM solves behind a validation report) in a
+    directory of their own, and seeds a fresh cache from it.
+    """
+    from ..errors import InputError
+
+    if not source.is_dir():
+        raise InputError(f"cache copy: source {str(source)!r} is not a directory")
+    report = _cache(source).copy_to(_cache(destination), tuple(function) or None,
+                                    include_failed=include_failed)
+    typer.echo(f"{source} -> {destination}: {report}")

@@ -27,6 +27,7 @@ import hashlib
 import json
 import logging
 import os
+import shutil
 import time
 from dataclasses import dataclass
 from pathlib import Path
@@ -40,7 +41,8 @@ from ..io.atomic import TEMP_SUFFIX, write_netcdf_atomic
 from .results import TaskFailure
 from .tasks import NUMERICS_VERSION, Task
 
-__all__ = ["CacheEntry", "CacheInfo", "ResultCache", "dataset_checksum", "default_cache_dir"]
+__all__ = ["CacheEntry", "CacheInfo", "CopyReport", "ResultCache", "dataset_checksum",
+           "default_cache_dir"]
 
 log = logging.getLogger(__name__)
 
@@ -100,6 +102,19 @@ class CacheEntry:
     result: xr.Dataset | TaskFailure
     wall_time: float
     path: Path
+
+
+@dataclass(frozen=True)
+class CopyReport:
+    """What :meth:`ResultCache.copy_to` did: entries copied, already present, corrupt."""
+
+    copied: int
+    present: int
+    corrupt: int
+
+    def __str__(self) -> str:
+        return (f"{self.copied} copied, {self.present} already present, "
+                f"{self.corrupt} corrupt (not copied)")
 
 
 @dataclass
@@ -184,7 +199,9 @@ class ResultCache:
                 return entry
         return None
 
-    def _read(self, key: str, path: Path) -> CacheEntry | None:
+    @staticmethod
+    def _check(key: str, path: Path) -> tuple[xr.Dataset | None, str | None]:
+        """``(dataset, None)`` for a valid entry file, ``(None, problem)`` otherwise."""
         try:
             ds = xr.load_dataset(path, engine="netcdf4")
             attrs = ds.attrs
@@ -196,10 +213,15 @@ class ResultCache:
             elif attrs.get(_PREFIX + "checksum") != dataset_checksum(ds):
                 problem = "checksum mismatch"
         except Exception as exc:  # noqa: BLE001 - any unreadable file is a corrupt entry
-            problem = f"unreadable ({type(exc).__name__}: {exc})"
+            return None, f"unreadable ({type(exc).__name__}: {exc})"
+        return (None, problem) if problem is not None else (ds, None)
+
+    def _read(self, key: str, path: Path) -> CacheEntry | None:
+        ds, problem = self._check(key, path)
         if problem is not None:
             self._discard(path, problem)
             return None
+        attrs = ds.attrs
         status = str(attrs[_PREFIX + "status"])
         wall_time = float(attrs.get(_PREFIX + "wall_time_s", 0.0))
         if status == "failed":
@@ -263,6 +285,57 @@ class ResultCache:
         with contextlib.suppress(FileNotFoundError):
             self.path_for(key, not failed).unlink()
         return path
+
+    # -- copying between caches ------------------------------------------------------
+    def copy_to(self, other: ResultCache, functions: tuple[str, ...] | None = None,
+                keys: set[str] | None = None, include_failed: bool = False) -> CopyReport:
+        """Copy this cache's valid entries that ``other`` lacks into ``other``.
+
+        Used to keep the expensive results (the FEM solves behind VALIDATION.md) in a
+        tracked directory and to seed a fresh working cache from it. Every source file is
+        checked (key, status, checksum) before it is copied; a corrupt one is counted and
+        left where it is, never copied (the source may be read-only or under version
+        control). Copies are atomic (temporary file, then rename), so an interrupted copy
+        leaves no half entry.
+
+        Parameters
+        ----------
+        other
+            Destination cache.
+        functions
+            Only tasks whose function name (``module:name``) ends with one of these, e.g.
+            ``("fem_task",)``; None copies every function.
+        keys
+            Only these task keys; None copies every key.
+        include_failed
+            Also copy recorded failures (by default only successful results travel).
+        """
+        copied = present = corrupt = 0
+        for path in sorted(self._files()):
+            failed = path.name.endswith(_FAILED_SUFFIX)
+            key = path.name[: -len(_FAILED_SUFFIX)] if failed else path.name[:-3]
+            if (failed and not include_failed) or (keys is not None and key not in keys):
+                continue
+            if other.path_for(key).exists() or other.path_for(key, True).exists():
+                present += 1
+                continue
+            ds, problem = self._check(key, path)
+            if problem is not None:
+                log.warning("cache entry %s is corrupt (%s): not copied", path, problem)
+                corrupt += 1
+                continue
+            if functions is not None:
+                function = json.loads(str(ds.attrs.get(_PREFIX + "task", "{}"))).get(
+                    "function", "")
+                if not function.endswith(tuple(functions)):
+                    continue
+            dest = other.path_for(key, failed)
+            dest.parent.mkdir(parents=True, exist_ok=True)
+            tmp = dest.with_name(f".{dest.name}.{os.getpid()}{TEMP_SUFFIX}")
+            shutil.copyfile(path, tmp)
+            os.replace(tmp, dest)
+            copied += 1
+        return CopyReport(copied, present, corrupt)
 
     # -- maintenance ------------------------------------------------------------------
     def info(self) -> CacheInfo:
