@@ -267,3 +267,16 @@ def test_cli_cache_copy(tmp_path, capsys):
     assert "2 copied, 0 already present, 0 corrupt" in out.output
     assert main(["cache", "copy", str(tmp_path / "nowhere"), str(tmp_path / "d")]) == 2
     assert "not a directory" in capsys.readouterr().err
+
+
+def test_copy_to_replaces_a_recorded_failure_with_a_result_never_the_reverse(tmp_path):
+    src, tasks = _populate(tmp_path / "src")
+    dest = ResultCache(tmp_path / "dest")
+    failure = TaskFailure(message="worker lost", error_type="KilledWorker")
+    dest.store(tasks[0].key(), tasks[0], failure, 1.0)       # failed here, ok in src
+    dest.store(tasks[2].key(), tasks[2], _fresh(tasks[0]), 1.0)  # ok here, failed in src
+    report = src.copy_to(dest, include_failed=True)
+    assert (report.copied, report.present) == (2, 1)
+    assert dest.load(tasks[0].key()).status == "ok"
+    assert not dest.path_for(tasks[0].key(), failed=True).exists()
+    assert dest.load(tasks[2].key()).status == "ok"

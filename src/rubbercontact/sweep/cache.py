@@ -316,7 +316,9 @@ class ResultCache:
             key = path.name[: -len(_FAILED_SUFFIX)] if failed else path.name[:-3]
             if (failed and not include_failed) or (keys is not None and key not in keys):
                 continue
-            if other.path_for(key).exists() or other.path_for(key, True).exists():
+            # A result the destination has is kept; a recorded failure there gives way to
+            # a successful result (as a recompute would), never the reverse.
+            if other.path_for(key).exists() or (failed and other.path_for(key, True).exists()):
                 present += 1
                 continue
             ds, problem = self._check(key, path)
@@ -334,6 +336,8 @@ class ResultCache:
             tmp = dest.with_name(f".{dest.name}.{os.getpid()}{TEMP_SUFFIX}")
             shutil.copyfile(path, tmp)
             os.replace(tmp, dest)
+            with contextlib.suppress(FileNotFoundError):
+                other.path_for(key, not failed).unlink()
             copied += 1
         return CopyReport(copied, present, corrupt)
 
