@@ -23,7 +23,9 @@ factor at the crest, "+ curvature"):
 - *patch* (experimental): each connected low-slope contact patch tiled by ``λ_hs`` cells
   centred on its centre of force, the law read at each cell's load;
 - *crest-resolved* (experimental, ``scale_separation.crest_resolved_loads``);
-- *law at VHS crest loads* (diagnostic, linear law only): the VHS's own load on each crest.
+- *law at VHS crest loads* (diagnostic, linear law only): the VHS's own load on each crest;
+- *law at FEM crest loads* (diagnostic, FEM law, full FEM from the cache): the full FEM's own
+  face pressure summed per crest cell.
 
 Part 1 uses the linear law (the VHS of the high-slope wave alone), so a reading that
 shares the load and shapes the contacts right reproduces the VHS. Part 2 uses the
@@ -61,6 +63,7 @@ import rubbercontact as rc  # noqa: E402
 from rubbercontact.hybrid.law import linear_law, tabulated_law_from_dict  # noqa: E402
 from rubbercontact.hybrid.metrics import mean_relative_error  # noqa: E402
 from rubbercontact.hybrid.pipeline import (  # noqa: E402
+    _translated_to_zero_phase,
     build_material,
     build_surface,
     full_fem_task,
@@ -123,9 +126,12 @@ def patch_cells(pressure: np.ndarray, period: float, lam: float
 
 
 def readings(real: SineSeries, period: float, table: dict, material, velocity: float,
-             pressure: float, n: int, m2_threshold: float, with_vhs: bool) -> dict:
+             pressure: float, n: int, m2_threshold: float, with_vhs: bool,
+             fem_profile: tuple[np.ndarray, np.ndarray] | None = None) -> dict:
     """``{name: (μ, A, A with the curvature factor)}`` of every reading of ``table`` on one
-    realization and load (``"VHS"`` too when ``with_vhs``)."""
+    realization and load (``"VHS"`` too when ``with_vhs``; ``"law at FEM crest loads"``
+    when the full FEM's face pressure ``(x, p)`` is given, in the zero-phase frame of
+    :func:`~rubbercontact.hybrid.pipeline.full_fem_task`)."""
     hs, ls = real.partition(m2_threshold)
     lam = float(np.min(hs.wavelengths))
     sig, alpha, tau = law_in_pressure(table)
@@ -153,6 +159,23 @@ def readings(real: SineSeries, period: float, table: dict, material, velocity: f
         out["law at VHS crest loads"] = read(loads, x_crest,
                                              np.full(loads.size, 1.0 / loads.size))
         out["VHS"] = (vhs.friction, vhs.contact_fraction, vhs.contact_fraction)
+    if fem_profile is not None:
+        hs_t, ls_t = _translated_to_zero_phase(real).partition(m2_threshold)
+        x_f, p_f = fem_profile
+        # Nodal face pressure (force per deformed face length) times the node's projected
+        # share of the cell is its vertical force: deposit that on the grid.
+        x_f = np.mod(x_f, period)
+        xs = np.r_[x_f[-1] - period, x_f, x_f[0] + period]
+        share = 0.5 * (xs[2:] - xs[:-2])
+        grid = np.zeros(n)
+        np.add.at(grid, np.floor(x_f / period * n).astype(int) % n, p_f * share * n / period)
+        loads = crest_loads(grid, hs_t, period)
+        _, crests_t = crest_cells(hs_t, period, n)
+        a = np.interp(loads, sig, alpha) / loads.size
+        out["law at FEM crest loads"] = (
+            mu_ls + float(np.mean(np.interp(loads, sig, tau))) / pressure, float(a.sum()),
+            float((a * curvature_factor(hs_t, ls_t, crests_t * period / n)).sum()))
+        out["FEM force closure"] = (float(grid.mean()) / pressure,) * 3
     return out
 
 
@@ -194,7 +217,8 @@ def fem_from_cache(cfg, velocity: float, realizations, material, cache: Path) ->
                    for p in cfg.loads.pressures]
         if any(e is None or e.status != "ok" for e in entries):
             break
-        out.append([(float(e.result["friction"]), float(e.result["contact_fraction"]))
+        out.append([(float(e.result["friction"]), float(e.result["contact_fraction"]),
+                     (e.result["x_fem"].values, e.result["pressure_profile"].values))
                     for e in entries])
     return out
 
@@ -222,18 +246,22 @@ def fem_part(cfg, velocity: float, realizations, material, base, table, fem: lis
     """Readings of the FEM law against the full FEM ``fem`` (from :func:`fem_from_cache` or
     :func:`fem_from_table`): eq. 28 at equal area and σ0."""
     pressures = [float(p) for p in cfg.loads.pressures]
-    rows = []
+    rows, closure = [], []
     for real, fem_row in zip(realizations, fem, strict=False):
         row = []
         for p, fem_pa in zip(pressures, fem_row, strict=True):
+            profile = fem_pa[2] if len(fem_pa) > 2 else None
             r = readings(real, base.period, table, material, velocity, p, cfg.halfspace.n,
-                         cfg.surface.m2_threshold, with_vhs=False)
+                         cfg.surface.m2_threshold, with_vhs=False, fem_profile=profile)
             vhs = rc.halfspace.solve_sliding(real, base.period, material, velocity, p,
                                              n=cfg.halfspace.n)
-            vals = {"fem": fem_pa, "vhs": (vhs.friction, vhs.contact_fraction)}
-            for k in READINGS[:3]:
+            vals = {"fem": fem_pa[:2], "vhs": (vhs.friction, vhs.contact_fraction)}
+            names = [*READINGS[:3]] + (["law at FEM crest loads"] if profile else [])
+            for k in names:
                 vals[k] = r[k][:2]
                 vals[k + " + curvature"] = (r[k][0], r[k][2])
+            if profile:
+                closure.append(r["FEM force closure"][0])
             row.append(vals)
         rows.append(row)
     models = list(rows[0][0])
@@ -262,6 +290,11 @@ def fem_part(cfg, velocity: float, realizations, material, base, table, fem: lis
                  f"({float(at['contact_fraction_mean'].sel(pressure=p)):.4f})"
                  for p in pressures]
         lines.append(f"| {m} | {at_area} | {at_load} | " + " | ".join(cells) + " |")
+    if closure:
+        lines += ["", "*Law at FEM crest loads* (diagnostic): the full FEM's own face pressure at "
+                  "the end of the test, summed per crest cell, read through the law with the "
+                  "hybrid's μ_ls. Its nodal pressures on their projected shares of the face carry "
+                  f"{min(closure):.3f}-{max(closure):.3f} of the applied load."]
     return lines
 
 
