@@ -30,8 +30,8 @@ factor at the crest, "+ curvature"):
 Part 1 uses the linear law (the VHS of the high-slope wave alone), so a reading that
 shares the load and shapes the contacts right reproduces the VHS. Part 2 uses the
 validation's FEM law against the validation's full FEM, for the realizations whose full-FEM
-tests are in the cache. Part 3 compares the two laws. Run (about 2 min per velocity for
-part 1, one core)::
+tests are in the cache (else from the sampling studies' per-test tables). Part 3 compares
+the two laws. Run (about 10 minutes for both speeds on one core)::
 
     OMP_NUM_THREADS=1 .venv/bin/python benchmarks/crest_curvature.py \\
         --report docs/validation/crest_curvature.md
