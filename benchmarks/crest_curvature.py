@@ -252,10 +252,8 @@ def fem_part(cfg, velocity: float, realizations, material, base, table, fem: lis
         for p, fem_pa in zip(pressures, fem_row, strict=True):
             profile = fem_pa[2] if len(fem_pa) > 2 else None
             r = readings(real, base.period, table, material, velocity, p, cfg.halfspace.n,
-                         cfg.surface.m2_threshold, with_vhs=False, fem_profile=profile)
-            vhs = rc.halfspace.solve_sliding(real, base.period, material, velocity, p,
-                                             n=cfg.halfspace.n)
-            vals = {"fem": fem_pa[:2], "vhs": (vhs.friction, vhs.contact_fraction)}
+                         cfg.surface.m2_threshold, with_vhs=True, fem_profile=profile)
+            vals = {"fem": fem_pa[:2], "vhs": r["VHS"][:2]}
             names = [*READINGS[:3]] + (["law at FEM crest loads"] if profile else [])
             for k in names:
                 vals[k] = r[k][:2]

@@ -15,9 +15,10 @@ in well under an hour on 2 cores. Results are cached (``--cache``), so a rerun o
 killed run resumes.
 
 The FEM solves behind the committed VALIDATION.md are kept, checksummed, in
-``docs/validation/reference-cache`` (a few MB): every run first copies those the working
-cache lacks (``--reference-cache``), so a fresh clone re-renders the report in minutes
-instead of hours of FEM. ``--export-reference`` copies the FEM solves a run used into it.
+``docs/validation/reference-cache`` (a few MB; its README lists what it holds): every run
+first copies those the working cache lacks (``--reference-cache``), so a fresh clone
+recomputes only the solves missing there. ``--export-reference`` copies the FEM solves a
+run used into it.
 """
 
 from __future__ import annotations

@@ -250,6 +250,9 @@ def test_copy_to_never_copies_or_deletes_a_corrupt_source_entry(tmp_path):
 def test_copy_to_selects_by_function_and_key(tmp_path):
     src, tasks = _populate(tmp_path / "src")
     assert src.copy_to(ResultCache(tmp_path / "a"), functions=("fem_task",)).copied == 0
+    # Entries outside the selection are neither copied nor counted as present.
+    src.copy_to(ResultCache(tmp_path / "a2"))
+    assert src.copy_to(ResultCache(tmp_path / "a2"), functions=("fem_task",)).present == 0
     assert src.copy_to(ResultCache(tmp_path / "b"), functions=("toy_kernel",)).copied == 2
     only = ResultCache(tmp_path / "c")
     assert src.copy_to(only, keys={tasks[1].key()}).copied == 1

@@ -316,11 +316,6 @@ class ResultCache:
             key = path.name[: -len(_FAILED_SUFFIX)] if failed else path.name[:-3]
             if (failed and not include_failed) or (keys is not None and key not in keys):
                 continue
-            # A result the destination has is kept; a recorded failure there gives way to
-            # a successful result (as a recompute would), never the reverse.
-            if other.path_for(key).exists() or (failed and other.path_for(key, True).exists()):
-                present += 1
-                continue
             ds, problem = self._check(key, path)
             if problem is not None:
                 log.warning("cache entry %s is corrupt (%s): not copied", path, problem)
@@ -331,6 +326,11 @@ class ResultCache:
                     "function", "")
                 if not function.endswith(tuple(functions)):
                     continue
+            # A result the destination has is kept; a recorded failure there gives way to
+            # a successful result (as a recompute would), never the reverse.
+            if other.path_for(key).exists() or (failed and other.path_for(key, True).exists()):
+                present += 1
+                continue
             dest = other.path_for(key, failed)
             dest.parent.mkdir(parents=True, exist_ok=True)
             tmp = dest.with_name(f".{dest.name}.{os.getpid()}{TEMP_SUFFIX}")
