@@ -42,6 +42,7 @@ import rubbercontact as rc  # noqa: E402
 from rubbercontact.config import load_config  # noqa: E402
 from rubbercontact.hybrid.metrics import (  # noqa: E402
     bootstrap_interval,
+    control_variate_mean,
     interpolate_at_areas,
     mean_relative_error,
 )
@@ -412,6 +413,123 @@ def eq28_first(ds, k: int | None = None,
             for v, (areas, e) in eq28_at_equal_area(sub, models).items()}
 
 
+#: Realizations of the cheap models (VHS, hybrids) behind the phase-averaged eq. 28.
+PHASE_REALIZATIONS = 200
+CHEAP_MODELS = ("hybrid", "hybrid-windowed", "vhs")
+
+
+def phase_average_data(ds, cfg, n: int = PHASE_REALIZATIONS) -> dict:
+    """Per velocity, the arrays behind the phase-averaged eq. 28 (``eq28_phase_averaged``).
+
+    The hybrid predicts the friction of the random-phase surface on average over the
+    phases, and its cheap models can afford many realizations where the FEM cannot. This
+    runs the VHS and the hybrids of ``cfg`` on ``n`` realizations (same seed, so the first
+    R are those of ``ds``; checked value by value against ``ds``) through the cache, and
+    returns ``{v: {"pressures", "fem": (A, μ), "paired": {m: (A, μ)}, "all": {m: (A, μ)}}}``
+    with arrays ``(realization, pressure)``: the FEM and the cheap models on the R
+    realizations of ``ds``, and the cheap models on all ``n``.
+    """
+    models = [m for m in CHEAP_MODELS if m in ds["model"].values]
+    r = ds.sizes["realization"]
+    if "vhs" not in models or "fem" not in ds["model"].values or n < r:
+        return {}
+    data = cfg.model_dump(mode="json", exclude_none=True)
+    data.update(models=models, realizations=int(n))
+    cheap_cfg = rc.config.parse_config(data, source=f"section3 ({n} realizations)")
+    with warnings.catch_warnings():
+        warnings.simplefilter("ignore")   # the same law and loads: ds's run has warned
+        cheap = rc.hybrid.run(cheap_cfg, runner=make_runner(cheap_cfg, progress="log"))
+
+    def arrays(d, m, v):
+        return tuple(d[k].sel(model=m, velocity=v).transpose("realization", "pressure").values
+                     for k in ("contact_fraction", "friction"))
+
+    if not np.allclose(cheap["phase"].values[:r], ds["phase"].values, rtol=0, atol=1e-12):
+        raise RuntimeError("phase average: the n-realization run does not start with the "
+                           "realizations of the validation run (seed changed?)")
+    out = {}
+    for v in ds["velocity"].values:
+        paired = {m: arrays(ds, m, v) for m in models}
+        every = {m: arrays(cheap, m, v) for m in models}
+        for m in models:      # the pairing the control variate relies on
+            for x, y in zip(every[m], paired[m], strict=True):
+                if not np.allclose(x[:r], y, rtol=1e-12, atol=0, equal_nan=True):
+                    raise RuntimeError(f"phase average: {m} at {v:g} mm/s differs from the "
+                                       "validation run on the same realizations")
+        out[float(v)] = {"pressures": ds["pressure"].values, "fem": arrays(ds, "fem", v),
+                         "paired": paired, "all": every}
+    return out
+
+
+def _column_mean(x: np.ndarray, idx: np.ndarray) -> np.ndarray:
+    with warnings.catch_warnings():
+        warnings.simplefilter("ignore", RuntimeWarning)   # an all-failed load stays NaN
+        return np.nanmean(x[idx], axis=0)
+
+
+def phase_mean_curves(data: dict, idx_r=None, idx_n=None) -> dict:
+    """``{"plain": {m: (Ā, μ̄)}, "phase": {m: (Ā, μ̄)}}`` per load of one velocity.
+
+    *plain*: every model averaged over the R realizations with a full FEM (VALIDATION's
+    eq. 28); *phase*: the cheap models over all N, the FEM as ``mean_N(VHS) + mean_R(FEM −
+    VHS)`` (``control_variate_mean``; a failed FEM test drops that realization at its load).
+    ``idx_r`` / ``idx_n`` resample the R and the N realizations (bootstrap).
+    """
+    fem = data["fem"]
+    r, n = fem[0].shape[0], data["all"]["vhs"][0].shape[0]
+    idx_r = np.arange(r) if idx_r is None else np.asarray(idx_r)
+    idx_n = np.arange(n) if idx_n is None else np.asarray(idx_n)
+    plain = {m: tuple(_column_mean(x, idx_r) for x in xs)
+             for m, xs in [("fem", fem), *data["paired"].items()]}
+    phase = {m: tuple(_column_mean(x, idx_n) for x in xs) for m, xs in data["all"].items()}
+    cv = []
+    for t, c, call in zip(fem, data["paired"]["vhs"], data["all"]["vhs"], strict=True):
+        t, c, call = t[idx_r], c[idx_r], call[idx_n]
+        est = np.full(t.shape[1], np.nan)
+        for k in range(t.shape[1]):
+            ok = np.isfinite(t[:, k]) & np.isfinite(c[:, k])
+            every = call[np.isfinite(call[:, k]), k]
+            if ok.any() and every.size:
+                est[k] = control_variate_mean(t[ok, k], c[ok, k], every)
+        cv.append(est)
+    phase["fem"] = tuple(cv)
+    return {"plain": plain, "phase": phase}
+
+
+def _eq28_of_curves(curves: dict, models) -> dict:
+    common = _common_areas(curves)
+    if common is None:
+        return {m: np.nan for m in models}
+    _, mus = common
+    ok = np.all([np.isfinite(x) for x in mus.values()], axis=0)
+    return {m: mean_relative_error(mus["fem"][ok], mus[m][ok]) if ok.any() else np.nan
+            for m in models}
+
+
+def eq28_phase_averaged(phase_data: dict, resamples: int = 2000, level: float = 0.9,
+                        seed: int = 0) -> dict:
+    """``{v: ({m: e}, {m: (low, high, used)})}``: eq. 28 at equal area against the
+    phase-averaged FEM, with a two-sample bootstrap interval (the R FEM realizations and
+    the N cheap ones resampled independently, ``resamples`` times)."""
+    out = {}
+    for v, data in phase_data.items():
+        models = [m for m in CHEAP_MODELS if m in data["all"]]
+        e = _eq28_of_curves(phase_mean_curves(data)["phase"], models)
+        r, n = data["fem"][0].shape[0], data["all"]["vhs"][0].shape[0]
+        rng = np.random.default_rng(seed)
+        draws = np.array([[_eq28_of_curves(phase_mean_curves(
+            data, rng.integers(0, r, r), rng.integers(0, n, n))["phase"], models)[m]
+            for m in models] for _ in range(int(resamples))])
+        ci = {}
+        for j, m in enumerate(models):
+            x = draws[:, j][np.isfinite(draws[:, j])]
+            if x.size:
+                low, high = np.quantile(x, [(1 - level) / 2, (1 + level) / 2])
+                ci[m] = (float(low), float(high), int(x.size))
+        out[v] = (e, ci)
+    return out
+
+
 def with_area_factor(ds, factor: float):
     """``ds`` with the FEM's contact fractions multiplied by ``factor`` (friction unchanged)."""
     ds = ds.copy(deep=True)
@@ -608,7 +726,43 @@ def _sampling_sentence(ds, target: float = 0.02) -> str:
             f"realization, so its interval is narrow.")
 
 
-def section3_report(ds, wall, figs, msgs, level) -> list[str]:
+def _phase_average_sentence(phase_data: dict, phase: dict) -> str:
+    """What the phase-averaged row of the eq. 28 table is, with the spreads that justify it."""
+    def sd(x):
+        return np.nanstd(x, axis=0, ddof=1)
+
+    parts = []
+    for v, data in phase_data.items():
+        fem_mu, vhs_mu = data["fem"][1], data["paired"]["vhs"][1]
+        win = data["paired"].get("hybrid-windowed", (None, None))[1]
+        text = (f"at {v:g} mm/s the s.d. of μ_FEM over the realizations is "
+                + " / ".join(f"{x:.3f}" for x in sd(fem_mu)) + " and that of μ_FEM − μ_VHS "
+                + " / ".join(f"{x:.3f}" for x in sd(fem_mu - vhs_mu)))
+        if win is not None:
+            corr = [np.corrcoef(fem_mu[:, k], win[:, k])[0, 1] for k in range(win.shape[1])]
+            text += (", while the windowed hybrid's correlation with the FEM is "
+                     + " / ".join(f"{c:.2f}" for c in corr))
+        parts.append(text)
+    n = next(iter(phase_data.values()))["all"]["vhs"][0].shape[0]
+    r = next(iter(phase_data.values()))["fem"][0].shape[0]
+    return ("**Phase-averaged comparison** (row 'phase-averaged' above; "
+            "`benchmarks/phase_average.py`, docs/validation/phase_average.md). The hybrid "
+            "predicts the friction of the random-phase surface on average over the phases, "
+            "and its models are cheap: the VHS and the hybrids are averaged here over "
+            f"N = {n} realizations (the same seed: the first {r} are the FEM's). The FEM's "
+            "phase average is estimated with the VHS as a control variate, "
+            f"mean_N(VHS) + mean_{r}(FEM − VHS), per load and for μ and A: unbiased, and "
+            "precise because the VHS follows the FEM from realization to realization (both "
+            "resolve the same crests) while the hybrids, which see the high-slope wave only "
+            "through the law, do not. Per load (" + " / ".join(
+                f"{p:g}" for p in next(iter(phase_data.values()))["pressures"])
+            + " MPa): " + "; ".join(parts) + ". In the plain rows the hybrid's own "
+            f"{r}-realization mean is a sample that the FEM's does not pair with, and that "
+            "is most of their interval. The interval of the phase-averaged row resamples "
+            f"the {r} FEM realizations and the N cheap ones independently (2000 resamples).")
+
+
+def section3_report(ds, wall, figs, msgs, level, phase_data: dict | None = None) -> list[str]:
     out = ["## Paper §3: three-wave validation surface", ""]
     out.append(f"Level `{level}`: {ds.sizes['realization']} realizations, velocities "
                f"{ds['velocity'].values.tolist()} mm/s, FEM mesh "
@@ -688,6 +842,7 @@ def section3_report(ds, wall, figs, msgs, level) -> list[str]:
                 "windowed hybrid with the RG law is 3.4 % off at equal σ0 "
                 "(docs/validation/material_model.md)."]
     at_areas = _friction_at_common_areas(ds)
+    phase = eq28_phase_averaged(phase_data) if phase_data else {}
     out += ["", "Eq. 28 mean relative error against full FEM at equal normal contact area "
             "(the paper's comparison; areas per velocity in the table below). In brackets "
             "the 90 % interval of a paired bootstrap over the realizations (every model "
@@ -711,6 +866,14 @@ def section3_report(ds, wall, figs, msgs, level) -> list[str]:
                 + (f" ({_interval_text(*ci[m])})" if m in ci else "")
                 for m in ("hybrid", "hybrid-windowed", "vhs"))
                 + f" | {'' if paper is None or k else f'{100 * paper:.1f} %'} |")
+        if v in phase:
+            e, ci = phase[v]
+            n_all = phase_data[v]["all"]["vhs"][0].shape[0]
+            out.append(f"| {v:g} | phase-averaged (N = {n_all}) | " + " | ".join(
+                f"**{100 * e[m]:.1f} %** ({_interval_text(*ci[m])})" if m in ci else "-"
+                for m in ("hybrid", "hybrid-windowed", "vhs")) + " | |")
+    if phase:
+        out += ["", _phase_average_sentence(phase_data, phase)]
     e_p = {m: [mean_relative_error(ds["friction_mean"].sel(model="fem", velocity=v).values,
                                    ds["friction_mean"].sel(model=m, velocity=v).values)
                for v in ds["velocity"].values]
@@ -913,6 +1076,9 @@ def main(argv=None) -> int:
                     help="override the number of random-phase realizations of every case")
     ap.add_argument("--reference-cache", type=Path, default=REFERENCE_CACHE,
                     help="tracked FEM results copied into --cache before the run")
+    ap.add_argument("--phase-realizations", type=int, default=PHASE_REALIZATIONS,
+                    help="realizations of the VHS and the hybrids behind section 3's "
+                         "phase-averaged eq. 28 (0: skip it)")
     ap.add_argument("--export-reference", action="store_true",
                     help="copy the FEM solves this run used into --reference-cache")
     args = ap.parse_args(argv)
@@ -935,7 +1101,9 @@ def main(argv=None) -> int:
         print(f"== {case}", flush=True)
         ds, wall, figs, msgs = _run(case, cfg, args.output, used)
         if case == "section3":
-            part = section3_report(ds, wall, figs, msgs, args.level)
+            phase = (phase_average_data(ds, cfg, args.phase_realizations)
+                     if args.phase_realizations else {})
+            part = section3_report(ds, wall, figs, msgs, args.level, phase)
         elif case == "asphalt":
             part = asphalt_report(ds, wall, figs, msgs, args.level, _short_wave_share(ds, cfg))
         else:

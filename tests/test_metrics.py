@@ -6,6 +6,7 @@ import pytest
 from rubbercontact.errors import InputError
 from rubbercontact.hybrid.metrics import (
     bootstrap_interval,
+    control_variate_mean,
     interpolate_at_areas,
     mean_relative_error,
 )
@@ -75,3 +76,41 @@ def test_bootstrap_interval_rejects_bad_input(kwargs):
     args = {"n_realizations": 5, "resamples": 200, "level": 0.9} | kwargs
     with pytest.raises(InputError):
         bootstrap_interval(lambda i: 1.0, args.pop("n_realizations"), **args)
+
+
+def test_control_variate_mean_is_exact_for_a_constant_offset():
+    control_all = np.array([[1.0, 2.0], [3.0, 6.0], [5.0, 4.0]])   # mean (3, 4)
+    control = control_all[:2]
+    target = control + np.array([0.5, -1.0])
+    np.testing.assert_allclose(control_variate_mean(target, control, control_all),
+                               [3.5, 3.0], rtol=1e-15)
+
+
+def test_control_variate_mean_is_unbiased_with_the_predicted_variance():
+    # target = 1.2 + 1.05 sin(phi), control = 1 + sin(phi): E[target] = 1.2 exactly;
+    rng = np.random.default_rng(7)
+    r, n, trials = 10, 500, 2000
+    est, plain = np.empty(trials), np.empty(trials)
+    for i in range(trials):
+        phi = rng.uniform(0, 2 * np.pi, n)
+        control_all = 1.0 + np.sin(phi)
+        target = 1.2 + 1.05 * np.sin(phi[:r])     # the first R are paired
+        est[i] = control_variate_mean(target, control_all[:r], control_all)
+        plain[i] = target.mean()
+    # The estimate with N including the R paired ones has variance
+    # var(d)/R + var(c)/N + 2 cov(mean_R d, mean_N c) = (0.05^2/2)/R + (1/2)/N
+    # + 2 * 0.05 * (1/2) / N = 1.25e-4 + 1e-3 + 1e-4.
+    predicted = 0.05**2 / 2 / r + 0.5 / n + 2 * 0.05 * 0.5 / n
+    # tolerances: 4 standard errors of a mean and of a variance over 2000 trials
+    assert abs(est.mean() - 1.2) < 4 * np.sqrt(predicted / trials)
+    assert est.var() == pytest.approx(predicted, rel=4 * np.sqrt(2 / trials))
+    assert plain.var() > 30 * est.var()       # 1.05^2/2/R = 0.055 against 1.2e-3
+
+
+def test_control_variate_mean_bad_input():
+    with pytest.raises(InputError, match="same shape"):
+        control_variate_mean([1.0, 2.0], [1.0], [1.0, 2.0])
+    with pytest.raises(InputError, match="control_all"):
+        control_variate_mean([[1.0, 2.0]], [[1.0, 2.0]], [[1.0, 2.0, 3.0]])
+    with pytest.raises(InputError, match="NaN"):
+        control_variate_mean([1.0, np.nan], [1.0, 2.0], [1.0, 2.0, 3.0])
