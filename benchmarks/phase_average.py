@@ -26,8 +26,8 @@ cheap ones are resampled independently (2000 resamples).
 the spreads that make the estimate work, and its convergence in N. Every solve goes
 through the validation's cache (``--cache``; the FEM and the law come
 from there or from ``docs/validation/reference-cache``, the cheap models are computed and
-cached), so a rerun or a killed run resumes. Run (about 5 min per velocity on 2 cores with
-N = 200, once the FEM is in the cache)::
+cached), so a rerun or a killed run resumes. Run (about 6 min per velocity on 2 cores with
+N = 1000, once the FEM is in the cache; 9000 cached half-space solves)::
 
     OMP_NUM_THREADS=1 .venv/bin/python benchmarks/phase_average.py --velocities 10 50 \\
         --report docs/validation/phase_average.md
@@ -128,7 +128,16 @@ def report(ds, phase_data: dict, resamples: int) -> str:
                        f"{validate._interval_text(*ci_phase[m], resamples)} % | {paper} |")
         conv = [(k, validate._eq28_of_curves(
             validate.phase_mean_curves(_subset(data, k))["phase"], SHOWN))
-            for k in (r, 25, 50, 100, n) if r <= k <= n]
+            for k in (r, 25, 50, 100, 200, 500, n) if r <= k <= n]
+        curves = validate.phase_mean_curves(data)
+        fem_a, fem_mu = curves["phase"]["fem"]
+        out += ["", "At equal load (phase-averaged, per load "
+                + " / ".join(f"{p:g}" for p in data["pressures"]) + " MPa): " + "; ".join(
+                    f"{m} μ " + " / ".join(f"{100 * (x / y - 1):+.1f}" for x, y in
+                                           zip(curves["phase"][m][1], fem_mu, strict=True))
+                    + " %, A " + " / ".join(f"{100 * (x / y - 1):+.1f}" for x, y in
+                                            zip(curves["phase"][m][0], fem_a, strict=True))
+                    + " %" for m in SHOWN) + " against the FEM."]
         out += ["", "Convergence in N (the phase-averaged error with the first N cheap "
                 "realizations): " + "; ".join(
                     f"N = {k}: " + " / ".join(f"{100 * e[m]:.1f}" for m in SHOWN) + " %"
@@ -137,7 +146,6 @@ def report(ds, phase_data: dict, resamples: int) -> str:
                 "| σ0 [MPa] | FEM plain | FEM phase-averaged | VHS plain | VHS N | "
                 "windowed plain | windowed N | hybrid plain | hybrid N |",
                 "|---|---|---|---|---|---|---|---|---|"]
-        curves = validate.phase_mean_curves(data)
         for k, p in enumerate(data["pressures"]):
             cells = [f"{curves[kind][m][1][k]:.3f} ({curves[kind][m][0][k]:.4f})"
                      for m in ("fem", "vhs", "hybrid-windowed", "hybrid")

@@ -414,7 +414,7 @@ def eq28_first(ds, k: int | None = None,
 
 
 #: Realizations of the cheap models (VHS, hybrids) behind the phase-averaged eq. 28.
-PHASE_REALIZATIONS = 200
+PHASE_REALIZATIONS = 1000
 CHEAP_MODELS = ("hybrid", "hybrid-windowed", "vhs")
 
 
