@@ -125,8 +125,9 @@ PAPER_MESH_SENTENCE = (
     "its compute, so it is converged and no dearer than the paper's mesh: the cost ratio "
     "below is against it. On this "
     "three-wave cell the full cell is only four law cells wide: one law point (120 x 23 "
-    "graded x8, 12 periods; 94 s on average on free cores) costs about a quarter of a full-FEM test, so "
-    "the hybrid's saving comes from the law being paid once for every realization and load.")
+    "graded x8, 12 periods; 94 s on average on free cores) costs about a quarter of a "
+    "full-FEM test, so the hybrid's saving comes from the law being paid once for every "
+    "realization and load.")
 # docs/validation/creep_settled.md: 5 realizations at 50 mm/s with fem.min_creep_times = 5
 CREEP_STUDY_SENTENCE = (
     "**Creep-settled sliding** (docs/validation/creep_settled.md: the first 5 realizations at "
