@@ -291,13 +291,8 @@ def _eq28_intervals(ds, models=("hybrid", "hybrid-windowed", "vhs"), level: floa
                    for m in ds["model"].values}
 
             def stat(idx, m, arr=arr):
-                common = _common_areas({k: (a[idx].mean(axis=0), mu[idx].mean(axis=0))
-                                        for k, (a, mu) in arr.items()}, points)
-                if common is None:
-                    return np.nan
-                _, mus = common
-                ok = np.all([np.isfinite(x) for x in mus.values()], axis=0)
-                return mean_relative_error(mus["fem"][ok], mus[m][ok]) if ok.any() else np.nan
+                return _eq28_of_curves({k: (a[idx].mean(axis=0), mu[idx].mean(axis=0))
+                                        for k, (a, mu) in arr.items()}, [m], points)[m]
         out[float(v)] = {m: bootstrap_interval(lambda idx, m=m: stat(idx, m),
                                                ds.sizes["realization"], resamples=resamples,
                                                level=level)
@@ -497,8 +492,9 @@ def phase_mean_curves(data: dict, idx_r=None, idx_n=None) -> dict:
     return {"plain": plain, "phase": phase}
 
 
-def _eq28_of_curves(curves: dict, models) -> dict:
-    common = _common_areas(curves)
+def _eq28_of_curves(curves: dict, models, points: int = 4) -> dict:
+    """``{m: e}``: eq. 28 against ``curves["fem"]`` at the common areas of mean curves."""
+    common = _common_areas(curves, points)
     if common is None:
         return {m: np.nan for m in models}
     _, mus = common
@@ -518,9 +514,12 @@ def eq28_phase_averaged(phase_data: dict, resamples: int = 2000, level: float = 
         e = _eq28_of_curves(phase_mean_curves(data)["phase"], models)
         r, n = data["fem"][0].shape[0], data["all"]["vhs"][0].shape[0]
         rng = np.random.default_rng(seed)
-        draws = np.array([[_eq28_of_curves(phase_mean_curves(
-            data, rng.integers(0, r, r), rng.integers(0, n, n))["phase"], models)[m]
-            for m in models] for _ in range(int(resamples))])
+        draws = []
+        for _ in range(int(resamples)):     # one resample serves every model (paired)
+            d = _eq28_of_curves(phase_mean_curves(
+                data, rng.integers(0, r, r), rng.integers(0, n, n))["phase"], models)
+            draws.append([d[m] for m in models])
+        draws = np.array(draws)
         ci = {}
         for j, m in enumerate(models):
             x = draws[:, j][np.isfinite(draws[:, j])]
