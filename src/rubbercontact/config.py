@@ -135,6 +135,12 @@ class FemConfig(_Strict):
                                         "its (longer) periods (default: periods); the law "
                                         "cell's period is shorter, so equal sliding distance "
                                         "needs more law periods")
+    realizations: int | None = Field(
+        None, ge=1, le=10_000,
+        description="run the full-surface FEM on the first this many realizations only "
+                    "(default: all); the other models run on all of them, and the FEM's "
+                    "phase average is estimated with the VHS as control variate, "
+                    "mean_N(VHS) + mean_R(FEM - VHS) (needs the vhs model)")
     min_creep_times: float | None = Field(
         None, gt=0, le=50,
         description="slide every FEM test (law and full) at least this many of the "
@@ -183,6 +189,19 @@ class RunConfig(_Strict):
     law: LawConfig = LawConfig()
     execution: ExecutionConfig = ExecutionConfig()
     output: OutputConfig = OutputConfig()
+
+    @model_validator(mode="after")
+    def _fem_subset(self) -> RunConfig:
+        r = self.fem.realizations
+        if r is not None and r > self.realizations:
+            raise ValueError(f"fem.realizations ({r}) exceeds realizations "
+                             f"({self.realizations})")
+        if (r is not None and r < self.realizations and "fem" in self.models
+                and "vhs" not in self.models):
+            raise ValueError("fem.realizations below realizations needs the 'vhs' model: the "
+                             "VHS on every realization is the control variate that carries "
+                             "the FEM on a subset to the phase average")
+        return self
 
 
 def _field_names(model: type[BaseModel], loc: tuple) -> list[str]:

@@ -65,7 +65,8 @@ def creep_unsettled_message(diag: dict, material: GeneralizedMaxwell, label, wha
     if not short:
         return None
     where = ", ".join(f"{label(*idx)} ({1e3 * t[idx]:.1f} ms)" for idx in short[:6])
-    return (f"{what}: {len(short)} of {t.size} FEM tests slid less than {times:g} times the "
+    ran = int(np.isfinite(t).sum())
+    return (f"{what}: {len(short)} of {ran} FEM tests slid less than {times:g} times the "
             f"material's longest retardation time ({1e3 * lam.max():.1f} ms), shortest first: "
             f"{where}{', ...' if len(short) > 6 else ''}. The bulk may still be creeping "
             f"under the friction stress although successive periods agree (at 50 mm/s on the "

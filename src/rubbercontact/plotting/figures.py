@@ -7,6 +7,8 @@ from pathlib import Path
 import numpy as np
 import xarray as xr
 
+from ..hybrid.pipeline import mean_of
+
 _COLORS = {"vhs": "tab:red", "hybrid": "tab:blue", "hybrid-windowed": "tab:green",
            "fem": "black"}
 _LABELS = {"vhs": "VHS (half-space only)", "hybrid": "hybrid multiscale",
@@ -57,17 +59,31 @@ def plot_law(ds: xr.Dataset, path: Path) -> Path | None:
     return _save(fig, path)
 
 
+def _label(ds: xr.Dataset, m: str) -> str:
+    label = _LABELS.get(m, m)
+    if m == "fem" and "fem_realizations" in ds.attrs:
+        label += (f", {ds.attrs['fem_realizations']} of {ds.sizes['realization']} "
+                  "realizations + VHS control variate")
+    return label
+
+
 def _friction_panels(ds: xr.Dataset, path: Path, x_of, xlabel: str, xlog: bool) -> Path:
-    """One panel per speed: mean friction ± sd over realizations, one curve per model."""
+    """One panel per speed: mean friction ± sd over realizations, one curve per model.
+
+    With the FEM on a subset of the realizations its points are the control-variate
+    estimates of its phase average (``*_phase_mean``), the error bars its own spread.
+    """
     plt = _plt()
     nv = ds.sizes["velocity"]
     fig, axes = plt.subplots(1, nv, figsize=(5.2 * nv, 4), squeeze=False)
+    mu = mean_of(ds, "friction")
     for iv, v in enumerate(ds["velocity"].values):
         ax = axes[0, iv]
         for m in ds["model"].values:
             sel = ds.sel(model=m, velocity=v)
-            ax.errorbar(x_of(sel), sel["friction_mean"].values, yerr=sel["friction_std"].values,
-                        fmt="o-", color=_COLORS.get(m), label=_LABELS.get(m, m), capsize=3)
+            ax.errorbar(x_of(ds, m, v), mu.sel(model=m, velocity=v).values,
+                        yerr=sel["friction_std"].values, fmt="o-", color=_COLORS.get(m),
+                        label=_label(ds, m), capsize=3)
         if xlog:
             ax.set_xscale("log")
         ax.set_xlabel(xlabel)
@@ -85,7 +101,8 @@ def _friction_panels(ds: xr.Dataset, path: Path, x_of, xlabel: str, xlog: bool) 
 
 def plot_friction_vs_area(ds: xr.Dataset, path: Path) -> Path:
     """Fig. 5: friction vs normalized contact area, all models, one panel per speed."""
-    return _friction_panels(ds, path, lambda sel: sel["contact_fraction_mean"].values,
+    area = mean_of(ds, "contact_fraction")
+    return _friction_panels(ds, path, lambda ds, m, v: area.sel(model=m, velocity=v).values,
                             "normalized contact area A_c/A_0 [-]", xlog=False)
 
 
@@ -98,7 +115,7 @@ def _error_basis(ds: xr.Dataset) -> str:
 
 def plot_friction_vs_pressure(ds: xr.Dataset, path: Path) -> Path:
     """Fig. 9: friction vs mean pressure, all models (mean ± sd over realizations)."""
-    return _friction_panels(ds, path, lambda sel: sel["pressure"].values,
+    return _friction_panels(ds, path, lambda ds, m, v: ds["pressure"].values,
                             "mean pressure σ0 [MPa]", xlog=True)
 
 
@@ -172,6 +189,11 @@ def summary_table(ds: xr.Dataset) -> str:
     """Plain-text summary: mean friction and area per model, speed and load; eq. 28 errors."""
     lines = []
     has_area = "friction_at_area_mean" in ds
+    mu, area = mean_of(ds, "friction"), mean_of(ds, "contact_fraction")
+    if "fem_realizations" in ds.attrs:
+        lines.append(f"fem ran on {ds.attrs['fem_realizations']} of {ds.sizes['realization']} "
+                     "realizations: its mu and A are phase averages estimated with the VHS "
+                     "as control variate, mean_N(vhs) + mean_R(fem - vhs)")
     for v in ds["velocity"].values:
         lines.append(f"v = {v:g} mm/s")
         wid = {m: max(10, len(m) + 3) for m in ds["model"].values}
@@ -180,16 +202,16 @@ def summary_table(ds: xr.Dataset) -> str:
         for p in ds["pressure"].values:
             row = [f"  {p:12.4g}"]
             for m in ds["model"].values:
-                sel = ds.sel(model=m, velocity=v, pressure=p)
-                row.append(f"{float(sel['friction_mean']):{wid[m]}.4f} "
-                           f"{float(sel['contact_fraction_mean']):{wid[m] - 1}.4f}")
+                at = {"model": m, "velocity": v, "pressure": p}
+                row.append(f"{float(mu.sel(at)):{wid[m]}.4f} "
+                           f"{float(area.sel(at)):{wid[m] - 1}.4f}")
             lines.append(" ".join(row))
         if has_area:
             lines.append(f"  {'A_c/A_0':>12} " + " ".join(f"{m + ' mu':>{wid[m]}}"
                                                           for m in ds["model"].values))
             for a in ds["contact_area"].values:
-                vals = [(m, float(ds["friction_at_area_mean"].sel(model=m, velocity=v,
-                                                                  contact_area=a)))
+                vals = [(m, float(mean_of(ds, "friction_at_area").sel(model=m, velocity=v,
+                                                                     contact_area=a)))
                         for m in ds["model"].values]
                 lines.append(f"  {a:12.3g} " + " ".join(f"{x:{wid[m]}.4f}" for m, x in vals))
         if "error_vs_fem" in ds:
