@@ -42,7 +42,7 @@ import rubbercontact as rc  # noqa: E402
 from rubbercontact.config import load_config  # noqa: E402
 from rubbercontact.hybrid.metrics import (  # noqa: E402
     bootstrap_interval,
-    control_variate_mean,
+    control_variate_by_column,
     interpolate_at_areas,
     mean_relative_error,
 )
@@ -478,16 +478,8 @@ def phase_mean_curves(data: dict, idx_r=None, idx_n=None) -> dict:
     plain = {m: tuple(_column_mean(x, idx_r) for x in xs)
              for m, xs in [("fem", fem), *data["paired"].items()]}
     phase = {m: tuple(_column_mean(x, idx_n) for x in xs) for m, xs in data["all"].items()}
-    cv = []
-    for t, c, call in zip(fem, data["paired"]["vhs"], data["all"]["vhs"], strict=True):
-        t, c, call = t[idx_r], c[idx_r], call[idx_n]
-        est = np.full(t.shape[1], np.nan)
-        for k in range(t.shape[1]):
-            ok = np.isfinite(t[:, k]) & np.isfinite(c[:, k])
-            every = call[np.isfinite(call[:, k]), k]
-            if ok.any() and every.size:
-                est[k] = control_variate_mean(t[ok, k], c[ok, k], every)
-        cv.append(est)
+    cv = [control_variate_by_column(t[idx_r], c[idx_r], call[idx_n])[0]
+          for t, c, call in zip(fem, data["paired"]["vhs"], data["all"]["vhs"], strict=True)]
     phase["fem"] = tuple(cv)
     return {"plain": plain, "phase": phase}
 

@@ -6,6 +6,7 @@ import pytest
 from rubbercontact.errors import InputError
 from rubbercontact.hybrid.metrics import (
     bootstrap_interval,
+    control_variate_by_column,
     control_variate_mean,
     interpolate_at_areas,
     mean_relative_error,
@@ -114,3 +115,43 @@ def test_control_variate_mean_bad_input():
         control_variate_mean([[1.0, 2.0]], [[1.0, 2.0]], [[1.0, 2.0, 3.0]])
     with pytest.raises(InputError, match="NaN"):
         control_variate_mean([1.0, np.nan], [1.0, 2.0], [1.0, 2.0, 3.0])
+
+
+def test_control_variate_by_column_leaves_out_failed_pairs_per_column():
+    rng = np.random.default_rng(2)
+    control_all = rng.uniform(0.3, 0.8, size=(8, 2, 3))       # (N, velocity, load)
+    control = control_all[:4].copy()
+    target = control + 0.1 + rng.normal(0, 0.01, size=control.shape)
+    target[1, 0, 2] = np.nan                                   # one failed FEM test
+    target[:, 1, 0] = np.nan                                   # a load where all failed
+    est, se = control_variate_by_column(target, control, control_all)
+    assert est.shape == se.shape == (2, 3)
+    keep = [0, 2, 3]
+    assert est[0, 2] == pytest.approx(control_variate_mean(
+        target[keep, 0, 2], control[keep, 0, 2], control_all[:, 0, 2]), rel=1e-15)
+    assert est[0, 0] == pytest.approx(control_variate_mean(
+        target[:, 0, 0], control[:, 0, 0], control_all[:, 0, 0]), rel=1e-15)
+    assert np.isnan(est[1, 0]) and np.isnan(se[1, 0])
+    assert np.isfinite(se[0]).all()
+    one = control_variate_by_column(target[:1], control[:1], control_all)[1]
+    assert np.isnan(one).all()                                 # R = 1: no spread to judge
+    with pytest.raises(InputError, match="same trailing shape"):
+        control_variate_by_column(target, control, control_all[:, :1])
+
+
+def test_control_variate_standard_error_matches_the_spread_of_the_estimate():
+    # The same model as above, E[target] = 1.2: over 2000 trials the estimate's spread must
+    # match the predicted variance, and the standard error squared is unbiased for it.
+    # Tolerance: 4 standard errors of the trials' means.
+    rng = np.random.default_rng(11)
+    r, n, trials = 10, 500, 2000
+    est, se2 = np.empty(trials), np.empty(trials)
+    for i in range(trials):
+        phi = rng.uniform(0, 2 * np.pi, n)
+        control_all = 1.0 + np.sin(phi)
+        target = 1.2 + 1.05 * np.sin(phi[:r])
+        e, s = control_variate_by_column(target, control_all[:r], control_all)
+        est[i], se2[i] = float(e), float(s) ** 2
+    predicted = 0.05**2 / 2 / r + 0.5 / n + 2 * 0.05 * 0.5 / n
+    assert se2.mean() == pytest.approx(predicted, abs=4 * se2.std() / np.sqrt(trials))
+    assert est.var() == pytest.approx(se2.mean(), rel=4 * np.sqrt(2 / trials))

@@ -133,3 +133,49 @@ def control_variate_mean(target, control, control_all) -> np.ndarray:
             raise InputError(f"{name}: contains NaN or inf (a failed solve?); drop that "
                              "realization from both paired arrays")
     return call.mean(axis=0) + (t - c).mean(axis=0)
+
+
+def control_variate_by_column(target, control, control_all) -> tuple[np.ndarray, np.ndarray]:
+    """:func:`control_variate_mean` per column (e.g. per load), failed solves left out.
+
+    At each trailing index the realizations where ``target`` or ``control`` is not finite
+    (a failed FEM test) are dropped from the pairs, and non-finite ``control_all`` values
+    from the N; a column with no pair left is NaN. The standard error is estimated from
+    the samples as ``sqrt(var(c)/N + var(t − c)/R + 2 cov(c, t − c)/N)``, the variance of the
+    estimator when the N realizations include the R (NaN with fewer than two of either).
+
+    Parameters
+    ----------
+    target, control
+        ``(R, ...)`` arrays, paired realization by realization.
+    control_all
+        ``(N, ...)`` array with the same trailing shape.
+
+    Returns
+    -------
+    (numpy.ndarray, numpy.ndarray)
+        The estimate and its standard error, each of shape ``(...)``.
+    """
+    t = np.asarray(target, dtype=float)
+    c = np.asarray(control, dtype=float)
+    call = np.asarray(control_all, dtype=float)
+    if t.ndim == 0 or t.shape != c.shape or call.ndim == 0 or call.shape[1:] != t.shape[1:]:
+        raise InputError(f"target, control, control_all: need shapes (R, ...), (R, ...), "
+                         f"(N, ...) with the same trailing shape, got {t.shape}, {c.shape}, "
+                         f"{call.shape}")
+    tail = t.shape[1:]
+    t, c, call = (x.reshape(x.shape[0], -1) for x in (t, c, call))
+    est = np.full(t.shape[1], np.nan)
+    se = np.full(t.shape[1], np.nan)
+    for k in range(t.shape[1]):
+        pair = np.isfinite(t[:, k]) & np.isfinite(c[:, k])
+        every = call[np.isfinite(call[:, k]), k]
+        if not pair.any() or every.size == 0:
+            continue
+        est[k] = control_variate_mean(t[pair, k], c[pair, k], every)
+        d, r, n = t[pair, k] - c[pair, k], int(pair.sum()), every.size
+        if r >= 2 and n >= 2:
+            var = (np.var(every, ddof=1) / n + np.var(d, ddof=1) / r
+                   + 2.0 * np.cov(c[pair, k], d)[0, 1] / n)
+            se[k] = np.sqrt(max(var, 0.0))
+    return est.reshape(tail), se.reshape(tail)

@@ -55,7 +55,7 @@ from .law import (
     law_at_velocity,
     screen_monotone,
 )
-from .metrics import control_variate_mean, interpolate_at_areas, mean_relative_error
+from .metrics import control_variate_by_column, interpolate_at_areas, mean_relative_error
 
 if TYPE_CHECKING:   # imported lazily at run time, as everywhere in this module
     from ..sweep import Task
@@ -607,23 +607,8 @@ def add_phase_means(ds: xr.Dataset, n_fem: int) -> xr.Dataset:
         with warnings.catch_warnings():     # a load every realization failed: NaN
             warnings.simplefilter("ignore", RuntimeWarning)
             mean = np.nanmean(vals, axis=1)
-        fem = vals[models.index("fem"), :n_fem]
-        vhs_all = vals[models.index("vhs")]
-        vhs = vhs_all[:n_fem]
-        est = np.full(fem.shape[1:], np.nan)
-        se = np.full(fem.shape[1:], np.nan)
-        for j in np.ndindex(est.shape):
-            f, c = fem[(slice(None), *j)], vhs[(slice(None), *j)]
-            call = vhs_all[(slice(None), *j)]
-            pair, call = np.isfinite(f) & np.isfinite(c), call[np.isfinite(call)]
-            if not pair.any() or call.size == 0:
-                continue
-            est[j] = control_variate_mean(f[pair], c[pair], call)
-            d, r, n = f[pair] - c[pair], int(pair.sum()), call.size
-            if r >= 2 and n >= 2:
-                var = (np.var(call, ddof=1) / n + np.var(d, ddof=1) / r
-                       + 2.0 * np.cov(c[pair], d)[0, 1] / n)
-                se[j] = np.sqrt(max(var, 0.0))
+        vhs = vals[models.index("vhs")]
+        est, se = control_variate_by_column(vals[models.index("fem"), :n_fem], vhs[:n_fem], vhs)
         mean[models.index("fem")] = est
         dims = ("model", *x.dims[2:])
         units = ds[k].attrs.get("units", "1")
