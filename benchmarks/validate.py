@@ -522,6 +522,111 @@ def eq28_phase_averaged(phase_data: dict, resamples: int = 2000, level: float = 
     return out
 
 
+#: Loads added to section 3's three, per speed, so that the comparison spans the paper's
+#: area range 0.01-0.1 (FEM areas about 0.012-0.1 at 10 mm/s and 0.009-0.1 at 50 mm/s);
+#: the full FEM runs on the first EXTENDED_FEM_REALIZATIONS realizations there.
+EXTENDED_LOADS = {10.0: [0.05, 0.1, 1.2], 50.0: [0.1, 2.0]}
+EXTENDED_FEM_REALIZATIONS = 5
+
+
+def merge_phase_data(a: dict, b: dict) -> dict:
+    """One velocity's phase data (``phase_average_data``) over the loads of ``a`` and ``b``.
+
+    Both come from the same seed and N; ``b`` may have fewer FEM realizations than ``a``
+    (its FEM rows are padded with NaN, which ``phase_mean_curves`` leaves out at that load;
+    the paired cheap models are the first R of the N, so they need no padding). Loads must
+    not repeat; the result is sorted by load.
+    """
+    p = np.concatenate([a["pressures"], b["pressures"]])
+    if np.unique(p).size != p.size:
+        raise ValueError(f"merge_phase_data: loads repeat: {sorted(p.tolist())}")
+    if set(a["all"]) != set(b["all"]) or a["all"]["vhs"][0].shape[0] != b["all"]["vhs"][0].shape[0]:
+        raise ValueError("merge_phase_data: the two sets differ in models or in N")
+    order = np.argsort(p)
+    r = max(a["fem"][0].shape[0], b["fem"][0].shape[0])
+
+    def pad(x):
+        return np.vstack([x, np.full((r - x.shape[0], x.shape[1]), np.nan)])
+
+    def join(xa, xb, fill):
+        return np.hstack([fill(xa), fill(xb)])[:, order]
+
+    every = {m: tuple(join(xa, xb, lambda x: x) for xa, xb in zip(a["all"][m], b["all"][m],
+                                                                   strict=True))
+             for m in a["all"]}
+    return {"pressures": p[order],
+            "fem": tuple(join(xa, xb, pad) for xa, xb in zip(a["fem"], b["fem"], strict=True)),
+            "paired": {m: tuple(x[:r] for x in xs) for m, xs in every.items()},
+            "all": every}
+
+
+def extended_phase_data(cfg, phase_data: dict, used_keys: set[str] | None = None) -> dict:
+    """Section 3's phase data with the loads of :data:`EXTENDED_LOADS` added, per velocity.
+
+    Runs every model at the added loads on the first :data:`EXTENDED_FEM_REALIZATIONS`
+    realizations (the full FEM is the dear part; the reference cache holds it), then the
+    cheap models on the same N as ``phase_data``, and merges.
+    """
+    out = {}
+    for v, data in phase_data.items():
+        if v not in EXTENDED_LOADS:
+            continue
+        base = cfg.model_dump(mode="json", exclude_none=True)
+        base.update(velocities=[v], realizations=EXTENDED_FEM_REALIZATIONS,
+                    loads={"pressures": EXTENDED_LOADS[v]})
+        ext_cfg = rc.config.parse_config(base, source=f"section3 extended ({v:g} mm/s)")
+        runner = make_runner(ext_cfg, progress="log")
+
+        def recording(tasks, description="sweep", runner=runner):
+            if used_keys is not None:
+                used_keys.update(t.key() for t in tasks)
+            return runner(tasks, description)
+
+        with warnings.catch_warnings():
+            warnings.simplefilter("ignore")    # the law warned in the main run
+            ds = rc.hybrid.run(ext_cfg, runner=recording)
+        n = data["all"]["vhs"][0].shape[0]
+        out[v] = merge_phase_data(data, phase_average_data(ds, ext_cfg, n)[v])
+    return out
+
+
+def _without(data: dict, model: str) -> dict:
+    return {**data, "paired": {m: x for m, x in data["paired"].items() if m != model},
+            "all": {m: x for m, x in data["all"].items() if m != model}}
+
+
+def _phase_area_range(data: dict) -> tuple[float, float]:
+    common = _common_areas(phase_mean_curves(data)["phase"])
+    return (np.nan, np.nan) if common is None else (common[0][0], common[0][-1])
+
+
+def _extended_rows(extended: dict) -> tuple[list[str], str]:
+    """Eq. 28 table rows over the paper's area range, and the sentence that explains them."""
+    rows, ranges = [], []
+    for v, data in extended.items():
+        for label, d in (("all models", data), ("without the pointwise hybrid",
+                                                _without(data, "hybrid"))):
+            e, ci = eq28_phase_averaged({v: d})[v]
+            lo, hi = _phase_area_range(d)
+            rows.append(f"| {v:g} | extended loads, {label}: A = {lo:.3f}-{hi:.3f} | "
+                        + " | ".join(f"{100 * e[m]:.1f} % ({_interval_text(*ci[m])})"
+                                     if m in ci else "-"
+                                     for m in ("hybrid", "hybrid-windowed", "vhs")) + " | |")
+        r_fem = np.isfinite(data["fem"][1]).sum(axis=0)
+        ranges.append(f"{v:g} mm/s: " + ", ".join(
+            f"{p:g} ({k})" for p, k in zip(data["pressures"], r_fem, strict=True)))
+    n = next(iter(extended.values()))["all"]["vhs"][0].shape[0]
+    text = ("**Over the paper's area range** (rows 'extended loads'). The three loads above "
+            "leave the smallest and the largest areas of the paper's 0.01-0.1 out. The "
+            "extended rows add loads (MPa, with the number of full-FEM realizations there) "
+            + "; ".join(ranges) + f", and compare as the phase-averaged row does (cheap "
+            f"models on N = {n} realizations, the FEM's phase average by control variate "
+            "from the realizations it ran on, each load its own). The comparison spans the "
+            "areas every model covers: the pointwise hybrid has the least area at a given "
+            "load, so it bounds the range from above; the second row leaves it out.")
+    return rows, text
+
+
 def with_area_factor(ds, factor: float):
     """``ds`` with the FEM's contact fractions multiplied by ``factor`` (friction unchanged)."""
     ds = ds.copy(deep=True)
@@ -754,7 +859,8 @@ def _phase_average_sentence(phase_data: dict, phase: dict) -> str:
             f"the {r} FEM realizations and the N cheap ones independently (2000 resamples).")
 
 
-def section3_report(ds, wall, figs, msgs, level, phase_data: dict | None = None) -> list[str]:
+def section3_report(ds, wall, figs, msgs, level, phase_data: dict | None = None,
+                    extended: dict | None = None) -> list[str]:
     out = ["## Paper §3: three-wave validation surface", ""]
     out.append(f"Level `{level}`: {ds.sizes['realization']} realizations, velocities "
                f"{ds['velocity'].values.tolist()} mm/s, FEM mesh "
@@ -864,8 +970,14 @@ def section3_report(ds, wall, figs, msgs, level, phase_data: dict | None = None)
             out.append(f"| {v:g} | phase-averaged (N = {n_all}) | " + " | ".join(
                 f"**{100 * e[m]:.1f} %** ({_interval_text(*ci[m])})" if m in ci else "-"
                 for m in ("hybrid", "hybrid-windowed", "vhs")) + " | |")
+    extended_text = None
+    if extended:
+        rows, extended_text = _extended_rows(extended)
+        out += rows
     if phase:
         out += ["", _phase_average_sentence(phase_data, phase)]
+    if extended_text:
+        out += ["", extended_text]
     e_p = {m: [mean_relative_error(ds["friction_mean"].sel(model="fem", velocity=v).values,
                                    ds["friction_mean"].sel(model=m, velocity=v).values)
                for v in ds["velocity"].values]
@@ -1071,6 +1183,8 @@ def main(argv=None) -> int:
     ap.add_argument("--phase-realizations", type=int, default=PHASE_REALIZATIONS,
                     help="realizations of the VHS and the hybrids behind section 3's "
                          "phase-averaged eq. 28 (0: skip it)")
+    ap.add_argument("--no-extended", dest="extended", action="store_false",
+                    help="skip section 3's extra loads over the paper's area range")
     ap.add_argument("--export-reference", action="store_true",
                     help="copy the FEM solves this run used into --reference-cache")
     args = ap.parse_args(argv)
@@ -1095,7 +1209,9 @@ def main(argv=None) -> int:
         if case == "section3":
             phase = (phase_average_data(ds, cfg, args.phase_realizations)
                      if args.phase_realizations else {})
-            part = section3_report(ds, wall, figs, msgs, args.level, phase)
+            extended = (extended_phase_data(cfg, phase, used)
+                        if phase and args.level == "quick" and args.extended else {})
+            part = section3_report(ds, wall, figs, msgs, args.level, phase, extended)
         elif case == "asphalt":
             part = asphalt_report(ds, wall, figs, msgs, args.level, _short_wave_share(ds, cfg))
         else:

@@ -60,3 +60,51 @@ def test_a_failed_fem_test_drops_only_that_realization_at_that_load():
     expected = data["all"]["vhs"][1][:, 1].mean() + (fem_mu[keep, 1] - vhs[keep, 1]).mean()
     assert est[1] == pytest.approx(expected, rel=1e-13)
     assert np.all(np.isfinite(est))
+
+
+def _data_at(pressures, r: int, n: int = 200, offset: float = 0.02) -> dict:
+    """``_data`` at other loads (the same phases, so it merges with ``_data``)."""
+    rng = np.random.default_rng(3)
+    phi = rng.uniform(0, 2 * np.pi, n)
+    p = np.asarray(pressures, float)
+    area = 0.03 * p ** 0.8 * (1 + 0.1 * np.sin(phi))[:, None]
+    mu = 0.4 + 0.5 * p ** 0.5 * (1 + 0.2 * np.cos(phi))[:, None]
+    every = {m: (area, mu) for m in ("hybrid", "hybrid-windowed", "vhs")}
+    return {"pressures": p, "fem": (area[:r], mu[:r] - offset),
+            "paired": {m: (a[:r], x[:r]) for m, (a, x) in every.items()}, "all": every}
+
+
+def test_merged_loads_keep_each_loads_fem_realizations():
+    # 10 FEM realizations at three loads, 5 at two added ones: the merge pads the added
+    # loads' FEM with NaN, sorts by load, and the control variate at every load is then
+    # exactly mean_N(VHS) - offset (the offset is constant, whatever R is).
+    merged = validate.merge_phase_data(_data(), _data_at([0.05, 1.2], r=5))
+    np.testing.assert_array_equal(merged["pressures"], [0.05, 0.15, 0.35, 0.8, 1.2])
+    fem_mu = merged["fem"][1]
+    assert fem_mu.shape == (10, 5)
+    assert np.isnan(fem_mu[5:, [0, 4]]).all() and np.isfinite(fem_mu[:, 1:4]).all()
+    assert merged["paired"]["vhs"][1].shape == (10, 5)
+    np.testing.assert_array_equal(merged["paired"]["vhs"][1], merged["all"]["vhs"][1][:10])
+    est = validate.phase_mean_curves(merged)["phase"]["fem"][1]
+    np.testing.assert_allclose(est, merged["all"]["vhs"][1].mean(axis=0) - 0.02, rtol=1e-13)
+    # eq. 28 over the wider range: still the offset over the FEM friction at common areas
+    (e, _), = validate.eq28_phase_averaged({10.0: merged}, resamples=50).values()
+    curves = validate.phase_mean_curves(merged)["phase"]
+    areas, mus = validate._common_areas({m: curves[m] for m in ("fem", "vhs")})
+    assert areas[0] < 0.03 * 0.15 ** 0.8 and areas[-1] > 0.03 * 0.8 ** 0.8   # wider range
+    assert e["hybrid-windowed"] == pytest.approx(np.mean(0.02 / mus["fem"]), rel=1e-12)
+
+
+def test_merging_refuses_repeated_loads_or_another_n():
+    with pytest.raises(ValueError, match="loads repeat"):
+        validate.merge_phase_data(_data(), _data_at([0.35], r=5))
+    with pytest.raises(ValueError, match="differ"):
+        validate.merge_phase_data(_data(), _data_at([1.2], r=5, n=100))
+
+
+def test_extended_rows_name_the_range_and_leave_the_pointwise_hybrid_out_in_the_second():
+    merged = validate.merge_phase_data(_data(), _data_at([0.05, 1.2], r=5))
+    rows, text = validate._extended_rows({10.0: merged})
+    assert len(rows) == 2 and "all models" in rows[0] and "without the pointwise" in rows[1]
+    assert rows[1].split("|")[3].strip() == "-"          # no pointwise-hybrid entry
+    assert "0.05 (5), 0.15 (10), 0.35 (10), 0.8 (10), 1.2 (5)" in text
