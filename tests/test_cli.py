@@ -102,3 +102,43 @@ def test_run_end_to_end_tiny(tmp_path, capsys):
     assert main(["run", str(cfg), "--quiet", "--overwrite"]) == 0
     assert main(["plot", str(tmp_path / "out" / "results.nc"), "-o", str(tmp_path / "f")]) == 0
     assert (tmp_path / "f" / "fig5_friction_vs_area.png").exists()
+
+
+def test_run_with_the_fem_on_a_subset_is_not_a_failure(tmp_path, capsys):
+    # fem.realizations = 1 of 2: the skipped FEM slots are "not run", not failed solves, so
+    # the run exits 0; the summary says how the FEM's phase average was estimated, and the
+    # figures redraw from the file.
+    import xarray as xr
+
+    cfg = tmp_path / "tiny.toml"
+    cfg.write_text(TINY.replace("realizations = 1", "realizations = 2")
+                   .replace("periods = 2", "periods = 2\nrealizations = 1"))
+    assert main(["run", str(cfg), "--quiet"]) == 0
+    captured = capsys.readouterr()
+    assert "fem ran on 1 of 2 realizations" in captured.out
+    assert "failed" not in captured.err
+    ds = xr.load_dataset(tmp_path / "out" / "results.nc")
+    assert "friction_phase_mean" in ds and ds.attrs["fem_realizations"] == 1
+    assert main(["plot", str(tmp_path / "out" / "results.nc"), "-o", str(tmp_path / "f")]) == 0
+
+
+def test_a_command_exit_code_reaches_the_shell(monkeypatch):
+    # Solver failures end `rubbercontact run` with typer.Exit(1); without click's standalone
+    # mode that code is returned, not raised, and must still become the process's.
+    import typer
+
+    import rubbercontact.cli as cli
+
+    app = typer.Typer()
+
+    @app.command()
+    def fails():
+        raise typer.Exit(3)
+
+    @app.command()
+    def works():
+        pass
+
+    monkeypatch.setattr(cli, "app", app)
+    assert cli.main(["fails"]) == 3
+    assert cli.main(["works"]) == 0

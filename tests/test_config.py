@@ -23,6 +23,7 @@ def test_default_config_is_valid():
     cfg = default_config()
     assert cfg.models == ["vhs", "hybrid", "hybrid-windowed", "fem"]
     assert cfg.surface.preset == "section3"
+    assert (cfg.realizations, cfg.fem.realizations) == (8, 1)   # FEM on one, CV for the rest
 
 
 @pytest.mark.parametrize("data, expected", [

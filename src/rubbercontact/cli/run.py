@@ -30,6 +30,7 @@ def command(
     """Run the hybrid multiscale pipeline (and VHS/FEM reference models) from a config."""
     from ..config import default_config, load_config
     from ..hybrid import run
+    from ..hybrid.pipeline import failed_solves
     from ..io.results import write_law, write_results
     from ..plotting.figures import plot_all, summary_table
 
@@ -72,9 +73,9 @@ def command(
     if figures and cfg.output.figures:
         for p in plot_all(ds, outdir):
             typer.echo(f"figure: {p}")
-    failed = int((ds["status"].values != "ok").sum())
-    if failed:
-        bad = np.argwhere(ds["status"].values != "ok")
-        typer.echo(f"error: {failed} solve(s) failed, e.g. "
-                   f"{[ds['status'].values[tuple(b)] for b in bad[:3]]}", err=True)
+    mask = failed_solves(ds["status"].values)
+    if mask.any():
+        bad = np.argwhere(mask)
+        typer.echo(f"error: {int(mask.sum())} solve(s) failed, e.g. "
+                   f"{[str(ds['status'].values[tuple(b)]) for b in bad[:3]]}", err=True)
         raise typer.Exit(1)

@@ -67,6 +67,16 @@ Runner = Callable[[list], list]
 HYBRID_MODELS = {"hybrid", "hybrid-windowed"}
 
 
+#: Status of a solve skipped by design (the FEM beyond ``fem.realizations``): not a failure.
+NOT_RUN = "not run"
+
+
+def failed_solves(status) -> np.ndarray:
+    """Boolean mask of the solves that failed: status neither ``"ok"`` nor :data:`NOT_RUN`."""
+    s = np.asarray(status).astype(str)
+    return (s != "ok") & ~np.char.startswith(s, NOT_RUN)
+
+
 def failure_message(res) -> str | None:
     """``None`` for a successful task result, else why it failed (one line)."""
     if isinstance(res, xr.Dataset):
@@ -457,9 +467,7 @@ def _assemble(models, velocities, realizations, pressures, index, results,
     data = {k: np.full(shape, np.nan) for k in names}
     status = np.full(shape, "ok", dtype=object)
     if "fem" in models and n_fem is not None and n_fem < len(realizations):
-        status[models.index("fem"), :, n_fem:] = not_run = f"not run (fem.realizations = {n_fem})"
-    else:
-        not_run = None
+        status[models.index("fem"), :, n_fem:] = f"{NOT_RUN} (fem.realizations = {n_fem})"
     # full-FEM steadiness (1/0; NaN where failed or not recorded) and the relative change
     # of its friction over the last sliding period
     fem_diag = {k: np.full(shape[1:], np.nan) for k in STEADINESS_VARIABLES}
@@ -491,8 +499,8 @@ def _assemble(models, velocities, realizations, pressures, index, results,
                                                      "long_name": "mean pressure sigma0"})},
     )
     ds["status"] = (dims, status.astype(str))
-    n_run = int((status != not_run).sum())
-    n_failed = int(((status != "ok") & (status != not_run)).sum())
+    n_run = int((~np.char.startswith(status.astype(str), NOT_RUN)).sum())
+    n_failed = int(failed_solves(status).sum())
     if n_failed:
         warnings.warn(f"{n_failed} of {n_run} solves failed; see the 'status' variable",
                       RuntimeWarning, stacklevel=3)
