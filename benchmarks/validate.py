@@ -627,6 +627,40 @@ def _extended_rows(extended: dict) -> tuple[list[str], str]:
     return rows, text
 
 
+def plot_phase_curves(extended: dict, path: Path) -> Path:
+    """Fig. 5 over the extended loads: phase-averaged μ against A, every model.
+
+    The FEM's points are the control-variate estimates, with ±1 standard error bars in μ
+    (``control_variate_by_column``); the cheap models are means over all N.
+    """
+    from rubbercontact.plotting.figures import _COLORS, _LABELS, _plt
+
+    plt = _plt()
+    nv = len(extended)
+    fig, axes = plt.subplots(1, nv, figsize=(5.2 * nv, 4), squeeze=False)
+    for ax, (v, data) in zip(axes[0], extended.items(), strict=True):
+        curves = phase_mean_curves(data)["phase"]
+        _, se = control_variate_by_column(data["fem"][1], data["paired"]["vhs"][1],
+                                          data["all"]["vhs"][1])
+        for m in ("vhs", "hybrid", "hybrid-windowed", "fem"):
+            if m not in curves:
+                continue
+            a, mu = curves[m]
+            ax.errorbar(a, mu, yerr=se if m == "fem" else None, fmt="o-",
+                        color=_COLORS.get(m), label=_LABELS.get(m, m), capsize=3)
+        ax.set_xscale("log")
+        ax.set_xlabel("normalized contact area A_c/A_0 [-]")
+        ax.set_ylabel("friction coefficient μ [-]")
+        ax.set_title(f"v = {v:g} mm/s, phase averages (loads "
+                     + ", ".join(f"{p:g}" for p in data["pressures"]) + " MPa)", fontsize=9)
+        ax.grid(alpha=0.3)
+        ax.legend(fontsize=8)
+    fig.tight_layout()
+    fig.savefig(path, dpi=130)
+    plt.close(fig)
+    return path
+
+
 def with_area_factor(ds, factor: float):
     """``ds`` with the FEM's contact fractions multiplied by ``factor`` (friction unchanged)."""
     ds = ds.copy(deep=True)
@@ -974,6 +1008,9 @@ def section3_report(ds, wall, figs, msgs, level, phase_data: dict | None = None,
     if extended:
         rows, extended_text = _extended_rows(extended)
         out += rows
+        if figs:
+            fig = plot_phase_curves(extended, figs[0].parent / "fig5_phase_averaged.png")
+            extended_text += f" Fig. 5 over these loads: ![{fig.stem}]({_rel(fig)})"
     if phase:
         out += ["", _phase_average_sentence(phase_data, phase)]
     if extended_text:

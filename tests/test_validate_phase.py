@@ -108,3 +108,9 @@ def test_extended_rows_name_the_range_and_leave_the_pointwise_hybrid_out_in_the_
     assert len(rows) == 2 and "all models" in rows[0] and "without the pointwise" in rows[1]
     assert rows[1].split("|")[3].strip() == "-"          # no pointwise-hybrid entry
     assert "0.05 (5), 0.15 (10), 0.35 (10), 0.8 (10), 1.2 (5)" in text
+
+
+def test_phase_curves_figure_is_drawn(tmp_path):
+    merged = validate.merge_phase_data(_data(), _data_at([0.05, 1.2], r=5))
+    path = validate.plot_phase_curves({10.0: merged, 50.0: merged}, tmp_path / "f.png")
+    assert path.stat().st_size > 1000
