@@ -89,15 +89,20 @@ def test_control_variate_mean_is_exact_for_a_constant_offset():
 
 def test_control_variate_mean_is_unbiased_with_the_predicted_variance():
     # target = 1.2 + 1.05 sin(phi), control = 1 + sin(phi): E[target] = 1.2 exactly;
+    # control_variate_by_column gives the same estimate and a standard error whose square
+    # must be unbiased for the estimate's variance.
     rng = np.random.default_rng(7)
     r, n, trials = 10, 500, 2000
-    est, plain = np.empty(trials), np.empty(trials)
+    est, plain, se2 = np.empty(trials), np.empty(trials), np.empty(trials)
     for i in range(trials):
         phi = rng.uniform(0, 2 * np.pi, n)
         control_all = 1.0 + np.sin(phi)
         target = 1.2 + 1.05 * np.sin(phi[:r])     # the first R are paired
         est[i] = control_variate_mean(target, control_all[:r], control_all)
         plain[i] = target.mean()
+        e, se = control_variate_by_column(target, control_all[:r], control_all)
+        assert float(e) == pytest.approx(est[i], rel=1e-14)
+        se2[i] = float(se) ** 2
     # The estimate with N including the R paired ones has variance
     # var(d)/R + var(c)/N + 2 cov(mean_R d, mean_N c) = (0.05^2/2)/R + (1/2)/N
     # + 2 * 0.05 * (1/2) / N = 1.25e-4 + 1e-3 + 1e-4.
@@ -106,6 +111,7 @@ def test_control_variate_mean_is_unbiased_with_the_predicted_variance():
     assert abs(est.mean() - 1.2) < 4 * np.sqrt(predicted / trials)
     assert est.var() == pytest.approx(predicted, rel=4 * np.sqrt(2 / trials))
     assert plain.var() > 30 * est.var()       # 1.05^2/2/R = 0.055 against 1.2e-3
+    assert se2.mean() == pytest.approx(predicted, abs=4 * se2.std() / np.sqrt(trials))
 
 
 def test_control_variate_mean_bad_input():
@@ -137,21 +143,3 @@ def test_control_variate_by_column_leaves_out_failed_pairs_per_column():
     assert np.isnan(one).all()                                 # R = 1: no spread to judge
     with pytest.raises(InputError, match="same trailing shape"):
         control_variate_by_column(target, control, control_all[:, :1])
-
-
-def test_control_variate_standard_error_matches_the_spread_of_the_estimate():
-    # The same model as above, E[target] = 1.2: over 2000 trials the estimate's spread must
-    # match the predicted variance, and the standard error squared is unbiased for it.
-    # Tolerance: 4 standard errors of the trials' means.
-    rng = np.random.default_rng(11)
-    r, n, trials = 10, 500, 2000
-    est, se2 = np.empty(trials), np.empty(trials)
-    for i in range(trials):
-        phi = rng.uniform(0, 2 * np.pi, n)
-        control_all = 1.0 + np.sin(phi)
-        target = 1.2 + 1.05 * np.sin(phi[:r])
-        e, s = control_variate_by_column(target, control_all[:r], control_all)
-        est[i], se2[i] = float(e), float(s) ** 2
-    predicted = 0.05**2 / 2 / r + 0.5 / n + 2 * 0.05 * 0.5 / n
-    assert se2.mean() == pytest.approx(predicted, abs=4 * se2.std() / np.sqrt(trials))
-    assert est.var() == pytest.approx(se2.mean(), rel=4 * np.sqrt(2 / trials))
