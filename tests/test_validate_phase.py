@@ -114,3 +114,15 @@ def test_phase_curves_figure_is_drawn(tmp_path):
     merged = validate.merge_phase_data(_data(), _data_at([0.05, 1.2], r=5))
     path = validate.plot_phase_curves({10.0: merged, 50.0: merged}, tmp_path / "f.png")
     assert path.stat().st_size > 1000
+
+
+def test_fitted_beta_is_one_for_an_offset_fem_and_gives_the_same_error():
+    # FEM = VHS − offset: the fitted β is exactly 1, so the regression estimator is the
+    # difference estimator and eq. 28 is unchanged.
+    data = _data()
+    (e_d, _), = validate.eq28_phase_averaged({10.0: data}, resamples=20).values()
+    (e_r, _), = validate.eq28_phase_averaged({10.0: data}, resamples=20,
+                                             beta="regression").values()
+    for m in e_d:
+        assert e_r[m] == pytest.approx(e_d[m], rel=1e-9)
+    assert "β = 1.00 (0.000 → 0.000)" in validate._beta_text({10.0: data})
