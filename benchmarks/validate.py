@@ -623,9 +623,10 @@ def _extended_rows(extended: dict) -> tuple[list[str], str]:
             "extended rows add loads (MPa, with the number of full-FEM realizations there) "
             + "; ".join(ranges) + f", and compare as the phase-averaged row does (cheap "
             f"models on N = {n} realizations, the FEM's phase average by control variate "
-            "from the realizations it ran on, each load its own). The comparison spans the "
-            "areas every model covers: the pointwise hybrid has the least area at a given "
-            "load, so it bounds the range from above; the second row leaves it out.")
+            "from the realizations it ran on, each load its own). The first row compares "
+            "over the areas every model covers, the second over those of the FEM, the VHS "
+            "and the windowed hybrid: the pointwise hybrid has the least area at a given "
+            "load and can narrow the range.")
     return rows, text
 
 
