@@ -105,9 +105,23 @@ def test_merging_refuses_repeated_loads_or_another_n():
 def test_extended_rows_name_the_range_and_leave_the_pointwise_hybrid_out_in_the_second():
     merged = validate.merge_phase_data(_data(), _data_at([0.05, 1.2], r=5))
     rows, text = validate._extended_rows({10.0: merged})
-    assert len(rows) == 2 and "all models" in rows[0] and "without the pointwise" in rows[1]
+    assert len(rows) == 3 and "all models" in rows[0] and "without the pointwise" in rows[1]
     assert rows[1].split("|")[3].strip() == "-"          # no pointwise-hybrid entry
+    assert "below the top load (1.2 MPa)" in rows[2]
     assert "0.05 (5), 0.15 (10), 0.35 (10), 0.8 (10), 1.2 (5)" in text
+    assert "falls" not in text                           # the FEM rises with load here
+
+
+def test_a_fem_friction_falling_with_load_is_named_and_the_top_load_can_be_left_out():
+    merged = validate.merge_phase_data(_data(), _data_at([0.05, 1.2], r=5))
+    fem_a, fem_mu = (x.copy() for x in merged["fem"])
+    fem_mu[:, -1] = fem_mu[:, -2] - 0.1                  # the FEM falls at 1.2 MPa
+    merged["fem"] = (fem_a, fem_mu)
+    _, text = validate._extended_rows({50.0: merged})
+    assert "At 50 mm/s from 0.8 to 1.2 MPa the FEM's phase-averaged μ falls" in text
+    below = validate._below(merged, 1.2)
+    np.testing.assert_array_equal(below["pressures"], [0.05, 0.15, 0.35, 0.8])
+    assert below["fem"][1].shape == (10, 4) and below["all"]["vhs"][0].shape == (200, 4)
 
 
 def test_phase_curves_figure_is_drawn(tmp_path):
