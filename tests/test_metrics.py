@@ -87,17 +87,22 @@ def test_control_variate_mean_is_exact_for_a_constant_offset():
                                [3.5, 3.0], rtol=1e-15)
 
 
+def _phase_trials(seed: int, target_of, r: int, n: int, trials: int):
+    """Seeded trials of N random phases: ``(target on the first r, control = 1 + sin φ)``."""
+    rng = np.random.default_rng(seed)
+    for _ in range(trials):
+        phi = rng.uniform(0, 2 * np.pi, n)
+        yield target_of(phi[:r], rng), 1.0 + np.sin(phi)
+
+
 def test_control_variate_mean_is_unbiased_with_the_predicted_variance():
     # target = 1.2 + 1.05 sin(phi), control = 1 + sin(phi): E[target] = 1.2 exactly;
     # control_variate_by_column gives the same estimate and a standard error whose square
     # must be unbiased for the estimate's variance.
-    rng = np.random.default_rng(7)
     r, n, trials = 10, 500, 2000
     est, plain, se2 = np.empty(trials), np.empty(trials), np.empty(trials)
-    for i in range(trials):
-        phi = rng.uniform(0, 2 * np.pi, n)
-        control_all = 1.0 + np.sin(phi)
-        target = 1.2 + 1.05 * np.sin(phi[:r])     # the first R are paired
+    for i, (target, control_all) in enumerate(_phase_trials(
+            7, lambda phi, rng: 1.2 + 1.05 * np.sin(phi), r, n, trials)):
         est[i] = control_variate_mean(target, control_all[:r], control_all)
         plain[i] = target.mean()
         e, se = control_variate_by_column(target, control_all[:r], control_all)
@@ -154,13 +159,11 @@ def test_regression_control_variate_is_unbiased_and_tighter_when_the_slopes_diff
     # the fitted beta, of relative order 1/R (~4 % here). Tolerances: 4 standard errors of
     # the trials' mean; 20 % on a variance (12.6 % is 4 standard errors over 2000 trials,
     # plus that omission).
-    rng = np.random.default_rng(5)
     r, n, trials = 10, 500, 2000
     reg, dif, se2 = np.empty(trials), np.empty(trials), np.empty(trials)
-    for i in range(trials):
-        phi = rng.uniform(0, 2 * np.pi, n)
-        control_all = 1.0 + np.sin(phi)
-        target = 1.2 + 0.6 * np.sin(phi[:r]) + rng.normal(0, 0.05, r)
+    for i, (target, control_all) in enumerate(_phase_trials(
+            5, lambda phi, rng: 1.2 + 0.6 * np.sin(phi) + rng.normal(0, 0.05, phi.size),
+            r, n, trials)):
         e, se = control_variate_by_column(target, control_all[:r], control_all,
                                           beta="regression")
         reg[i], se2[i] = float(e), float(se) ** 2
