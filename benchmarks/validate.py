@@ -45,6 +45,7 @@ from rubbercontact.hybrid.metrics import (  # noqa: E402
     control_variate_by_column,
     interpolate_at_areas,
     mean_relative_error,
+    regression_coefficient,
 )
 from rubbercontact.hybrid.pipeline import make_runner  # noqa: E402
 from rubbercontact.io.results import write_results  # noqa: E402
@@ -955,7 +956,7 @@ def _beta_text(phase_data: dict) -> str:
         for k in range(t.shape[1]):
             ok = np.isfinite(t[:, k]) & np.isfinite(c[:, k])
             tk, ck = t[ok, k], c[ok, k]
-            b = np.cov(tk, ck)[0, 1] / np.var(ck, ddof=1)
+            b = regression_coefficient(tk, ck)
             items.append(f"{b:.2f} ({np.std(tk - ck, ddof=1):.3f} → "
                          f"{np.std(tk - b * ck, ddof=1):.3f})")
         parts.append(f"at {v:g} mm/s β = " + " / ".join(items))

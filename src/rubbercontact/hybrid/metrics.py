@@ -132,7 +132,12 @@ def control_variate_mean(target, control, control_all) -> np.ndarray:
         if not np.all(np.isfinite(x)):
             raise InputError(f"{name}: contains NaN or inf (a failed solve?); drop that "
                              "realization from both paired arrays")
-    return call.mean(axis=0) + (t - c).mean(axis=0)
+    return control_variate_by_column(t, c, call)[0]
+
+
+def regression_coefficient(target, control) -> float:
+    """``cov(t, c) / var(c)`` of paired samples: the control's least-squares coefficient."""
+    return float(np.cov(target, control)[0, 1] / np.var(control, ddof=1))
 
 
 def control_variate_by_column(target, control, control_all, beta: str = "difference"
@@ -188,7 +193,7 @@ def control_variate_by_column(target, control, control_all, beta: str = "differe
         tk, ck, r, n = t[pair, k], c[pair, k], int(pair.sum()), every.size
         if r == 0 or n == 0 or (fitted and (r < 3 or np.var(ck) == 0.0)):
             continue
-        b = np.cov(tk, ck)[0, 1] / np.var(ck, ddof=1) if fitted else 1.0
+        b = regression_coefficient(tk, ck) if fitted else 1.0
         est[k] = tk.mean() + b * (every.mean() - ck.mean())
         e = tk - b * ck
         if r >= 2 + fitted and n >= 2:

@@ -461,12 +461,12 @@ def _law_with_vhs(law: xr.Dataset, hs: SineSeries, material: GeneralizedMaxwell,
 
 
 def _assemble(models, velocities, realizations, pressures, index, results,
-              material: GeneralizedMaxwell, n_fem: int | None = None) -> xr.Dataset:
+              material: GeneralizedMaxwell, n_fem: int) -> xr.Dataset:
     shape = (len(models), len(velocities), len(realizations), len(pressures))
     names = list(RESULT_VARIABLES) + ["max_local_pressure"]
     data = {k: np.full(shape, np.nan) for k in names}
     status = np.full(shape, "ok", dtype=object)
-    if "fem" in models and n_fem is not None and n_fem < len(realizations):
+    if "fem" in models and n_fem < len(realizations):
         status[models.index("fem"), :, n_fem:] = f"{NOT_RUN} (fem.realizations = {n_fem})"
     # full-FEM steadiness (1/0; NaN where failed or not recorded) and the relative change
     # of its friction over the last sliding period
@@ -641,13 +641,13 @@ def _add_errors(ds: xr.Dataset) -> xr.Dataset:
         return ds
     base, dim = (("friction_at_area", "contact_area") if "friction_at_area_mean" in ds
                  else ("friction", "pressure"))
-    key = f"{base}_phase_mean" if f"{base}_phase_mean" in ds else f"{base}_mean"
+    mean = mean_of(ds, base)
     others = [m for m in ds["model"].values if m != "fem"]
     err = np.full((len(others), ds.sizes["velocity"]), np.nan)
     for i, m in enumerate(others):
         for iv in range(ds.sizes["velocity"]):
-            ref = ds[key].sel(model="fem").isel(velocity=iv).values
-            cand = ds[key].sel(model=m).isel(velocity=iv).values
+            ref = mean.sel(model="fem").isel(velocity=iv).values
+            cand = mean.sel(model=m).isel(velocity=iv).values
             ok = np.isfinite(ref) & np.isfinite(cand) & (ref != 0)
             if ok.any():
                 err[i, iv] = mean_relative_error(ref[ok], cand[ok])
@@ -655,6 +655,6 @@ def _add_errors(ds: xr.Dataset) -> xr.Dataset:
                           {"units": "1", "long_name": f"eq. 28 mean relative error vs FEM "
                                                       f"over {dim}", "compared_over": dim,
                            "fem_reference": ("phase average: mean_N(vhs) + mean_R(fem - vhs)"
-                                             if key.endswith("_phase_mean")
+                                             if "fem_realizations" in ds.attrs
                                              else "mean over the realizations")})
     return ds.assign_coords(compared_model=others)

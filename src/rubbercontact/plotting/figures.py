@@ -209,9 +209,9 @@ def summary_table(ds: xr.Dataset) -> str:
         if has_area:
             lines.append(f"  {'A_c/A_0':>12} " + " ".join(f"{m + ' mu':>{wid[m]}}"
                                                           for m in ds["model"].values))
+            mu_at = mean_of(ds, "friction_at_area")
             for a in ds["contact_area"].values:
-                vals = [(m, float(mean_of(ds, "friction_at_area").sel(model=m, velocity=v,
-                                                                     contact_area=a)))
+                vals = [(m, float(mu_at.sel(model=m, velocity=v, contact_area=a)))
                         for m in ds["model"].values]
                 lines.append(f"  {a:12.3g} " + " ".join(f"{x:{wid[m]}.4f}" for m, x in vals))
         if "error_vs_fem" in ds:
