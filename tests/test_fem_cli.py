@@ -24,11 +24,24 @@ def test_fem_cli_json_and_plot(tmp_path, capsys):
     assert out["mean_pressure_MPa"] == 0.5
     assert out["friction"] > 0             # v > 0 on a viscoelastic solid
     assert 0 < out["contact_fraction"] <= 1
+    # the friction drags the face behind the driven top: the cell shears
+    assert out["stats"]["bulk_shear"] > 0
     assert png.stat().st_size > 10_000
     import xarray as xr
 
     with xr.open_dataset(nc) as ds:
         assert ds["friction"].attrs["units"] == "1"
+
+
+@pytest.mark.filterwarnings("ignore:FEM sliding test:RuntimeWarning")
+def test_fem_cli_text_summary_reports_the_cell_shear(tmp_path, capsys):
+    code = main(["fem", "--wavelength", "0.0625", "--amplitude", "0.004", "--pressure", "0.5",
+                 "--velocity", "10", "--mesh", "16x12", "--periods", "2"])
+    assert code == 0
+    text = capsys.readouterr().out
+    assert "friction coefficient μ" in text
+    line = next(x for x in text.splitlines() if "cell shear (face lag/H)" in x)
+    assert float(line.split()[4]) > 0 and "over the last period" in line
 
 
 def test_fem_cli_bad_input_exit_code(capsys):

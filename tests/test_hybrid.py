@@ -418,6 +418,44 @@ def test_tests_that_slid_less_than_three_retardation_times_are_named(tmp_path):
     assert law["sliding_time"].attrs["units"] == "s"
 
 
+def test_cells_in_bulk_shear_are_named_in_the_law_and_the_results(tmp_path):
+    # Above a mean shear of 1 the FEM result depends on the cell height
+    # (docs/validation/cell_height.md); the run must say which tests got there, largest
+    # first, in the calling process, and keep the values. Unrecorded (NaN) are not counted.
+    import importlib
+
+    from rubbercontact.hybrid.law import sheared_cells_message
+
+    diag = {"bulk_shear": np.array([[0.4, 1.3, np.nan, 2.1]])}
+    msg = sheared_cells_message(diag, lambda i, j: f"p{j}", "law")
+    assert msg.startswith("law: 2 of 3 FEM tests sheared as a whole by more than 1 ")
+    assert "largest first: p3 (2.10), p1 (1.30)." in msg
+    assert sheared_cells_message({"bulk_shear": np.array([0.99, np.nan])},
+                                 lambda i: "", "law") is None
+    assert sheared_cells_message({}, lambda i: "", "law") is None     # old cache entries
+
+    def runner(tasks, description="sweep"):
+        out = []
+        for t in tasks:
+            if t.function.endswith(":fem_task"):
+                g = 1.4 if t.kwargs["mean_pressure"] == 1.0 else 0.3
+                out.append(xr.Dataset({"friction": 0.5, "contact_fraction": 0.05,
+                                       "mean_separation": 0.01, "wall_time": 1.0,
+                                       "steady": 1.0, "bulk_shear": g}))
+            else:
+                module, name = t.function.split(":")
+                out.append(getattr(importlib.import_module(module), name)(**t.kwargs))
+        return out
+
+    cfg = rc.config.parse_config(_config(tmp_path, models=["vhs", "fem"], realizations=1))
+    with pytest.warns(RuntimeWarning, match=r"full FEM: 1 of 2 FEM tests sheared as a whole "
+                                            r"by more than 1 .*v=10 σ0=1 r=0 \(1.40\)"):
+        ds = rc.hybrid.run(cfg, runner=runner, progress=False)
+    np.testing.assert_allclose(ds["fem_bulk_shear"].sel(velocity=10.0, realization=0),
+                               [0.3, 1.4])
+    assert set(ds["status"].values.ravel()) == {"ok"}      # kept, not failed
+
+
 def test_fem_task_records_its_sliding_time():
     # 2 periods of the 0.0625 mm cell at 10 mm/s: 12.5 ms (an elastic cell is steady
     # after the minimum of 2 periods).

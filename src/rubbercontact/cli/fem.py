@@ -166,6 +166,9 @@ def command(
         typer.echo(f"  shear stress Δτ = μ p̄    {res.shear_stress:.5f} MPa")
         typer.echo(f"  contact fraction α       {res.contact_fraction:.5f}")
         typer.echo(f"  mean separation ū        {res.mean_separation:.6g} mm")
+        typer.echo(f"  cell shear (face lag/H)  {s.bulk_shear:.4g}"
+                   + (f" ({s.bulk_shear_change:+.3g} over the last period)"
+                      if np.isfinite(s.bulk_shear_change) else ""))
         typer.echo(f"  steps {s.steps}, Newton iterations {s.newton_iterations} "
                    f"({s.newton_iterations / max(s.steps, 1):.1f}/step), factorizations "
                    f"{s.factorizations}, cut-backs {s.cutbacks}, periods {s.periods}"

@@ -83,6 +83,23 @@ class PressureProfile:
     surface_height: np.ndarray
 
 
+#: Mean shear strain of the cell above which a test warns: under a friction stress near
+#: the relaxed shear modulus E∞/3 the whole cell shears by order one, and the result then
+#: depends on the cell height (docs/validation/cell_height.md).
+BULK_SHEAR_LIMIT = 1.0
+
+
+def bulk_shear_message(bulk_shear: float, change: float, mean_pressure: float,
+                       velocity: float, height_ratio: float) -> str:
+    """The warning of a test whose cell sheared by more than :data:`BULK_SHEAR_LIMIT`."""
+    grew = (f", {change:+.2f} over the last period" if np.isfinite(change) else "")
+    return (f"FEM sliding test: the cell sheared as a whole by {bulk_shear:.2f} (mean face "
+            f"displacement / height{grew}) under the friction stress (p̄ = {mean_pressure} "
+            f"MPa, v = {velocity} mm/s, H/L0 = {height_ratio:g}). At such shear the result "
+            f"depends on the cell height: on section 3 at 50 mm/s and 2 MPa, a cell twice as "
+            f"tall moved μ by +6 % and A by +19 % (docs/validation/cell_height.md)")
+
+
 @dataclass(frozen=True)
 class SolverStats:
     """Work done and quality indicators of one test."""
@@ -102,6 +119,10 @@ class SolverStats:
     period_change: float        # |Δμ|/|μ| between the last two period averages (NaN: < 2)
     period_area_change: float   # |ΔA|/A, the same for the contact fraction
     n_unknowns: int
+    # Mean shear strain of the cell at the end, |mean face x-displacement| / H, and how much
+    # it grew over the last period (NaN: < 1 period): the bulk creeps toward τ/G∞.
+    bulk_shear: float = np.nan
+    bulk_shear_change: float = np.nan
 
     def as_dict(self) -> dict[str, Any]:
         """Plain values; an undefined float (NaN) is None so the dict is valid JSON."""
@@ -132,7 +153,9 @@ class SlidingTestResult:
         Per step: ``time`` [s], ``sliding_distance`` [mm], ``phase`` (0 press, 1 settle,
         2 slide), ``friction``, ``friction_top`` (from the top-edge reaction),
         ``contact_fraction``, ``mean_separation`` [mm], ``plate_displacement`` [mm],
-        ``load`` [MPa], ``max_penetration`` [mm], ``newton_iterations``.
+        ``load`` [MPa], ``max_penetration`` [mm], ``newton_iterations``, ``face_shift``
+        (mean x-displacement of the face relative to the top edge [mm]: ``−γ H`` for a
+        bulk shear ``γ``).
     stats
         Solver statistics.
     """
@@ -165,7 +188,7 @@ class SlidingTestResult:
         units = {"time": "s", "sliding_distance": "mm", "phase": "", "friction": "1",
                  "friction_top": "1", "contact_fraction": "1", "mean_separation": "mm",
                  "plate_displacement": "mm", "load": "MPa", "max_penetration": "mm",
-                 "segment_penetration": "mm", "newton_iterations": ""}
+                 "segment_penetration": "mm", "newton_iterations": "", "face_shift": "mm"}
         data_vars = {}
         for k, v in h.items():
             if k == "time":
@@ -391,7 +414,7 @@ def sliding_test(surface: SineSeries, material: GeneralizedMaxwell, mean_pressur
     hist: dict[str, list] = {k: [] for k in (
         "time", "sliding_distance", "phase", "friction", "friction_top", "contact_fraction",
         "mean_separation", "plate_displacement", "load", "max_penetration",
-        "segment_penetration", "newton_iterations")}
+        "segment_penetration", "newton_iterations", "face_shift")}
     info = {"cutbacks": 0, "max_pen": 0.0, "max_seg_pen": 0.0, "steps": 0, "impaled": False}
 
     def snapshot(st: _State) -> dict:
@@ -462,6 +485,9 @@ def sliding_test(surface: SineSeries, material: GeneralizedMaxwell, mean_pressur
         hist["contact_fraction"].append(face_contact_fraction(surface, st.s, cs, L0))
         hist["mean_separation"].append(mean_separation(pos[:, 0], pos[:, 1], L0))
         hist["plate_displacement"].append(float(st.U[model.plate]))
+        # the top edge is held at x = 0, so the face's mean x-displacement is the cell's
+        # bulk shear lag (times H), which creeps under the friction stress
+        hist["face_shift"].append(float(np.mean(pos[:, 0] - model.X_face[:, 0])))
         hist["load"].append(st.load / L0)
         hist["max_penetration"].append(pen)
         seg_pen = segment_penetration(surface, st.s, pos, L0)
@@ -550,6 +576,13 @@ def sliding_test(surface: SineSeries, material: GeneralizedMaxwell, mean_pressur
         window = slice(-spp, None)
     else:
         window = slice(-1, None)
+    shift = np.asarray(hist["face_shift"])
+    bulk_shear = float(abs(shift[-1]) / H)
+    bulk_shear_change = (float((abs(shift[-1]) - abs(shift[-spp - 1])) / H)
+                         if v > 0 and n_periods >= 1 else np.nan)
+    if bulk_shear > BULK_SHEAR_LIMIT:
+        warnings.warn(bulk_shear_message(bulk_shear, bulk_shear_change, p, v, hr),
+                      RuntimeWarning, stacklevel=2)
     H_ = {k: np.asarray(v_, dtype=float if k not in ("phase", "newton_iterations") else int)
           for k, v_ in hist.items()}
     mu = float(np.mean(H_["friction"][window]))
@@ -581,7 +614,8 @@ def sliding_test(surface: SineSeries, material: GeneralizedMaxwell, mean_pressur
                         assembly_time=counters.assembly_time, solve_time=counters.solve_time,
                         periods=n_periods, steady=bool(steady),
                         period_change=float(period_change),
-                        period_area_change=float(area_change), n_unknowns=model.n)
+                        period_area_change=float(area_change), n_unknowns=model.n,
+                        bulk_shear=bulk_shear, bulk_shear_change=bulk_shear_change)
     return SlidingTestResult(
         friction=mu, shear_stress=mu * p, contact_fraction=alpha, mean_separation=ubar,
         mean_pressure=p, velocity=v, pressure_profile=profile, history=H_, stats=stats,

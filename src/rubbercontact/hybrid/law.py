@@ -22,6 +22,7 @@ import xarray as xr
 
 from .._validation import finite_array, positive_scalar
 from ..errors import InputError
+from ..fem.sliding import BULK_SHEAR_LIMIT
 from ..materials import GeneralizedMaxwell
 from ..roughness import SineSeries
 
@@ -38,6 +39,8 @@ STEADINESS_VARIABLES = {
     "period_area_change": "relative change of the contact fraction over the last sliding "
                           "period",
     "sliding_time": "sliding time of the test (NaN: not recorded)",
+    "bulk_shear": "mean shear strain of the cell at the end of the test, |mean face "
+                  "x-displacement| / H (NaN: not recorded)",
 }
 #: Units of ``STEADINESS_VARIABLES`` other than "1".
 STEADINESS_UNITS = {"sliding_time": "s"}
@@ -73,6 +76,29 @@ def creep_unsettled_message(diag: dict, material: GeneralizedMaxwell, label, wha
             f"section 3 wave, sliding 5 retardation times moved the law by up to -17 % in "
             f"friction and -38 % in area at 2-6 MPa, the full FEM by up to -11 % and -10 %; "
             f"docs/validation/creep_settled.md); fem.min_creep_times slides longer")
+
+
+def sheared_cells_message(diag: dict, label, what: str,
+                          limit: float = BULK_SHEAR_LIMIT) -> str | None:
+    """One warning naming the FEM tests of ``diag`` whose cell sheared as a whole by more
+    than ``limit`` (largest first, at most 6 named), or None.
+
+    Under a friction stress near the relaxed shear modulus the cell's bulk shear is of
+    order one and the result depends on the cell height, which the paper fixes at
+    H/L0 = 0.75 (docs/validation/cell_height.md). Tests cached before the shear was
+    recorded (NaN) are not counted.
+    """
+    g = np.asarray(diag.get("bulk_shear", np.nan), float)
+    big = sorted(map(tuple, np.argwhere(np.isfinite(g) & (g > limit))), key=lambda i: -g[i])
+    if not big:
+        return None
+    where = ", ".join(f"{label(*idx)} ({g[idx]:.2f})" for idx in big[:6])
+    return (f"{what}: {len(big)} of {int(np.isfinite(g).sum())} FEM tests sheared as a whole "
+            f"by more than {limit:g} (mean face displacement / cell height), largest first: "
+            f"{where}{', ...' if len(big) > 6 else ''}. There the friction stress is near the "
+            f"relaxed shear modulus and the result depends on the cell height "
+            f"(fem.height_ratio): on section 3 at 50 mm/s and 2 MPa a cell twice as tall "
+            f"moved μ by +6 % and A by +19 % (docs/validation/cell_height.md)")
 
 
 def describe_unsteady(diag: dict, label) -> tuple[int, str, bool]:
@@ -217,6 +243,9 @@ def assemble_law(results, pressures, velocities, hs_surface: SineSeries,
     creep = creep_unsettled_message(diag, material, label, "law")
     if creep:
         warnings.warn(creep, LawWarning, stacklevel=3)
+    sheared = sheared_cells_message(diag, label, "law")
+    if sheared:
+        warnings.warn(sheared, LawWarning, stacklevel=3)
     law.attrs.update({
         "title": "effective interface law of the high-slope scale (paper eqs. 1-3)",
         "hs_wavelengths_mm": hs_surface.wavelengths.tolist(),

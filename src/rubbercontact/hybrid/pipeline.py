@@ -54,6 +54,7 @@ from .law import (
     effective_law,
     law_at_velocity,
     screen_monotone,
+    sheared_cells_message,
 )
 from .metrics import control_variate_by_column, interpolate_at_areas, mean_relative_error
 
@@ -542,6 +543,9 @@ def _add_fem_steadiness(ds: xr.Dataset, diag: dict, material: GeneralizedMaxwell
     creep = creep_unsettled_message(diag, material, label, "full FEM")
     if creep:
         warnings.warn(creep, RuntimeWarning, stacklevel=stacklevel)
+    sheared = sheared_cells_message(diag, label, "full FEM")
+    if sheared:
+        warnings.warn(sheared, RuntimeWarning, stacklevel=stacklevel)
     return ds
 
 

@@ -172,6 +172,7 @@ def fem_task(surface: dict, material: dict, velocity: float, mean_pressure: floa
         "max_penetration": st.max_penetration, "steady": int(st.steady),
         "period_change": st.period_change, "period_area_change": st.period_area_change,
         "max_segment_penetration": st.max_segment_penetration,
+        "bulk_shear": st.bulk_shear,
         # how long it slid (the bulk creeps on the longest retardation time; see law.py)
         "sliding_time": st.periods * surf.period / velocity if velocity > 0 else 0.0,
     }
