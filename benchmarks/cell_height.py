@@ -148,6 +148,7 @@ def main(argv=None) -> int:
         ap.error("--realizations: indices must be >= 0")
     if args.periods is not None and args.periods < 2:
         ap.error("--periods: at least 2 (the steadiness check compares two periods)")
+    validate.seed_cache(validate.REFERENCE_CACHE, args.cache)
     cells = {c: cell_config(args.workers, args.cache, TALL if c == "tall" else None,
                             args.periods) for c in args.cells}
     rows = solve(cells, args.loads, args.realizations, args.workers)

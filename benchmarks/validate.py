@@ -529,7 +529,7 @@ def eq28_phase_averaged(phase_data: dict, resamples: int = 2000, level: float = 
 #: paper's area range 0.01-0.1 (phase-averaged FEM areas 0.012-0.10 at 10 mm/s, 0.009-0.1
 #: at 50 mm/s), each with the number of realizations (the first ones) its full FEM ran on.
 #: A 50 mm/s, 2 MPa test costs about half an hour on one core.
-EXTENDED_LOADS = {10.0: {0.05: 5, 0.1: 5, 1.2: 5}, 50.0: {0.1: 5, 2.0: 4}}
+EXTENDED_LOADS = {10.0: {0.05: 5, 0.1: 5, 1.2: 5}, 50.0: {0.1: 5, 2.0: 5}}
 
 
 def merge_phase_data(a: dict, b: dict) -> dict:

@@ -273,26 +273,33 @@ def test_min_creep_times_reach_every_fem_task_and_keep_cache_keys(tmp_path):
     assert min_sliding_time(cfg, rc.materials.sbr()) == pytest.approx(5 * lam, rel=1e-12)
 
 
-def test_unsteady_full_fem_tests_are_flagged_in_the_results(tmp_path):
-    # A full-FEM test that has not settled keeps its numbers (the last period's averages)
-    # but must not pass as "ok" silently: the results say which loads, and by how much the
-    # friction still moved, and the run warns in the calling process (a worker's warning
-    # only reaches its log).
+def _runner_with_stand_in_fem(diagnostics):
+    """A sweep runner that runs every task but the full FEM, which it replaces by a fixed
+    result with ``diagnostics(mean_pressure)`` (a dict of steadiness variables) added."""
     import importlib
 
     def runner(tasks, description="sweep"):
         out = []
         for t in tasks:
             if t.function.endswith(":fem_task"):
-                steady = 0.0 if t.kwargs["mean_pressure"] == 1.0 else 1.0
                 out.append(xr.Dataset({"friction": 0.5, "contact_fraction": 0.05,
                                        "mean_separation": 0.01, "wall_time": 1.0,
-                                       "steady": steady, "period_change": 0.034,
-                                       "period_area_change": 0.05}))
+                                       **diagnostics(t.kwargs["mean_pressure"])}))
             else:
                 module, name = t.function.split(":")
                 out.append(getattr(importlib.import_module(module), name)(**t.kwargs))
         return out
+
+    return runner
+
+
+def test_unsteady_full_fem_tests_are_flagged_in_the_results(tmp_path):
+    # A full-FEM test that has not settled keeps its numbers (the last period's averages)
+    # but must not pass as "ok" silently: the results say which loads, and by how much the
+    # friction still moved, and the run warns in the calling process (a worker's warning
+    # only reaches its log).
+    runner = _runner_with_stand_in_fem(lambda p: {
+        "steady": 0.0 if p == 1.0 else 1.0, "period_change": 0.034, "period_area_change": 0.05})
 
     cfg = rc.config.parse_config(_config(tmp_path, models=["vhs", "fem"], realizations=1))
     with pytest.warns(RuntimeWarning, match=r"1 of 2 full-FEM tests did not reach steady "
@@ -422,8 +429,6 @@ def test_cells_in_bulk_shear_are_named_in_the_law_and_the_results(tmp_path):
     # Above a mean shear of 1 the FEM result depends on the cell height
     # (docs/validation/cell_height.md); the run must say which tests got there, largest
     # first, in the calling process, and keep the values. Unrecorded (NaN) are not counted.
-    import importlib
-
     from rubbercontact.hybrid.law import sheared_cells_message
 
     diag = {"bulk_shear": np.array([[0.4, 1.3, np.nan, 2.1]])}
@@ -434,18 +439,8 @@ def test_cells_in_bulk_shear_are_named_in_the_law_and_the_results(tmp_path):
                                  lambda i: "", "law") is None
     assert sheared_cells_message({}, lambda i: "", "law") is None     # old cache entries
 
-    def runner(tasks, description="sweep"):
-        out = []
-        for t in tasks:
-            if t.function.endswith(":fem_task"):
-                g = 1.4 if t.kwargs["mean_pressure"] == 1.0 else 0.3
-                out.append(xr.Dataset({"friction": 0.5, "contact_fraction": 0.05,
-                                       "mean_separation": 0.01, "wall_time": 1.0,
-                                       "steady": 1.0, "bulk_shear": g}))
-            else:
-                module, name = t.function.split(":")
-                out.append(getattr(importlib.import_module(module), name)(**t.kwargs))
-        return out
+    runner = _runner_with_stand_in_fem(lambda p: {"steady": 1.0,
+                                                  "bulk_shear": 1.4 if p == 1.0 else 0.3})
 
     cfg = rc.config.parse_config(_config(tmp_path, models=["vhs", "fem"], realizations=1))
     with pytest.warns(RuntimeWarning, match=r"full FEM: 1 of 2 FEM tests sheared as a whole "
