@@ -85,8 +85,16 @@ def report(rows: list[dict]) -> str:
         "The validation's full FEM stops after period 3 (finer mesh, see "
         "`docs/validation/cell_height.md`).",
         "",
+        "| p̄ [MPa] | H/L0 | μ (A) after 3 periods | μ (A) at the end | periods | γ at the end |",
+        "|---|---|---|---|---|---|",
     ]
-    for r in sorted(rows, key=lambda r: (-r["p"], r["ratio"])):
+    ordered = sorted(rows, key=lambda r: (-r["p"], r["ratio"]))
+    for r in ordered:
+        mu, a, g = (r[k] for k in ("friction", "contact_fraction", "bulk_shear"))
+        lines.append(f"| {r['p']:g} | {r['ratio']:g} | {mu[2]:.3f} ({a[2]:.4f}) | "
+                     f"{mu[-1]:.3f} ({a[-1]:.4f}) | {r['periods']} | {g[-1]:.2f} |")
+    lines.append("")
+    for r in ordered:
         mu, a, g = (np.asarray(r[k]) for k in ("friction", "contact_fraction", "bulk_shear"))
         tau = mu[-1] * r["p"]
         lines += [f"## p̄ = {r['p']:g} MPa, H/L0 = {r['ratio']:g} "
