@@ -104,21 +104,24 @@ def test_merging_refuses_repeated_loads_or_another_n():
 
 def test_extended_rows_name_the_range_and_leave_the_pointwise_hybrid_out_in_the_second():
     merged = validate.merge_phase_data(_data(), _data_at([0.05, 1.2], r=5))
-    rows, text = validate._extended_rows({10.0: merged})
+    rows, text = validate._extended_rows({10.0: merged}, 1.39)
     assert len(rows) == 3 and "all models" in rows[0] and "without the pointwise" in rows[1]
     assert rows[1].split("|")[3].strip() == "-"          # no pointwise-hybrid entry
     assert "below the top load (1.2 MPa)" in rows[2]
     assert "0.05 (5), 0.15 (10), 0.35 (10), 0.8 (10), 1.2 (5)" in text
-    assert "falls" not in text                           # the FEM rises with load here
+    assert "exceeds" not in text        # μσ0 <= 1.14 MPa < E∞/3 = 1.39 MPa everywhere
 
 
-def test_a_fem_friction_falling_with_load_is_named_and_the_top_load_can_be_left_out():
+def test_a_fem_friction_stress_above_the_relaxed_shear_modulus_is_named_and_left_out():
     merged = validate.merge_phase_data(_data(), _data_at([0.05, 1.2], r=5))
     fem_a, fem_mu = (x.copy() for x in merged["fem"])
-    fem_mu[:, -1] = fem_mu[:, -2] - 0.1                  # the FEM falls at 1.2 MPa
+    fem_mu[:, -1] = 1.5                                  # μσ0 = 1.8 MPa at 1.2 MPa
     merged["fem"] = (fem_a, fem_mu)
-    _, text = validate._extended_rows({50.0: merged})
-    assert "At 50 mm/s from 0.8 to 1.2 MPa the FEM's phase-averaged μ falls" in text
+    _, text = validate._extended_rows({50.0: merged}, 1.39)
+    # the phase average is mean_N(VHS) + mean_R(FEM − VHS), not 1.5 itself
+    assert "At 50 mm/s and 1.2 MPa the FEM's phase-averaged friction stress μσ0 = " in text
+    assert "MPa exceeds E∞/3 = 1.39 MPa; from 0.8 MPa its μ goes from" in text
+    assert validate.EXTENDED_FEM_CAVEAT in text and "0.8 MPa and" not in text
     below = validate._below(merged, 1.2)
     np.testing.assert_array_equal(below["pressures"], [0.05, 0.15, 0.35, 0.8])
     assert below["fem"][1].shape == (10, 4) and below["all"]["vhs"][0].shape == (200, 4)
