@@ -46,6 +46,7 @@ from rubbercontact.hybrid.metrics import (  # noqa: E402
     interpolate_at_areas,
     mean_relative_error,
     regression_coefficient,
+    rising_branch,
 )
 from rubbercontact.hybrid.pipeline import make_runner  # noqa: E402
 from rubbercontact.io.results import write_results  # noqa: E402
@@ -226,9 +227,13 @@ def _cost_lines(ds) -> list[str]:
 
 def _common_areas(curves: dict, points: int = 4):
     """``points`` areas log-spaced over the range every ``(area, μ)`` sweep covers, and
-    each model's μ there (nothing extrapolated); None when the sweeps share no range."""
+    each model's μ there (nothing extrapolated); None when the sweeps share no range.
+    The sweeps come in increasing load; only their rising branch is used (a load whose
+    area does not exceed a lower load's is left out, ``rising_branch``)."""
     curves = {m: (a[np.isfinite(a) & np.isfinite(mu)], mu[np.isfinite(a) & np.isfinite(mu)])
               for m, (a, mu) in curves.items()}    # failed loads (NaN) are left out
+    curves = {m: (a[k], mu[k]) for m, (a, mu) in curves.items()
+              for k in [rising_branch(np.arange(a.size), a) if a.size else slice(None)]}
     if any(a.size < 2 for a, _ in curves.values()):
         return None
     lo = max(a.min() for a, _ in curves.values())

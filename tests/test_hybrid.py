@@ -451,6 +451,44 @@ def test_cells_in_bulk_shear_are_named_in_the_law_and_the_results(tmp_path):
     assert set(ds["status"].values.ravel()) == {"ok"}      # kept, not failed
 
 
+def test_friction_at_area_uses_only_loads_whose_area_grows(tmp_path):
+    # A full FEM whose area stops growing with the load (settled at 50 mm/s above ~1 MPa
+    # the cell shears beyond 1 and its contact shrinks): interpolating μ at a target area
+    # across the fold would mix two branches. Stand-in FEM: area rises with the load up to
+    # the third-highest load and falls above it, μ = 0.5 on the rising branch and 0.9 on
+    # the falling one; the friction at every reachable target must be exactly 0.5, the
+    # targets beyond the peak NaN, and the run must name the loads left out.
+    import importlib
+
+    def runner(tasks, description="sweep"):
+        fem_p = sorted({t.kwargs["mean_pressure"] for t in tasks
+                        if t.function.endswith(":fem_task")})
+        out = []
+        for t in tasks:
+            if t.function.endswith(":fem_task"):
+                k = fem_p.index(t.kwargs["mean_pressure"])
+                peak = len(fem_p) - 3
+                rising = k <= peak
+                area = 0.01 + 0.2 * k / peak if rising else 0.1 - 0.01 * (k - peak)
+                out.append(xr.Dataset({"friction": 0.5 if rising else 0.9,
+                                       "contact_fraction": area, "mean_separation": 0.01,
+                                       "wall_time": 1.0, "steady": 1.0}))
+            else:
+                module, name = t.function.split(":")
+                out.append(getattr(importlib.import_module(module), name)(**t.kwargs))
+        return out
+
+    cfg = rc.config.parse_config(_config(
+        tmp_path, models=["vhs", "fem"], realizations=1,
+        loads={"contact_areas": [0.05, 0.15, 0.3], "sweep_points": 8}))
+    with pytest.warns(RuntimeWarning, match=r"friction at contact area: 1 load sweep has .*"
+                                            r"left out.*fem v=10 r=0: σ0="):
+        ds = rc.hybrid.run(cfg, runner=runner, progress=False)
+    mu = ds["friction_at_area"].sel(model="fem", realization=0).values
+    np.testing.assert_array_equal(mu[:, :2], 0.5)
+    assert np.all(np.isnan(mu[:, 2]))
+
+
 def test_fem_task_records_its_sliding_time():
     # 2 periods of the 0.0625 mm cell at 10 mm/s: 12.5 ms (an elastic cell is steady
     # after the minimum of 2 periods).

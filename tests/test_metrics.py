@@ -10,6 +10,7 @@ from rubbercontact.hybrid.metrics import (
     control_variate_mean,
     interpolate_at_areas,
     mean_relative_error,
+    rising_branch,
 )
 
 
@@ -37,6 +38,28 @@ def test_interpolation_is_exact_for_log_linear_curve_and_nan_outside():
     out = interpolate_at_areas(area[::-1], mu[::-1], t)   # unsorted input is fine
     np.testing.assert_allclose(out[1:4], 0.5 + 0.1 * np.log(t[1:4]), rtol=1e-12)
     assert np.isnan(out[0]) and np.isnan(out[4])
+
+
+def test_rising_branch_drops_loads_whose_area_does_not_grow():
+    # A settled full FEM at 50 mm/s: the area peaks at 0.8 MPa and falls above it; a small
+    # dip at 0.35 MPa below the area at 0.15 MPa is left out as well (μ(A) must be
+    # single-valued). Loads may come in any order.
+    p = np.array([0.1, 0.15, 0.35, 0.8, 2.0, 3.0])
+    a = np.array([0.009, 0.013, 0.012, 0.032, 0.025, 0.021])
+    np.testing.assert_array_equal(rising_branch(p, a), [1, 1, 0, 1, 0, 0])
+    shuffle = np.array([4, 0, 5, 2, 1, 3])
+    np.testing.assert_array_equal(rising_branch(p[shuffle], a[shuffle]),
+                                  np.array([1, 1, 0, 1, 0, 0], bool)[shuffle])
+    # μ on the falling branch is 0.9, on the rising one 0.5: interpolation along the load
+    # sweep sees only the rising branch (exactly 0.5), and nothing beyond its largest area
+    mu = np.where(p > 0.8, 0.9, 0.5)
+    out = interpolate_at_areas(a, mu, [0.02, 0.03, 0.04], loads=p)
+    np.testing.assert_array_equal(out[:2], [0.5, 0.5])
+    assert np.isnan(out[2])
+    with pytest.raises(InputError, match="repeated"):
+        rising_branch([0.1, 0.1], [0.01, 0.02])
+    with pytest.raises(InputError, match="lengths differ"):
+        rising_branch([0.1, 0.2], [0.01])
 
 
 def test_bootstrap_interval_of_a_mean_matches_the_central_limit():

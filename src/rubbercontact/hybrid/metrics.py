@@ -27,18 +27,56 @@ def mean_relative_error(reference, candidate) -> float:
     return float(np.mean(np.abs(ref - cand) / np.abs(ref)))
 
 
-def interpolate_at_areas(contact_area, friction, targets) -> np.ndarray:
+def rising_branch(loads, contact_area) -> np.ndarray:
+    """Which points of a load sweep lie on the branch where the contact area grows.
+
+    A point is kept when its area exceeds the area at every lower load. Friction at a
+    given area is single-valued only there: where a sweep's area stops growing (the full
+    FEM at 50 mm/s above about 1 MPa, once creep has settled: the cell shears by more
+    than 1 and its contact shrinks, docs/validation/settled_loads.md), ``μ(A)`` folds back
+    and sorting by area would interleave the two branches.
+
+    Parameters
+    ----------
+    loads
+        Mean pressures of the sweep [MPa], in any order, distinct.
+    contact_area
+        Contact fraction at each load [1].
+
+    Returns
+    -------
+    numpy.ndarray of bool
+        In the order given.
+    """
+    p = finite_array("loads", loads, ndim=1)
+    a = finite_array("contact_area", contact_area, ndim=1)
+    if p.shape != a.shape:
+        raise InputError(f"loads and contact_area: lengths differ ({p.size} vs {a.size})")
+    if np.unique(p).size != p.size:
+        raise InputError("loads: repeated values; a load sweep needs distinct loads")
+    order = np.argsort(p)
+    below = np.maximum.accumulate(np.concatenate([[-np.inf], a[order][:-1]]))
+    keep = np.empty(p.shape, bool)
+    keep[order] = a[order] > below
+    return keep
+
+
+def interpolate_at_areas(contact_area, friction, targets, loads=None) -> np.ndarray:
     """Friction at target contact areas by interpolation along a load sweep.
 
-    ``contact_area`` must increase with the load; interpolation is linear in
-    ``log(area)`` (area grows roughly like a power of the load), and targets outside
-    the computed range give NaN rather than an extrapolated guess.
+    Interpolation is linear in ``log(area)`` (area grows roughly like a power of the
+    load), and targets outside the computed range give NaN rather than an extrapolated
+    guess. Without ``loads`` the area must increase with the load (the points may come in
+    any order); with ``loads`` [MPa] only the :func:`rising_branch` is used.
     """
     a = finite_array("contact_area", contact_area, ndim=1)
     mu = finite_array("friction", friction, ndim=1)
     t = finite_array("targets", targets, ndim=1)
     if a.shape != mu.shape:
         raise InputError("contact_area and friction: lengths differ")
+    if loads is not None:
+        keep = rising_branch(loads, a)
+        a, mu = a[keep], mu[keep]
     order = np.argsort(a)
     a, mu = a[order], mu[order]
     keep = a > 0

@@ -56,7 +56,12 @@ from .law import (
     screen_monotone,
     sheared_cells_message,
 )
-from .metrics import control_variate_by_column, interpolate_at_areas, mean_relative_error
+from .metrics import (
+    control_variate_by_column,
+    interpolate_at_areas,
+    mean_relative_error,
+    rising_branch,
+)
 
 if TYPE_CHECKING:   # imported lazily at run time, as everywhere in this module
     from ..sweep import Task
@@ -338,7 +343,7 @@ def run(config: RunConfig | dict | str | Path, *, runner: Runner | None = None,
                 check_coverage(law, float(v), float(ds["max_local_pressure"].sel(
                     model=hybrid[0], velocity=v).max()))
     if cfg.loads.contact_areas is not None:
-        ds = _at_areas(ds, np.asarray(cfg.loads.contact_areas, float))
+        ds = _at_areas(ds, np.asarray(cfg.loads.contact_areas, float), stacklevel=3)
     if "fem" in models and n_fem < len(realizations):
         ds = add_phase_means(ds, n_fem)
     ds = _add_errors(ds)
@@ -568,18 +573,39 @@ def _add_profiles(ds: xr.Dataset, index, results) -> xr.Dataset:
     return ds
 
 
-def _at_areas(ds: xr.Dataset, targets: np.ndarray) -> xr.Dataset:
-    """Friction at the target contact areas, per realization, by load-sweep interpolation."""
+def _at_areas(ds: xr.Dataset, targets: np.ndarray, stacklevel: int = 2) -> xr.Dataset:
+    """Friction at the target contact areas, per realization, by load-sweep interpolation.
+
+    Only the loads on the sweep's rising branch are used (``rising_branch``); a load whose
+    contact area does not exceed that of a lower load is left out and named in a warning.
+    """
     out = np.full((ds.sizes["model"], ds.sizes["velocity"], ds.sizes["realization"],
                    targets.size), np.nan)
+    p = ds["pressure"].values
+    folded = []
     for im in range(ds.sizes["model"]):
         for iv in range(ds.sizes["velocity"]):
             for ir in range(ds.sizes["realization"]):
                 sel = ds.isel(model=im, velocity=iv, realization=ir)
                 a, mu = sel["contact_fraction"].values, sel["friction"].values
                 ok = np.isfinite(a) & np.isfinite(mu)
-                if ok.sum() >= 2:
-                    out[im, iv, ir] = interpolate_at_areas(a[ok], mu[ok], targets)
+                if ok.sum() < 2:
+                    continue
+                keep = rising_branch(p[ok], a[ok])
+                # full contact repeated at higher loads is no fold: nothing to report
+                fold = ~keep & (a[ok] < 1.0 - 1e-9)
+                if fold.any():
+                    folded.append(f"{ds['model'].values[im]} v={ds['velocity'].values[iv]:g} "
+                                  f"r={ir}: σ0=" + ", ".join(f"{x:g}" for x in p[ok][fold]))
+                out[im, iv, ir] = interpolate_at_areas(a[ok][keep], mu[ok][keep], targets)
+    if folded:
+        n = len(folded)
+        warnings.warn(f"friction at contact area: {n} load sweep{'s' if n > 1 else ''} "
+                      f"ha{'ve' if n > 1 else 's'} loads whose "
+                      "contact area does not exceed that at a lower load; those loads are "
+                      "left out of the interpolation (the area stopped growing with the "
+                      "load there, e.g. a full FEM cell sheared beyond 1): "
+                      + "; ".join(folded), RuntimeWarning, stacklevel=stacklevel)
     ds = ds.assign_coords(contact_area=("contact_area", targets,
                                         {"units": "1", "long_name": "target A_c/A_0"}))
     dims = ("model", "velocity", "realization", "contact_area")
