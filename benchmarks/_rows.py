@@ -31,10 +31,12 @@ def append_row(path: Path, row: dict) -> None:
         fh.write(text + "\n")
 
 
-def publish(text: str, path: Path | None) -> int:
-    """Print a study's report and, when ``path`` is given, write it there atomically
-    (a temporary file renamed over the old report); the exit status for ``main``."""
-    print(text)
+def publish(text: str, path: Path | None, echo: bool = True) -> int:
+    """Print a study's report (unless ``echo`` is false) and, when ``path`` is given, write
+    it there atomically (a temporary file renamed over the old report); the exit status for
+    ``main``."""
+    if echo:
+        print(text)
     if path is not None:
         path.parent.mkdir(parents=True, exist_ok=True)
         tmp = path.with_name(path.name + ".tmp")
