@@ -41,6 +41,7 @@ realization-0 tests of ``docs/validation/cell_creep.jsonl`` are reused). Two pro
 from __future__ import annotations
 
 import argparse
+import functools
 import json
 import sys
 import traceback
@@ -81,6 +82,7 @@ def _case(p: float, r: int) -> dict:
                 "traceback": traceback.format_exc()}
 
 
+@functools.cache
 def vhs(p: float, r: int) -> tuple[float, float]:
     """The VHS's μ and A on realization ``r`` at ``p`` [MPa] (4096 points, LJ wall)."""
     from rubbercontact.hybrid.tasks import halfspace_law

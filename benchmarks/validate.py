@@ -232,8 +232,10 @@ def _common_areas(curves: dict, points: int = 4):
     area does not exceed a lower load's is left out, ``rising_branch``)."""
     curves = {m: (a[np.isfinite(a) & np.isfinite(mu)], mu[np.isfinite(a) & np.isfinite(mu)])
               for m, (a, mu) in curves.items()}    # failed loads (NaN) are left out
-    curves = {m: (a[k], mu[k]) for m, (a, mu) in curves.items()
-              for k in [rising_branch(np.arange(a.size), a) if a.size else slice(None)]}
+    for m, (a, mu) in curves.items():
+        if a.size:   # per load, in increasing load: the index orders the loads
+            keep = rising_branch(np.arange(a.size), a)
+            curves[m] = (a[keep], mu[keep])
     if any(a.size < 2 for a, _ in curves.values()):
         return None
     lo = max(a.min() for a, _ in curves.values())
