@@ -1,4 +1,4 @@
-"""Reading profiles: text, CAPTIF (the real road scans of shared/), instrument formats."""
+"""Reading profiles: text, CAPTIF (the real road scans in examples/data/), instrument formats."""
 
 import hashlib
 import sys
@@ -23,7 +23,7 @@ from rubbercontact.plotting import plot_hdc
 from rubbercontact.roughness import RoughnessWarning, fit_hdc_details, octave_wavelengths
 from rubbercontact.roughness.statistics import hdc, rms_height
 
-REAL = Path(__file__).resolve().parents[2] / "shared" / "data" / "real_surfaces"
+REAL = Path(__file__).resolve().parents[1] / "examples" / "data" / "real_surfaces"
 STATIONS = {0: REAL / "captif_20211011_aylesbury_dec_station_0.dat",
             1: REAL / "captif_20211011_aylesbury_dec_station_1.dat"}
 # The README's "Quick statistics" (16 mm NaN-free windows): R_zz(1 mm), R_zz(8 mm) [mm²],
@@ -34,11 +34,8 @@ README_ROAD = {0: (62.0, 1870.0), 1: (70.0, 1878.0)}
 # SurfaceTopography's masked autocorrelation over the whole road, as quoted by the README
 README_MASKED_RZZ_1MM = {0: 0.83, 1: 1.25}
 
-needs_real = pytest.mark.skipif(not REAL.is_dir(), reason="shared/data/real_surfaces absent")
-
 
 # -- the real CAPTIF road profiles -----------------------------------------------------------
-@needs_real
 @pytest.mark.parametrize("station", [0, 1])
 def test_captif_loads_with_plates_trimmed_and_nan_handled(station):
     p = read_captif(STATIONS[station])
@@ -63,7 +60,6 @@ def test_captif_loads_with_plates_trimmed_and_nan_handled(station):
     assert np.ptp(pi.profiles[0]) < 20
 
 
-@needs_real
 @pytest.mark.parametrize("station", [0, 1])
 def test_captif_statistics_match_readme_quick_table(station):
     # Independent check against the README's numbers, computed there with the same 16 mm
@@ -79,7 +75,6 @@ def test_captif_statistics_match_readme_quick_table(station):
     assert mean_rms == pytest.approx(ref_rms, rel=0.15)
 
 
-@needs_real
 @pytest.mark.parametrize("station", [0, 1])
 def test_captif_masked_hdc_matches_surfacetopography_numbers(station):
     # All pairs with two finite ends over the whole road (no windows, nothing invented):
@@ -93,7 +88,6 @@ def test_captif_masked_hdc_matches_surfacetopography_numbers(station):
     assert r1 == pytest.approx(README_MASKED_RZZ_1MM[station], rel=0.02)
 
 
-@needs_real
 def test_captif_masked_hdc_against_surfacetopography_itself():
     st = pytest.importorskip("SurfaceTopography")
     x, z, _ = read_captif_raw(STATIONS[0])
@@ -109,7 +103,6 @@ def test_captif_masked_hdc_against_surfacetopography_itself():
     np.testing.assert_allclose(ours, 2 * theirs, rtol=1e-6)
 
 
-@needs_real
 @pytest.mark.parametrize("station", [0, 1])
 def test_real_profiles_fit_plot_and_sane_rms(station, tmp_path):
     # Fitted wavelengths 0.25 … 16 mm (octaves from 4·dx up to the window length W = 16 mm).
@@ -138,7 +131,6 @@ def test_real_profiles_fit_plot_and_sane_rms(station, tmp_path):
         assert m2[0] > 1 and m2[-1] < 1
 
 
-@needs_real
 def test_despike_on_real_profile_touches_few_points():
     p = read_captif(STATIONS[1], despike=True)
     replaced = p.sources[0]["scans"][0]["spikes_replaced"]
