@@ -7,7 +7,7 @@ import pytest
 
 import rubbercontact as rc
 from rubbercontact.errors import InputError
-from rubbercontact.halfspace import LennardJonesRepulsion, kernels, solve_sliding
+from rubbercontact.halfspace import LennardJonesRepulsion, SolverOptions, kernels, solve_sliding
 from rubbercontact.materials import GeneralizedMaxwell
 from rubbercontact.roughness import SineSeries
 
@@ -199,6 +199,7 @@ def test_result_fields_and_dataset():
     ({"law": "lj"}, "law"),
     ({"method": "magic"}, "method"),
     ({"method": "pk"}, "method"),  # pk needs an elastic material
+    ({"options": {"mixed_newton": False}}, "options"),  # a dict, not a SolverOptions
 ])
 def test_bad_input(kwargs, field):
     args = {"surface": SURF3, "period": None, "material": SBR, "velocity": 10.0,
@@ -206,6 +207,18 @@ def test_bad_input(kwargs, field):
     args.update(kwargs)
     with pytest.raises(InputError, match=field):
         solve_sliding(**args)
+
+
+@pytest.mark.parametrize("kwargs, field", [
+    ({"mixed_newton": 1}, "mixed_newton"),
+    ({"complex_preconditioner_maxiter": 0}, "complex_preconditioner_maxiter"),
+    ({"dense_max_points": -1}, "dense_max_points"),
+    ({"coarse_min_points": 2.5}, "coarse_min_points"),
+    ({"wall_soft_linear_rtol": 0.0}, "wall_soft_linear_rtol"),
+])
+def test_bad_solver_options(kwargs, field):
+    with pytest.raises(InputError, match=f"options.{field}"):
+        SolverOptions(**kwargs)
 
 
 def test_bad_heights():
@@ -246,17 +259,15 @@ def test_period_multiple_of_the_longest_wavelength():
 
 
 @pytest.mark.parametrize("law", [None, "lj"])
-def test_coarse_grid_start_gives_the_single_grid_answer(law, monkeypatch):
+def test_coarse_grid_start_gives_the_single_grid_answer(law):
     """The viscoelastic hard wall started from 4×/16×/64× coarser grids (N = 2^14, down to 256
     points) is the same exact solution as the projection method run on the fine grid alone."""
-    from rubbercontact.halfspace import LennardJonesRepulsion, solver
-
     surf = rc.roughness.section3()
     mat = rc.materials.sbr()
     lj = None if law is None else LennardJonesRepulsion()
     fast = solve_sliding(surf, None, mat, 10.0, 0.5, n=2**14, law=lj)
-    monkeypatch.setattr(solver, "_COARSE_MIN", 10**9)
-    ref = solve_sliding(surf, None, mat, 10.0, 0.5, n=2**14, law=lj)
+    ref = solve_sliding(surf, None, mat, 10.0, 0.5, n=2**14, law=lj,
+                        options=SolverOptions(coarse_min_points=None))
     if law is None:
         assert fast.info["coarse_levels"] == 3 and "coarse_levels" not in ref.info
         np.testing.assert_array_equal(fast.pressure > 0, ref.pressure > 0)
@@ -272,26 +283,21 @@ def test_coarse_grid_start_gives_the_single_grid_answer(law, monkeypatch):
 
 
 # --- fast paths against the plain ones ------------------------------------------------------------
-def _plain_solver(monkeypatch):
-    """Switch the solver to its plain paths: Newton on σ = f(u) only, Hermitian preconditioner,
-    single-shift kernel, GMRES on every grid."""
-    from rubbercontact.halfspace import solver
-
-    monkeypatch.setattr(solver, "_MIXED_NEWTON", False)
-    monkeypatch.setattr(solver, "_COMPLEX_PRECOND", False)
-    monkeypatch.setattr(solver, "_MULTI_SHIFT", False)
-    monkeypatch.setattr(solver, "_DENSE_MAX", 0)
+#: The solver's plain paths: Newton on σ = f(u) only, Hermitian preconditioner, single-shift
+#: kernel, GMRES on every grid.
+PLAIN = SolverOptions(mixed_newton=False, complex_preconditioner=False, multi_shift=False,
+                      dense_max_points=0)
 
 
 @pytest.mark.parametrize("pressure", [0.38, 3.3])  # ~5 % and ~30 % contact
-def test_mixed_newton_matches_plain_newton(pressure, monkeypatch):
+def test_mixed_newton_matches_plain_newton(pressure):
     """The inverse-law (mixed) Newton with the complex and multi-shift preconditioners solves
     the same Lennard-Jones problem as the plain Newton (the previous method), in fewer steps.
     N = 2^14: the multi-shift preconditioner is active there."""
     surf = rc.roughness.section3(phases=[0.3, 1.2, 2.5])
     fast = solve_sliding(surf, None, SBR, 10.0, pressure, n=2**14, law=LennardJonesRepulsion())
-    _plain_solver(monkeypatch)
-    ref = solve_sliding(surf, None, SBR, 10.0, pressure, n=2**14, law=LennardJonesRepulsion())
+    ref = solve_sliding(surf, None, SBR, 10.0, pressure, n=2**14, law=LennardJonesRepulsion(),
+                        options=PLAIN)
     # both stop at |σ − f(u)|/|σ| <= 1e-8; the integrals then agree to that order
     assert fast.friction == pytest.approx(ref.friction, rel=1e-8)
     assert fast.contact_fraction == pytest.approx(ref.contact_fraction, rel=1e-8)
@@ -314,16 +320,14 @@ def test_newton_iterations_do_not_grow_with_n():
 
 
 @pytest.mark.parametrize("velocity", [0.0, 10.0])
-def test_dense_coarse_solve_matches_gmres(velocity, monkeypatch):
+def test_dense_coarse_solve_matches_gmres(velocity):
     """N = 256 (dense contact-set solves) gives the GMRES answer: elastic limit (v = 0) and
     viscoelastic hard wall, and the Lennard-Jones law."""
     surf = rc.roughness.section3(phases=[0.3, 1.2, 2.5])
     dense = [solve_sliding(surf, None, SBR, velocity, 0.5, n=256, law=law)
              for law in (None, LennardJonesRepulsion())]
-    from rubbercontact.halfspace import solver
-
-    monkeypatch.setattr(solver, "_DENSE_MAX", 0)
-    krylov = [solve_sliding(surf, None, SBR, velocity, 0.5, n=256, law=law)
+    krylov = [solve_sliding(surf, None, SBR, velocity, 0.5, n=256, law=law,
+                            options=SolverOptions(dense_max_points=0))
               for law in (None, LennardJonesRepulsion())]
     for d, k in zip(dense, krylov, strict=True):
         np.testing.assert_array_equal(d.pressure > 0, k.pressure > 0)
@@ -334,16 +338,14 @@ def test_dense_coarse_solve_matches_gmres(velocity, monkeypatch):
         np.testing.assert_allclose(d.pressure, k.pressure, atol=1e-6 * k.pressure.max())
 
 
-def test_complex_preconditioner_fallback(monkeypatch):
+def test_complex_preconditioner_fallback():
     """When GMRES with the complex preconditioner stalls, the Hermitian one takes over (forced
     here by allowing it a single iteration): same hard-wall and steep-law answers."""
-    from rubbercontact.halfspace import solver
-
     surf = rc.roughness.section3(phases=[0.3, 1.2, 2.5])
     ref = [solve_sliding(surf, None, SBR, 10.0, 3.3, n=4096, law=law)
            for law in (None, LennardJonesRepulsion())]
-    monkeypatch.setattr(solver, "_COMPLEX_PRECOND_MAXITER", 1)
-    forced = [solve_sliding(surf, None, SBR, 10.0, 3.3, n=4096, law=law)
+    forced = [solve_sliding(surf, None, SBR, 10.0, 3.3, n=4096, law=law,
+                            options=SolverOptions(complex_preconditioner_maxiter=1))
               for law in (None, LennardJonesRepulsion())]
     for f, r in zip(forced, ref, strict=True):
         # both converged to 1e-8 (hard wall: linear tolerance; law: Newton residual)

@@ -11,6 +11,7 @@ import rubbercontact as rc
 from rubbercontact.errors import InputError
 from rubbercontact.halfspace import (
     LennardJonesRepulsion,
+    SolverOptions,
     SumLaw,
     TabulatedLaw,
     solve_sliding,
@@ -240,13 +241,12 @@ def test_wall_plus_soft_law_sharing_the_load():
     assert res.friction_hs == pytest.approx(0.3 * np.mean(p_soft), rel=0.02)
 
 
-def _continuation_only(monkeypatch):
-    from rubbercontact.halfspace import solver
-    monkeypatch.setattr(solver, "_solve_wall_soft", lambda *args: None)
+#: The continuation path only (``wall + s·soft``, s: 0 → 1), the method before the active set.
+CONTINUATION = SolverOptions(wall_soft_active_set=False)
 
 
 @pytest.mark.parametrize("case", ["shared", "fem-like"])
-def test_wall_soft_active_set_matches_continuation(case, monkeypatch):
+def test_wall_soft_active_set_matches_continuation(case):
     """The active-set path (hard wall + soft law, then Newton on the LJ law) gives the answer
     of the previous continuation path (``stiff + s·soft``, s: 0 → 1) within the tolerance."""
     if case == "shared":  # the wall carries ~half the load: continuation needed 11 stages
@@ -261,9 +261,7 @@ def test_wall_soft_active_set_matches_continuation(case, monkeypatch):
     law = LennardJonesRepulsion() + tab
     fast = solve_sliding(ls, None, SBR, 10.0, sigma0, n=1024, law=law)
     assert fast.info["wall_soft_method"] == "active-set"
-    with monkeypatch.context() as m:
-        _continuation_only(m)
-        ref = solve_sliding(ls, None, SBR, 10.0, sigma0, n=1024, law=law)
+    ref = solve_sliding(ls, None, SBR, 10.0, sigma0, n=1024, law=law, options=CONTINUATION)
     assert "wall_soft_method" not in ref.info
     assert fast.residual <= 1e-8 and ref.residual <= 1e-8
     assert fast.friction == pytest.approx(ref.friction, rel=1e-6)
@@ -273,31 +271,27 @@ def test_wall_soft_active_set_matches_continuation(case, monkeypatch):
                                atol=1e-5 * fast.pressure.max())
 
 
-def test_wall_soft_steep_soft_law_matches_continuation(monkeypatch):
+def test_wall_soft_steep_soft_law_matches_continuation():
     """A soft law steep on the scale of the roughness (AC-8 low-slope part, law decaying over
     2 µm): the soft Newton needs the hard-wall start; same answer as the continuation path."""
     ls = rc.roughness.asphalt_ac8(phases=np.linspace(0, 6, 8)).partition(1.0)[1]
     law = LennardJonesRepulsion() + _hs_law(u0=0.002, pa=2.0)
     fast = solve_sliding(ls, None, SBR, 10.0, 0.5, n=2048, law=law)
     assert fast.info["wall_soft_method"] == "active-set"
-    with monkeypatch.context() as m:
-        _continuation_only(m)
-        ref = solve_sliding(ls, None, SBR, 10.0, 0.5, n=2048, law=law)
+    ref = solve_sliding(ls, None, SBR, 10.0, 0.5, n=2048, law=law, options=CONTINUATION)
     assert fast.friction == pytest.approx(ref.friction, rel=1e-6)
     assert fast.contact_fraction == pytest.approx(ref.contact_fraction, rel=1e-6)
     assert fast.mean_separation == pytest.approx(ref.mean_separation, rel=1e-6)
 
 
-def test_wall_soft_coarse_grid_start_gives_the_single_grid_answer(monkeypatch):
+def test_wall_soft_coarse_grid_start_gives_the_single_grid_answer():
     """N = 8192: hard wall + soft law started from 4× coarser grids = started on the grid."""
-    from rubbercontact.halfspace import solver
-
     ls = rc.roughness.section3(phases=[0.3, 1.2, 2.5]).partition(1.0)[1]
     law = LennardJonesRepulsion() + _hs_law(u0=0.002, pa=2.0)
     fast = solve_sliding(ls, None, SBR, 10.0, 1.0, n=8192, law=law)
     assert fast.info["coarse_levels"] >= 1
-    monkeypatch.setattr(solver, "_COARSE_MIN_SOFT", 10**9)
-    ref = solve_sliding(ls, None, SBR, 10.0, 1.0, n=8192, law=law)
+    ref = solve_sliding(ls, None, SBR, 10.0, 1.0, n=8192, law=law,
+                        options=SolverOptions(wall_soft_coarse_min_points=None))
     assert ref.info["coarse_levels"] == 0
     assert fast.friction == pytest.approx(ref.friction, rel=1e-7)
     assert fast.contact_fraction == pytest.approx(ref.contact_fraction, rel=1e-7)

@@ -88,8 +88,9 @@ def stiffness_kernel(compliance: np.ndarray, shift: float = 0.0,
     definite): used as a preconditioner for the non-symmetric viscoelastic operator it keeps
     the preconditioned spectrum in the right half-plane (sector of the loss angle), which
     GMRES needs; inverting the full complex ``M`` (``hermitian=False``) does not guarantee that
-    on a contact set, but needs ~3× fewer GMRES iterations in practice: the solver uses it
-    and falls back to the Hermitian inverse when GMRES stalls.
+    on a contact set, but needs fewer GMRES iterations in practice (measured in
+    ``benchmarks/halfspace.md``): the solver uses it and falls back to the Hermitian inverse
+    when GMRES stalls.
     """
     if hermitian:
         compliance = np.real(compliance)

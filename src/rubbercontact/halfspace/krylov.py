@@ -9,25 +9,30 @@ not grow with the grid size, so orthogonalisation cost is negligible next to the
 from __future__ import annotations
 
 from collections.abc import Callable
+from dataclasses import dataclass
 
 import numpy as np
 
-__all__ = ["gmres"]
+__all__ = ["GmresResult", "gmres"]
+
+
+@dataclass(frozen=True, eq=False)
+class GmresResult:
+    """Solution ``x``, iterations (matrix–vector products), relative residual ``|b − A x|/|b|``."""
+
+    x: np.ndarray
+    iterations: int
+    residual: float
 
 
 def gmres(matvec: Callable[[np.ndarray], np.ndarray], psolve: Callable[[np.ndarray], np.ndarray],
           b: np.ndarray, x0: np.ndarray | None = None, rtol: float = 1e-10, restart: int = 40,
-          maxiter: int = 400) -> tuple[np.ndarray, int, float]:
-    """Solve ``A x = b`` with right preconditioning ``A P y = b``, ``x = P y``.
-
-    Returns
-    -------
-    x, iterations (matrix–vector products), relative residual ``|b − A x| / |b|``.
-    """
+          maxiter: int = 400) -> GmresResult:
+    """Solve ``A x = b`` with right preconditioning ``A P y = b``, ``x = P y``."""
     bnorm = float(np.linalg.norm(b))
     x = np.zeros_like(b) if x0 is None else x0.copy()
     if bnorm == 0.0:
-        return np.zeros_like(b), 0, 0.0
+        return GmresResult(np.zeros_like(b), 0, 0.0)
     r = b - matvec(x) if x0 is not None else b.copy()
     beta = float(np.linalg.norm(r))
     its = 0
@@ -77,4 +82,4 @@ def gmres(matvec: Callable[[np.ndarray], np.ndarray], psolve: Callable[[np.ndarr
         beta = float(np.linalg.norm(r))
         if abs(g[kk]) <= rtol * bnorm and beta > 10 * rtol * bnorm and its >= maxiter:
             break
-    return x, its, beta / bnorm
+    return GmresResult(x, its, beta / bnorm)

@@ -1,0 +1,202 @@
+r"""Contact-set linear systems: the one linear solve behind every half-space algorithm.
+
+Every algorithm (hard wall, Newton on a law, wall + soft law) reduces to systems on a contact
+set ``B``: ``(M x)_B + c x + λ = b``, ``Σ x = S`` (``c >= 0`` a diagonal local compliance,
+``λ`` the mean-separation increment). They are solved by right-preconditioned GMRES
+(:mod:`~rubbercontact.halfspace.krylov`) in the subspace ``Σ x = 0`` after removing the mean.
+
+Preconditioner: the *stiffness* operator ``K = 1/(M + c̄)``
+(:func:`~rubbercontact.halfspace.kernels.stiffness_kernel`) applied to the zero-extended vector
+and restricted back to ``B`` (operator preconditioning: on a contact interval the restricted
+``1/|q|`` and ``|q|`` operators are spectrally inverse up to compact terms), so the iteration
+count does not grow with the grid. For a viscoelastic material ``M`` is not symmetric (it is
+normal, with a positive-definite Hermitian part ``Re M``), hence GMRES. ``K`` inverts the full
+complex ``M``, which needs fewer iterations than the inverse of the Hermitian part
+``1/(Re M + c̄)``; only the latter is guaranteed to keep the preconditioned operator positive
+definite (the sector of the loss angle), so when GMRES with the complex ``K`` has not converged
+within ``options.complex_preconditioner_maxiter`` iterations it continues with the Hermitian one
+(a safety net, forced in a test).
+
+Steep laws add a ``c`` that varies over orders of magnitude across a contact edge (``c = 1/k``):
+where ``c > m_d`` (the diagonal of ``M``) the point is preconditioned by ``1/(c + m_d)``, and when
+at least ``options.multi_shift_min_points`` points have ``c > 10 c̄`` (resolved edges) the kernel
+becomes the variable-coefficient ``1/(M(q) + c(x))``, interpolated in ``log c`` between the
+shifts ``c̄, √(c̄ m_d), m_d`` (one forward and three inverse FFTs per application); the Newton
+iteration counts then stay flat in N. 1D grids of at most ``options.dense_max_points`` points
+(the coarsest level of the multilevel starts) solve the system directly (dense bordered
+matrix), where GMRES would be all Python overhead. Iteration counts are measured in
+``benchmarks/halfspace.md``.
+"""
+
+from __future__ import annotations
+
+from dataclasses import dataclass
+
+import numpy as np
+
+from . import kernels as kn
+from .krylov import gmres
+from .problem import Problem
+
+__all__ = ["LinearSolve", "contact_solve", "shifted_preconditioner"]
+
+
+@dataclass(frozen=True, eq=False)
+class LinearSolve:
+    """Solution of one contact-set system.
+
+    Attributes
+    ----------
+    x
+        Values on the contact set ``B``.
+    multiplier
+        ``λ``, the increment of the mean separation [mm].
+    iterations
+        GMRES iterations (1 for a dense solve).
+    residual
+        Relative residual of GMRES (0 for a dense solve).
+    """
+
+    x: np.ndarray
+    multiplier: float
+    iterations: int
+    residual: float
+
+
+def shifted_preconditioner(prob: Problem, c: np.ndarray, contact: np.ndarray) -> np.ndarray:
+    """Stiffness kernel ``1/(M + c̄)`` with ``c̄`` the median of ``c`` on the ``contact`` points
+    (all points when none is), Hermitian part only unless the options say otherwise."""
+    cbar = float(np.median(c[contact])) if contact.any() else float(np.median(c))
+    return kn.stiffness_kernel(prob.compliance, cbar,
+                               hermitian=not prob.options.complex_preconditioner)
+
+
+def _shift_weights(c: np.ndarray, shifts: np.ndarray) -> np.ndarray:
+    """Weights (``len(shifts)`` × ``c.size``) interpolating linearly in ``log c`` between shifts."""
+    lc = np.log(np.clip(c, shifts[0], shifts[-1]))
+    ls = np.log(shifts)
+    j = np.clip(np.searchsorted(ls, lc) - 1, 0, shifts.size - 2)
+    t = (lc - ls[j]) / (ls[j + 1] - ls[j])
+    weights = np.zeros((shifts.size, c.size))
+    cols = np.arange(c.size)
+    weights[j, cols] = 1.0 - t
+    weights[j + 1, cols] += t
+    return weights
+
+
+def _solve_dense(prob: Problem, idx: np.ndarray, rhs: np.ndarray, total: float,
+                 c: np.ndarray | None) -> LinearSolve:
+    """Direct solve of the contact-set system on a small 1D grid (bordered dense system)."""
+    nb = idx.size
+    a = np.empty((nb + 1, nb + 1))
+    a[:nb, :nb] = prob.dense()[np.ix_(idx, idx)]
+    if c is not None:
+        a[np.arange(nb), np.arange(nb)] += c
+    a[:nb, nb] = 1.0
+    a[nb, :nb] = 1.0
+    a[nb, nb] = 0.0
+    sol = np.linalg.solve(a, np.append(rhs, total))
+    prob.matvecs += 1
+    return LinearSolve(sol[:nb], float(sol[nb]), 1, 0.0)
+
+
+def _to_hermitian(kernels: list[np.ndarray]) -> None:
+    """Replace each stiffness kernel ``1/(M + s)`` by ``1/Re(M + s)`` in place."""
+    for i, kern in enumerate(kernels):
+        nz = kern != 0
+        safe = np.zeros(kern.shape)
+        safe[nz] = 1.0 / np.real(1.0 / kern[nz])
+        kernels[i] = safe
+
+
+def contact_solve(prob: Problem, idx: np.ndarray, rhs: np.ndarray, total: float,
+                  precond: np.ndarray, c: np.ndarray | None = None,
+                  x0: np.ndarray | None = None, rtol: float = 1e-10,
+                  extra_diag: np.ndarray | None = None,
+                  multi_shift: bool = False) -> LinearSolve:
+    """Solve ``(M x)_B + c x + λ = rhs``, ``Σ x = total`` on the flat indices ``idx``.
+
+    ``precond`` is the stiffness kernel used as preconditioner; ``extra_diag`` (optional, bool
+    on B) marks points preconditioned by the diagonal ``1/(c + m_diag)`` instead.
+    ``multi_shift``: when many points have ``c`` well above the kernel's shift ``c̄`` (the
+    median of ``c``; a steep law's contact edges), the preconditioner becomes the
+    variable-coefficient stiffness ``1/(M(q) + c(x))``, interpolated in ``log c`` between
+    the kernels for the shifts ``c̄, √(c̄ m_d), m_d`` (one forward and three inverse FFTs).
+    """
+    nb = idx.size
+    opts = prob.options
+    if len(prob.shape) == 1 and prob.size <= opts.dense_max_points:
+        return _solve_dense(prob, idx, rhs, total, c)
+    buf = np.zeros(prob.size)
+    m_diag = prob.compliance_diagonal
+
+    def op(v):
+        buf[idx] = v
+        out = prob.apply(prob.compliance, buf)[idx]
+        buf[idx] = 0.0
+        if c is not None:
+            out += c * v
+        return out - out.mean()
+
+    if extra_diag is not None and extra_diag.any():
+        cont = ~extra_diag
+        dinv = 1.0 / (c[extra_diag] + m_diag)
+        idc = idx[cont]
+    else:
+        cont = None
+        idc = idx
+    kernels = [precond]
+    weights = None
+    if multi_shift and c is not None:
+        cc = c if cont is None else c[cont]
+        cbar = float(np.median(cc)) if cc.size else m_diag
+        if cbar < 0.01 * m_diag and \
+                np.count_nonzero(cc > 10.0 * cbar) >= opts.multi_shift_min_points:
+            shifts = np.geomspace(cbar, m_diag, 3)
+            herm = not np.iscomplexobj(precond)
+            kernels = [kn.stiffness_kernel(prob.compliance, sh, hermitian=herm)
+                       for sh in shifts]
+            weights = _shift_weights(cc, shifts)
+
+    def pre(v):
+        v = v - v.mean()
+        buf[idc] = v if cont is None else v[cont]
+        if weights is None:
+            pc = prob.apply(kernels[0], buf)[idc]
+        else:
+            prob.matvecs += len(kernels)
+            spec = kn.forward(buf.reshape(prob.shape))
+            pc = weights[0] * kn.inverse(spec * kernels[0], prob.shape).ravel()[idc]
+            for kern, wgt in zip(kernels[1:], weights[1:], strict=True):
+                pc += wgt * kn.inverse(spec * kern, prob.shape).ravel()[idc]
+        buf[idc] = 0.0
+        if cont is None:
+            out = pc
+        else:
+            out = np.empty_like(v)
+            out[cont] = pc
+            out[extra_diag] = dinv * v[extra_diag]
+        return out - out.mean()
+
+    base = np.full(nb, total / nb)
+    b = rhs - (op(base) + 0.0)  # op already removes the mean; rhs mean is irrelevant (λ)
+    b = b - b.mean()
+    y0 = None if x0 is None else (x0 - x0.mean())
+    if np.iscomplexobj(precond):
+        sol = gmres(op, pre, b, x0=y0, rtol=rtol, maxiter=opts.complex_preconditioner_maxiter)
+        its = sol.iterations
+        if sol.residual > rtol:
+            # the inverse of the full complex M is not guaranteed to keep the preconditioned
+            # restricted operator positive definite: fall back to the Hermitian part's inverse
+            _to_hermitian(kernels)
+            sol = gmres(op, pre, b, x0=sol.x, rtol=rtol)
+            its += sol.iterations
+    else:
+        sol = gmres(op, pre, b, x0=y0, rtol=rtol)
+        its = sol.iterations
+    x = base + sol.x
+    buf[idx] = x
+    mx = prob.apply(prob.compliance, buf)[idx]
+    buf[idx] = 0.0
+    res = rhs - mx - (0.0 if c is None else c * x)
+    return LinearSolve(x, float(res.mean()), its, sol.residual)

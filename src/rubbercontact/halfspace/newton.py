@@ -1,0 +1,266 @@
+r"""Newton's method for a local interaction law ``σ = f(u)`` (paper eq. 24).
+
+*Newton* on ``r(σ, ū) = σ − f(ū + Mσ − z)`` with the mean pressure imposed exactly. The Newton
+system ``(I + D M) δσ + D δū = −r`` (``D = diag k``, ``k = −f'``) is multiplied by
+``D⁻¹ = diag c`` on the points where the law is stiff, which turns it into the contact-set form
+of :mod:`~rubbercontact.halfspace.contact_set` (so the same preconditioner applies); where ``k``
+is negligible the update is explicit (``δσ = f(u) − σ``). Inexact Newton: GMRES to
+``0.1 √(|r|/|σ|)`` (capped at 1e-2; fewer GMRES iterations than ``1e-3 |r|/|σ|`` for the same
+Newton steps). Backtracking (Armijo) line search on ``|W r|₂`` with ``W = 1/(k + 1/m_d)``
+(``m_d`` the diagonal of ``M``), i.e. the residual converted to a displacement, frozen during
+the search so the Newton direction is a descent direction. Initial guess for a single law: the
+exact hard-wall solution, with ``ū`` shifted so that ``<f(u)> = σ0``; without it Newton on the
+``u⁻⁹`` wall of the Lennard-Jones law overshoots into huge pressures and stalls (observed, even
+with continuation in the wall stiffness). Converged when ``|r|₂/|σ|₂ <= tol``.
+
+*Mixed Newton for the Lennard-Jones wall alone* (``options.mixed_newton``). Linearising the
+steep ``f`` at the current ``u`` moves a point by at most ``u/9`` per step when ``u`` is too
+small (``f`` convex), and the points just outside the hard-wall contact, which carry a small
+pressure with the law, took many Newton steps to settle. Every row ``σ_i = f(u_i)`` may be
+linearised at any point of the curve ``σ = f(u)`` (the iteration is still Newton's once the
+state is consistent): where ``σ_i`` or ``f(u_i)`` is in the contact range (above ``f(2ℓ)``) the
+tangent is taken at the geometric mean ``σ̃ = √(σ_i f(u_i))`` (both clipped below at
+``f(2ℓ)``) of the inverse law ``u = g(σ) = ℓ (p_ref/σ)^(1/9)``; this gives the same linear
+system with ``c = −g'(σ̃)`` and right-hand side ``g(σ̃) − c (σ − σ̃) − u``. The tangent at
+``σ_i`` alone (pure inverse form) converges as slowly from the other side (points whose pressure
+is too small); the geometric mean was the best of those tried. GMRES forcing ``0.3 |r|/|σ|``
+(capped at 1e-2). Same line search and stopping test; if it fails, the plain Newton runs from
+the same start (never observed). μ, contact fraction and ``ū`` agree with the plain Newton
+(tested); steps, GMRES iterations and timings are measured in ``benchmarks/halfspace.md``.
+"""
+
+from __future__ import annotations
+
+from dataclasses import dataclass, replace
+
+import numpy as np
+
+from .contact_set import contact_solve, shifted_preconditioner
+from .laws import InteractionLaw, LennardJonesRepulsion
+from .problem import Problem, Solution
+
+__all__ = ["InverseWall", "newton_from", "newton_law", "shift_for_law", "solve_single_law"]
+
+
+def shift_for_law(law: InteractionLaw, u: np.ndarray, sigma0: float) -> float:
+    """Scalar ``s`` with ``<f(u + s)> = σ0`` (bisection; ``f`` non-increasing)."""
+    def mean_p(s):
+        return float(np.mean(law.pressure(u + s)))
+    span = float(np.ptp(u)) + 1e-12
+    lo, hi = -span, span
+    while mean_p(lo) < sigma0:
+        lo -= 2 * (hi - lo)
+        if lo < -1e6 * span:
+            break
+    while mean_p(hi) > sigma0:
+        hi += 2 * (hi - lo)
+        if hi > 1e6 * span:
+            break
+    for _ in range(200):
+        mid = 0.5 * (lo + hi)
+        if mean_p(mid) > sigma0:
+            lo = mid
+        else:
+            hi = mid
+        if hi - lo <= 1e-15 * (abs(mid) + span):
+            break
+    return 0.5 * (lo + hi)
+
+
+def _newton_rtol(tol: float, res: float, loose: bool = True, mixed: bool = False) -> float:
+    """GMRES tolerance of a Newton step.
+
+    ``loose``: ``0.1 √res`` capped at 1e-2 (inexact Newton, superlinear). Otherwise
+    ``1e-3 res`` capped at 1e-3: the continuation fallback needs it (with the loose forcing a
+    continuation stage was observed to stall). ``mixed`` (the inverse-law Newton, quadratic
+    from its second step): ``0.3 res`` capped at 1e-2 (``0.1 √res`` stops one step short of
+    ``tol``). Measured in ``benchmarks/halfspace.md``.
+    """
+    if mixed:
+        return min(1e-2, max(tol, 0.3 * res))
+    if loose:
+        return min(1e-2, max(tol, 0.1 * np.sqrt(res)))
+    return min(1e-3, max(tol, 1e-3 * res))
+
+
+@dataclass(frozen=True)
+class InverseWall:
+    """Inverse ``g = f⁻¹`` of a Lennard-Jones wall ``f(u) = p_ref (ℓ/u)⁹`` and ``c = −g'``.
+
+    ``g(σ) = ℓ (p_ref/σ)^(1/9)`` up to ``σ = 4⁹ p_ref``, linear beyond (the law's own linear
+    continuation below ``u = ℓ/4``); ``g = +∞`` for ``σ <= 0``. ``c(σ) = 1/k(g(σ))``.
+
+    Attributes
+    ----------
+    length, reference_pressure
+        ``ℓ`` [mm] and ``p_ref`` [MPa] of the resolved law.
+    """
+
+    length: float
+    reference_pressure: float
+
+    @property
+    def threshold(self) -> float:
+        """``f(2ℓ)`` [MPa]: rows with ``σ`` or ``f(u)`` above it are solved in inverse form."""
+        return self.reference_pressure / 512.0
+
+    @property
+    def u_min(self) -> float:
+        """``ℓ/4`` [mm]: the law is linear below."""
+        return 0.25 * self.length
+
+    @property
+    def s_min(self) -> float:
+        """``f(ℓ/4) = 4⁹ p_ref`` [MPa]."""
+        return self.reference_pressure * 4.0**9
+
+    @property
+    def k_min(self) -> float:
+        """Stiffness of the linear piece [MPa/mm]."""
+        return 9.0 * self.s_min / self.u_min
+
+    def separation(self, sig: np.ndarray) -> np.ndarray:
+        """``g(σ)`` [mm]."""
+        s_min = self.s_min
+        pos = np.maximum(sig, 1e-300)
+        u = np.where(sig <= s_min, self.length * (self.reference_pressure / pos) ** (1.0 / 9.0),
+                     self.u_min - (sig - s_min) / self.k_min)
+        return np.where(sig > 0, u, np.inf)
+
+    def compliance(self, sig: np.ndarray, u: np.ndarray) -> np.ndarray:
+        """``c = 1/k(u)`` at ``u = g(σ)``: ``k = 9σ/u`` on the power law, ``k_min`` beyond."""
+        return np.where(sig <= self.s_min, u / (9.0 * np.maximum(sig, 1e-300)),
+                        1.0 / self.k_min)
+
+
+def lj_inverse(law: InteractionLaw) -> InverseWall | None:
+    """The :class:`InverseWall` of a resolved Lennard-Jones wall, ``None`` for other laws."""
+    if not isinstance(law, LennardJonesRepulsion) or law.length is None \
+            or law.reference_pressure is None:
+        return None
+    return InverseWall(float(law.length), float(law.reference_pressure))
+
+
+def newton_law(prob: Problem, law: InteractionLaw, tol: float, max_iter: int,
+               sigma: np.ndarray, ubar: float, loose: bool = True,
+               inverse: InverseWall | None = None) -> Solution:
+    """Newton on ``σ = f(ū + Mσ − z)``, ``<σ> = σ0`` from ``(σ, ū)``; see the module docstring.
+
+    ``inverse`` (from :func:`lj_inverse`) switches the rows in the contact range to the
+    inverse form ``u = g(σ)`` (mixed Newton): same linear system (``c = −g'(σ)``), but the
+    nearly linear ``g`` is linearised instead of the steep ``f``.
+    """
+    n = prob.size
+    z = prob.z
+    m_diag = prob.compliance_diagonal
+    w = prob.displacement(sigma)
+    u = ubar + w - z
+    f = law.pressure(u)
+    r = sigma - f
+    snorm = float(np.linalg.norm(sigma)) or 1.0
+    rnorm = float(np.linalg.norm(r))
+    history = [rnorm / snorm]
+    lin_its = 0
+    it = 0
+    steps = []
+    for it in range(1, max_iter + 1):
+        if rnorm <= tol * snorm:
+            it -= 1
+            break
+        k = law.stiffness(u)
+        if inverse is not None:
+            # rows where σ or f(u) is in the contact range: tangent of g at σ̃ = max(σ, σ_c)
+            s_c = inverse.threshold
+            inv = np.maximum(sigma, f) > s_c
+            s_lin = np.sqrt(np.maximum(sigma[inv], s_c) * np.maximum(f[inv], s_c))
+            g_s = inverse.separation(s_lin)
+            c_inv = inverse.compliance(s_lin, g_s)
+            g_s = g_s - c_inv * (sigma[inv] - s_lin)
+            k_inv = k.copy()
+            k_inv[inv] = 1.0 / c_inv
+        else:
+            inv = None
+            k_inv = k
+        # points where the law is stiff enough to matter enter the linear system
+        stiff = k_inv * m_diag > 1e-8
+        if inv is not None:
+            stiff |= inv
+        idx = np.flatnonzero(stiff)
+        dsig = np.zeros(n)
+        free = ~stiff
+        dsig[free] = f[free] - sigma[free]  # k ≈ 0: explicit update
+        total = prob.sigma0 * n - sigma.sum() - dsig[free].sum()
+        if idx.size:
+            c = 1.0 / k_inv[idx]
+            w_free = prob.displacement(dsig) if free.any() else np.zeros(n)
+            rhs = c * (f[idx] - sigma[idx])
+            if inv is not None:
+                # inverse rows: u + δu = g(σ) − c δσ  →  (M + c) δσ + δū = g(σ) − u
+                rhs[inv[idx]] = g_s - u[inv]
+            rhs -= w_free[idx]
+            contact = c < m_diag
+            lin = contact_solve(prob, idx, rhs, total, shifted_preconditioner(prob, c, contact),
+                                c=c, rtol=_newton_rtol(tol, rnorm / snorm, loose,
+                                                       inverse is not None),
+                                extra_diag=~contact, multi_shift=prob.options.multi_shift)
+            lin_its += lin.iterations
+            dsig[idx] = lin.x
+            dubar = lin.multiplier
+        else:
+            dsig[free] += total / n
+            dubar = 0.0
+        dw = prob.displacement(dsig)
+        du = dubar + dw
+        # merit: residual weighted to a displacement, W = 1/(k + 1/m_diag), frozen during the
+        # line search so the Newton direction is a descent direction of |W r|
+        wgt = 1.0 / (k + 1.0 / m_diag)
+        phi0 = float(np.linalg.norm(wgt * r))
+        t = 1.0
+        for _ in range(40):
+            s_t = sigma + t * dsig
+            u_t = u + t * du
+            f_t = law.pressure(u_t)
+            r_t = s_t - f_t
+            if float(np.linalg.norm(wgt * r_t)) <= (1 - 1e-4 * t) * phi0:
+                break
+            t *= 0.5
+        else:
+            break  # no decrease: stop, reported as not converged
+        steps.append(t)
+        rn_t = float(np.linalg.norm(r_t))
+        sigma, ubar, u, w, f, r, rnorm = s_t, ubar + t * dubar, u_t, w + t * dw, f_t, r_t, rn_t
+        snorm = float(np.linalg.norm(sigma)) or 1.0
+        history.append(rnorm / snorm)
+    res = rnorm / snorm
+    return Solution(sigma, u, w, ubar, it, res, res <= tol,
+                    {"linear_iterations": lin_its, "history": history, "steps": steps})
+
+
+def newton_from(prob: Problem, law: InteractionLaw, start: Solution, tol: float,
+                max_iter: int, loose: bool, mixed: bool) -> Solution:
+    """Newton on ``law`` from the pressure of ``start``, ``ū`` shifted so ``<f(u)> = σ0``.
+
+    ``mixed``: the inverse-law rows for a Lennard-Jones wall (no effect for other laws).
+    """
+    shift = shift_for_law(law, start.w - prob.z, prob.sigma0)
+    return newton_law(prob, law, tol, max_iter, start.sigma, shift, loose=loose,
+                      inverse=lj_inverse(law) if mixed else None)
+
+
+def solve_single_law(prob: Problem, law: InteractionLaw, tol: float, max_iter: int,
+                     hard_wall: Solution) -> Solution:
+    """A law without a wall + soft split: Newton from the hard-wall solution.
+
+    For a Lennard-Jones wall the mixed Newton (if the options allow it), with the plain Newton
+    from the same start as a safety net.
+    """
+    mixed = prob.options.mixed_newton
+    out = newton_from(prob, law, hard_wall, tol, max_iter, loose=True, mixed=mixed)
+    if not out.converged and mixed and lj_inverse(law) is not None:
+        # safety net (not observed): the plain Newton from the same hard-wall start
+        failed = out
+        out = newton_from(prob, law, hard_wall, tol, max_iter, loose=True, mixed=False)
+        out = replace(out, iterations=out.iterations + failed.iterations,
+                      info={**out.info, "mixed_newton_failed": {
+                          "iterations": failed.iterations, "residual": failed.residual}})
+    return replace(out, info={**out.info, "continuation": [1.0]})

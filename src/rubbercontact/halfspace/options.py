@@ -1,0 +1,88 @@
+"""Algorithm switches of the half-space solver, in one frozen options object.
+
+The defaults are the fastest paths; each is tested against the plain path it replaces
+(``tests/test_halfspace*.py``), and the other settings exist for those comparisons and for the
+benchmarks (``benchmarks/bench_halfspace.py``, figures in ``benchmarks/halfspace.md``).
+"""
+
+from __future__ import annotations
+
+import numbers
+from dataclasses import dataclass, fields
+
+from ..errors import InputError
+
+__all__ = ["SolverOptions"]
+
+#: Grids are coarsened by this factor per level of the multilevel starts.
+COARSE_FACTOR = 4
+
+
+@dataclass(frozen=True)
+class SolverOptions:
+    """Algorithm switches of :func:`~rubbercontact.halfspace.solve_sliding`.
+
+    Attributes
+    ----------
+    complex_preconditioner : bool, default True
+        Precondition the contact-set systems by the stiffness ``1/(M + c̄)`` of the full
+        complex compliance; ``False``: ``1/(Re M + c̄)`` of its Hermitian part.
+    complex_preconditioner_maxiter : int, default 150
+        GMRES iterations allowed with the complex preconditioner before the Hermitian one
+        takes over.
+    multi_shift : bool, default True
+        In the Newton systems of a law, the variable-coefficient preconditioner
+        ``1/(M(q) + c(x))`` (interpolated between three shifts) once enough points are stiff.
+    multi_shift_min_points : int, default 32
+        Points with ``c > 10 c̄`` needed before the multi-shift preconditioner is used.
+    dense_max_points : int, default 256
+        1D grids of at most this many points solve the contact-set systems directly (dense
+        bordered matrix); 0: GMRES on every grid.
+    coarse_min_points : int or None, default 256
+        Smallest grid of the coarse-grid start of the viscoelastic hard wall: a 1D grid of
+        ``N >= 4 × coarse_min_points`` points, ``N`` divisible by 4, starts from the solution
+        on every 4th point (recursively). ``None``: no coarse-grid start.
+    coarse_polish_updates : int, default 16
+        Active-set updates allowed to polish an interpolated coarse-grid hard-wall solution.
+    mixed_newton : bool, default True
+        Lennard-Jones wall alone: rows in contact linearised on the inverse law (mixed
+        Newton); ``False``: plain Newton on ``σ = f(u)``.
+    wall_soft_active_set : bool, default True
+        Lennard-Jones wall + soft law: solve "hard wall + soft law" by the semismooth
+        active-set Newton first; ``False``: only the continuation ``wall + s·soft``, ``s: 0 → 1``.
+    wall_soft_coarse_min_points : int or None, default 256
+        As ``coarse_min_points``, for the hard wall + soft law stage.
+    wall_soft_linear_rtol : float, default 1e-3
+        GMRES tolerance of one step of the hard wall + soft law active-set Newton.
+    """
+
+    complex_preconditioner: bool = True
+    complex_preconditioner_maxiter: int = 150
+    multi_shift: bool = True
+    multi_shift_min_points: int = 32
+    dense_max_points: int = 256
+    coarse_min_points: int | None = 256
+    coarse_polish_updates: int = 16
+    mixed_newton: bool = True
+    wall_soft_active_set: bool = True
+    wall_soft_coarse_min_points: int | None = 256
+    wall_soft_linear_rtol: float = 1e-3
+
+    def __post_init__(self) -> None:
+        for f in fields(self):
+            value = getattr(self, f.name)
+            name = f"options.{f.name}"
+            if f.type == "bool":
+                if not isinstance(value, bool):
+                    raise InputError(f"{name}: expected True or False, got {value!r}")
+            elif f.type == "float":
+                if isinstance(value, bool) or not isinstance(value, numbers.Real) \
+                        or not 0.0 < value < 1.0:
+                    raise InputError(f"{name}: expected a number in (0, 1), got {value!r}")
+            elif value is not None or "None" not in f.type:
+                smallest = 0 if f.name == "dense_max_points" else 1
+                if isinstance(value, bool) or not isinstance(value, numbers.Integral) \
+                        or value < smallest:
+                    allowed = " or None" if "None" in f.type else ""
+                    raise InputError(f"{name}: expected an integer >= {smallest}{allowed}, "
+                                     f"got {value!r}")

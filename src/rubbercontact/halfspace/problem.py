@@ -1,0 +1,208 @@
+"""The discretised half-space problem: grid, heights, compliance and its operators.
+
+A periodic surface is sampled on a uniform grid (1D ``(n,)`` or 2D ``(ny, nx)``, sliding along
+the last axis ``x``). Every operator is applied with one ``rfftn``/``irfftn`` pair on a
+precomputed kernel (:mod:`~rubbercontact.halfspace.kernels`); :class:`Problem` counts these
+applications (``matvecs``). The multilevel starts use the same problem on every 4th point of a
+1D grid: same period, and the first ``n/8 + 1`` wavenumbers of the fine rfft grid, hence the
+same ``M(q)`` there. Every algorithm returns a :class:`Solution`.
+"""
+
+from __future__ import annotations
+
+from dataclasses import dataclass, field
+
+import numpy as np
+
+from .._validation import finite_array, positive_scalar
+from ..errors import InputError
+from ..roughness.sines import SineSeries
+from . import kernels as kn
+from .options import COARSE_FACTOR, SolverOptions
+
+__all__ = ["MIN_POINTS", "Grid", "Problem", "Solution", "sample_surface"]
+
+#: Smallest number of grid points per axis accepted.
+MIN_POINTS = 8
+#: Relative tolerance for "period is a multiple of every wavelength".
+_PERIOD_RTOL = 1e-9
+
+
+@dataclass(frozen=True, eq=False)
+class Grid:
+    """A surface sampled on the solver's grid.
+
+    Attributes
+    ----------
+    shape, lengths
+        Grid shape and periodic lengths [mm] per axis (``x`` last).
+    heights
+        ``z`` [mm] on the grid (the mean of a sampled surface removed).
+    slope
+        Exact ``∂z/∂x`` on the grid (analytic for a SineSeries, spectral otherwise).
+    x, y
+        Coordinates [mm] (``y`` is ``None`` in 1D).
+    """
+
+    shape: tuple[int, ...]
+    lengths: tuple[float, ...]
+    heights: np.ndarray
+    slope: np.ndarray
+    x: np.ndarray
+    y: np.ndarray | None
+
+
+@dataclass(frozen=True, eq=False)
+class Solution:
+    """What every algorithm returns: a state on the (flat) grid and how it was reached.
+
+    Attributes
+    ----------
+    sigma, u, w
+        Pressure [MPa], separation ``u = ū + w − z`` [mm] and displacement [mm], flat.
+    ubar
+        The mean-separation unknown [mm] (the multiplier of ``<σ> = σ0``; restarts use it).
+    iterations
+        Outer iterations of the algorithm (and of the stages before it).
+    residual
+        Final residual (per algorithm, see its docstring).
+    converged
+        Whether the tolerance was met.
+    info
+        Diagnostics (iteration histories, stage counts); ends up in ``SlidingResult.info``.
+    """
+
+    sigma: np.ndarray
+    u: np.ndarray
+    w: np.ndarray
+    ubar: float
+    iterations: int
+    residual: float
+    converged: bool
+    info: dict = field(default_factory=dict)
+
+
+@dataclass(eq=False)
+class Problem:
+    """One discretised contact problem (flat arrays) with its FFT operators.
+
+    Mutable only in its counter ``matvecs`` (FFT-pair operator applications) and caches.
+    """
+
+    shape: tuple[int, ...]
+    lengths: tuple[float, ...]
+    z: np.ndarray  # flat, zero mean
+    slope: np.ndarray  # flat dz/dx (exact)
+    compliance: np.ndarray  # M on the rfft half-grid
+    sigma0: float
+    options: SolverOptions
+    matvecs: int = 0
+    _pre: np.ndarray | None = None
+    _dense: np.ndarray | None = None
+
+    @property
+    def size(self) -> int:
+        return int(np.prod(self.shape))
+
+    @property
+    def compliance_diagonal(self) -> float:
+        """``m_d``: the diagonal of ``M`` in real space [mm/MPa]."""
+        return float(np.real(self.compliance).sum() * 2 / self.size)
+
+    def apply(self, kernel: np.ndarray, flat: np.ndarray) -> np.ndarray:
+        self.matvecs += 1
+        return kn.apply_kernel(kernel, flat.reshape(self.shape)).ravel()
+
+    def displacement(self, sigma: np.ndarray) -> np.ndarray:
+        return self.apply(self.compliance, sigma)
+
+    def dense(self) -> np.ndarray:
+        """Dense (circulant) matrix of ``M`` on a 1D grid (cached; small grids only)."""
+        if self._dense is None:
+            col = kn.inverse(self.compliance, self.shape)  # response to a unit pressure at 0
+            i = np.arange(self.size)
+            self._dense = col[(i[:, None] - i[None, :]) % self.size]
+        return self._dense
+
+    def preconditioner(self) -> np.ndarray:
+        """Hard-wall preconditioner kernel ``1/M`` (or ``1/Re M``, see the options; cached)."""
+        if self._pre is None:
+            self._pre = kn.stiffness_kernel(self.compliance,
+                                            hermitian=not self.options.complex_preconditioner)
+        return self._pre
+
+    def with_compliance(self, compliance: np.ndarray) -> Problem:
+        """The same surface and load with another compliance kernel (e.g. ``Re M``)."""
+        return Problem(self.shape, self.lengths, self.z, self.slope, compliance, self.sigma0,
+                       self.options)
+
+    def can_coarsen(self, min_points: int | None) -> bool:
+        """Whether a multilevel start applies: 1D, ``N`` divisible by 4, ``N/4 >= min_points``."""
+        n = self.size
+        return (min_points is not None and len(self.shape) == 1 and n % COARSE_FACTOR == 0
+                and n // COARSE_FACTOR >= min_points)
+
+    def coarse(self) -> Problem:
+        """The same 1D problem on every 4th grid point (same period, same kernel)."""
+        nc = self.size // COARSE_FACTOR
+        # the coarse rfft grid holds the first nc/2 + 1 wavenumbers of the fine one: same M(q)
+        zc = self.z[::COARSE_FACTOR]
+        return Problem((nc,), self.lengths, zc - zc.mean(), self.slope[::COARSE_FACTOR],
+                       self.compliance[:nc // 2 + 1].copy(), self.sigma0, self.options)
+
+    def refine(self, coarse_sigma: np.ndarray) -> np.ndarray:
+        """A pressure of :meth:`coarse` interpolated (periodic, linear), ``<σ> = σ0`` restored."""
+        n = self.size
+        sigma = np.interp(np.arange(n), np.arange(n // COARSE_FACTOR) * COARSE_FACTOR,
+                          coarse_sigma, period=n)
+        sigma *= self.sigma0 * n / sigma.sum()
+        return sigma
+
+
+def _commensurate(name: str, period: float, wavelengths: np.ndarray) -> None:
+    ratio = period / wavelengths
+    bad = np.abs(ratio - np.round(ratio)) > _PERIOD_RTOL * np.maximum(ratio, 1)
+    if np.any(bad) or np.any(np.round(ratio) < 1):
+        offending = (wavelengths[bad] if np.any(bad) else wavelengths).tolist()
+        raise InputError(f"{name}: non-periodic length mismatch: period {period} mm is not an "
+                         f"integer multiple of the wavelengths {offending} mm")
+
+
+def sample_surface(surface, period, n: int) -> Grid:
+    """Sample a SineSeries on ``n`` points, or check sampled heights; see ``solve_sliding``."""
+    if isinstance(surface, SineSeries):
+        if surface.size == 0:
+            raise InputError("surface: empty SineSeries")
+        if int(n) != n or n < MIN_POINTS:
+            raise InputError(f"n: number of grid points must be an integer >= {MIN_POINTS}, "
+                             f"got {n}")
+        n = int(n)
+        length = surface.period if period is None else positive_scalar("period", period,
+                                                                       unit="mm")
+        _commensurate("period", length, surface.wavelengths)
+        # need at least 4 points per shortest wavelength to resolve its slope
+        if n * surface.wavelengths[0] / length < 4:
+            raise InputError(f"n: {n} points over {length} mm give fewer than 4 points per "
+                             f"shortest wavelength {surface.wavelengths[0]} mm")
+        x = np.arange(n) * (length / n)
+        return Grid((n,), (length,), surface.heights(x), surface.slopes(x), x, None)
+    z = finite_array("surface", surface, ndim=(1, 2), min_size=MIN_POINTS)
+    if min(z.shape) < MIN_POINTS:
+        raise InputError(f"surface: needs at least {MIN_POINTS} points per axis, got {z.shape}")
+    if period is None:
+        raise InputError("period: required for a sampled surface (length of the x axis [mm], "
+                         "or (Ly, Lx) for a 2D map)")
+    if z.ndim == 1:
+        lengths = (positive_scalar("period", period, unit="mm"),)
+    elif np.ndim(period) == 0:
+        lx = positive_scalar("period", period, unit="mm")
+        lengths = (lx * z.shape[0] / z.shape[1], lx)  # square pixels
+    else:
+        per = finite_array("period", period, ndim=1)
+        if per.size != 2 or np.any(per <= 0):
+            raise InputError(f"period: expected (Ly, Lx) > 0 for a 2D map, got {period}")
+        lengths = (float(per[0]), float(per[1]))
+    zx = kn.derivative_x(z, lengths[-1])
+    x = np.arange(z.shape[-1]) * (lengths[-1] / z.shape[-1])
+    y = np.arange(z.shape[0]) * (lengths[0] / z.shape[0]) if z.ndim == 2 else None
+    return Grid(z.shape, lengths, z - z.mean(), zx, x, y)
