@@ -9,14 +9,20 @@ in rad/s. The complex modulus follows the engineering convention
 from __future__ import annotations
 
 import csv
+import numbers
 import tomllib
+from collections.abc import Mapping
 from dataclasses import dataclass, field
 from pathlib import Path
+from types import MappingProxyType
 
 import numpy as np
 
 from .._validation import finite_array, positive_scalar
 from ..errors import InputError
+from .shift import ZERO_CELSIUS, ShiftLaw, shift_law_from_dict
+
+_TOML_KEYS = {"equilibrium_modulus", "moduli", "relaxation_times", "name", "shift", "provenance"}
 
 
 @dataclass(frozen=True)
@@ -33,18 +39,31 @@ class GeneralizedMaxwell:
         Branch relaxation times ``τ_i`` [s], each > 0 and distinct.
     name
         Label used in results and plots.
+    shift
+        Optional time–temperature shift law (:class:`~rubbercontact.materials.WLF` or
+        :class:`~rubbercontact.materials.Arrhenius`, or its ``as_dict()`` form) whose
+        ``t_ref`` is the temperature this series describes; lets :meth:`at_temperature`
+        work without ``shift=``.
+    provenance
+        Optional plain data (strings, numbers, booleans, lists, tables) saying where the
+        series came from: source file, fit report, ... (see
+        :func:`~rubbercontact.materials.fit_prony`). Stored read-only; not part of equality.
 
     Notes
     -----
     ``E(ω) = E_∞ + Σ_i E_i · iωτ_i / (1 + iωτ_i)``;
     relaxation modulus ``E(t) = E_∞ + Σ_i E_i exp(−t/τ_i)``.
     An empty series is a purely elastic material.
+    :meth:`as_dict` holds ``shift`` and ``provenance`` only when they are set, so a material
+    without them has the same plain-data form (and cache keys) as before they existed.
     """
 
     equilibrium_modulus: float
     moduli: np.ndarray = field(default_factory=lambda: np.zeros(0))
     relaxation_times: np.ndarray = field(default_factory=lambda: np.zeros(0))
     name: str = "generalized Maxwell"
+    shift: ShiftLaw | None = None
+    provenance: Mapping | None = None
 
     def __post_init__(self) -> None:
         e_inf = positive_scalar("equilibrium_modulus", self.equilibrium_modulus, unit="MPa")
@@ -63,6 +82,13 @@ class GeneralizedMaxwell:
                              "equal times into one")
         moduli.setflags(write=False)
         times.setflags(write=False)
+        if self.shift is not None:
+            object.__setattr__(self, "shift", shift_law_from_dict(self.shift))
+        if self.provenance is not None:
+            if not isinstance(self.provenance, Mapping):
+                raise InputError(f"provenance: expected a table (dict), got "
+                                 f"{type(self.provenance).__name__}")
+            object.__setattr__(self, "provenance", _freeze("provenance", self.provenance))
         object.__setattr__(self, "equilibrium_modulus", e_inf)
         object.__setattr__(self, "moduli", moduli)
         object.__setattr__(self, "relaxation_times", times)
@@ -78,7 +104,9 @@ class GeneralizedMaxwell:
         """Read a Prony table from TOML or CSV.
 
         TOML: ``equilibrium_modulus = 4.17`` and ``moduli = [...]``,
-        ``relaxation_times = [...]`` (optionally ``name``).
+        ``relaxation_times = [...]`` (optionally ``name``, a ``[shift]`` table such as
+        ``law = "WLF"``, ``c1``, ``c2``, ``t_ref``, and a ``[provenance]`` table), as
+        :meth:`to_toml` writes it.
         CSV: two columns ``modulus, relaxation_time`` with an optional header; the
         row whose relaxation time is empty, ``inf`` or ``-`` is the equilibrium spring.
         """
@@ -90,14 +118,36 @@ class GeneralizedMaxwell:
                 data = tomllib.loads(path.read_text())
             except (tomllib.TOMLDecodeError, UnicodeDecodeError) as exc:
                 raise InputError(f"material file {path}: not valid TOML ({exc})") from None
-            unknown = set(data) - {"equilibrium_modulus", "moduli", "relaxation_times", "name"}
+            unknown = set(data) - _TOML_KEYS
             if unknown:
                 raise InputError(f"material file {path}: unknown key(s) {sorted(unknown)}")
             if "equilibrium_modulus" not in data:
                 raise InputError(f"material file {path}: missing key 'equilibrium_modulus'")
-            return cls(data["equilibrium_modulus"], data.get("moduli", []),
-                       data.get("relaxation_times", []), name=data.get("name", path.stem))
+            try:
+                return cls(data["equilibrium_modulus"], data.get("moduli", []),
+                           data.get("relaxation_times", []), name=data.get("name", path.stem),
+                           shift=data.get("shift"), provenance=data.get("provenance"))
+            except InputError as exc:
+                raise InputError(f"material file {path}: {exc}") from None
         return cls._from_csv(path)
+
+    def to_toml(self, path: str | Path) -> Path:
+        """Write the series (with its shift law and provenance) to a TOML file.
+
+        :meth:`from_file` reads it back to a material with the same :meth:`as_dict`
+        (floats are written in their shortest exact form). Returns the path.
+        """
+        from ._toml import dumps
+
+        path = Path(path)
+        if path.suffix.lower() != ".toml":
+            raise InputError(f"material file {path}: expected a .toml extension")
+        path.parent.mkdir(parents=True, exist_ok=True)
+        header = "# Generalized Maxwell (Prony) series: moduli [MPa], relaxation times [s]\n"
+        if self.shift is not None:
+            header += "# shift: temperatures in °C, activation energy in J/mol\n"
+        path.write_text(header + dumps(self.as_dict()), encoding="utf-8")
+        return path
 
     @classmethod
     def _from_csv(cls, path: Path) -> GeneralizedMaxwell:
@@ -235,21 +285,102 @@ class GeneralizedMaxwell:
         return 1.0 / self.equilibrium_modulus + (
             residues * np.exp(-t[..., None] / lam)).sum(axis=-1)
 
-    def as_dict(self) -> dict:
-        """Plain-data form (for configs, hashing and NetCDF attributes)."""
-        return {"name": self.name, "equilibrium_modulus": self.equilibrium_modulus,
-                "moduli": self.moduli.tolist(), "relaxation_times": self.relaxation_times.tolist()}
+    def at_temperature(self, temperature: float, shift: ShiftLaw | None = None, *,
+                       vertical: bool = False) -> GeneralizedMaxwell:
+        """The material at ``temperature`` [°C] by time–temperature superposition.
+
+        Relaxation times are scaled by ``a_T = shift.shift(temperature)``, so
+        ``at_temperature(T).complex_modulus(ω) == complex_modulus(a_T ω)`` (up to
+        round-off). The moduli are unchanged: the vertical (entropic) shift is neglected
+        unless ``vertical=True``, which multiplies every modulus by ``T/T_ref`` in kelvin
+        (rubber elasticity, ``E ∝ ρT``, with the density change neglected).
+
+        Parameters
+        ----------
+        temperature
+            Target temperature [°C].
+        shift
+            Shift law referred to this material's temperature (its ``t_ref``); default: the
+            material's own :attr:`shift`.
+        vertical
+            Apply the ``T/T_ref`` modulus factor.
+
+        Returns
+        -------
+        GeneralizedMaxwell
+            Carrying the shift law re-referred to ``temperature`` (so a second
+            ``at_temperature`` composes) and this material's provenance.
+        """
+        law = self.shift if shift is None else shift_law_from_dict(shift)
+        if law is None:
+            raise InputError("at_temperature: the material has no shift law; pass "
+                             "shift=rc.materials.WLF(c1, c2, t_ref) or Arrhenius(E_a, t_ref)")
+        if isinstance(temperature, bool) or not isinstance(temperature, numbers.Real):
+            raise InputError(f"temperature: expected a number in °C, got {temperature!r}")
+        a_t = float(law.shift(float(temperature)))
+        b_t = ((float(temperature) + ZERO_CELSIUS) / (law.t_ref + ZERO_CELSIUS)
+               if vertical else 1.0)
+        return GeneralizedMaxwell(self.equilibrium_modulus * b_t, self.moduli * b_t,
+                                  self.relaxation_times * a_t,
+                                  name=f"{self.name} at {float(temperature):g} °C",
+                                  shift=law.rereferenced(float(temperature)),
+                                  provenance=self.provenance)
+
+    def as_dict(self, *, provenance: bool = True) -> dict:
+        """Plain-data form (for configs, hashing and NetCDF attributes).
+
+        ``GeneralizedMaxwell(**m.as_dict())`` rebuilds the material. The keys ``shift``
+        and ``provenance`` appear only when set (``provenance=False`` leaves the latter
+        out, e.g. for a cache key that should not depend on where the series came from).
+        """
+        out = {"name": self.name, "equilibrium_modulus": self.equilibrium_modulus,
+               "moduli": self.moduli.tolist(), "relaxation_times": self.relaxation_times.tolist()}
+        if self.shift is not None:
+            out["shift"] = self.shift.as_dict()
+        if provenance and self.provenance is not None:
+            out["provenance"] = _thaw(self.provenance)
+        return out
 
     def __eq__(self, other: object) -> bool:
         if not isinstance(other, GeneralizedMaxwell):
             return NotImplemented
         return (self.equilibrium_modulus == other.equilibrium_modulus
                 and np.array_equal(self.moduli, other.moduli)
-                and np.array_equal(self.relaxation_times, other.relaxation_times))
+                and np.array_equal(self.relaxation_times, other.relaxation_times)
+                and self.shift == other.shift)
 
     def __hash__(self) -> int:
         return hash((self.equilibrium_modulus, self.moduli.tobytes(),
-                     self.relaxation_times.tobytes()))
+                     self.relaxation_times.tobytes(), self.shift))
+
+
+def _freeze(name: str, value):
+    """Plain data → read-only (tables as ``MappingProxyType``, lists as tuples)."""
+    if isinstance(value, Mapping):
+        out = {}
+        for k, v in value.items():
+            if not isinstance(k, str):
+                raise InputError(f"{name}: keys must be strings, got {k!r}")
+            out[k] = _freeze(f"{name}.{k}", v)
+        return MappingProxyType(out)
+    if isinstance(value, list | tuple | np.ndarray):
+        return tuple(_freeze(f"{name}[{i}]", v) for i, v in enumerate(value))
+    if isinstance(value, bool | str):
+        return value
+    if isinstance(value, numbers.Integral):
+        return int(value)
+    if isinstance(value, numbers.Real):
+        return float(value)
+    raise InputError(f"{name}: expected a string, number, boolean, list or table, "
+                     f"got {value!r}")
+
+
+def _thaw(value):
+    if isinstance(value, Mapping):
+        return {k: _thaw(v) for k, v in value.items()}
+    if isinstance(value, tuple):
+        return [_thaw(v) for v in value]
+    return value
 
 
 def sbr() -> GeneralizedMaxwell:
