@@ -30,14 +30,14 @@ test: $(VENV)/.installed
 
 validate: $(VENV)/.installed
 	$(BIN)/python -m pytest -q -m slow
-	$(BIN)/python benchmarks/validate.py
+	$(BIN)/python -m studies validate
 
 bench: $(VENV)/.installed-bench
 	$(BIN)/python benchmarks/run_all.py
 	$(BIN)/python benchmarks/collect.py
 
 lint: $(VENV)/.installed
-	$(BIN)/ruff check src tests benchmarks
+	$(BIN)/ruff check src tests benchmarks studies
 
 clean:
 	rm -rf $(VENV) results

@@ -1,4 +1,4 @@
-"""The phase-averaged eq. 28 of ``benchmarks/validate.py`` on hand-made realizations."""
+"""The phase-averaged eq. 28 of ``studies/validate.py`` on hand-made realizations."""
 
 import sys
 from pathlib import Path
@@ -6,8 +6,8 @@ from pathlib import Path
 import numpy as np
 import pytest
 
-sys.path.insert(0, str(Path(__file__).resolve().parents[1] / "benchmarks"))
-import validate  # noqa: E402
+sys.path.insert(0, str(Path(__file__).resolve().parents[1]))   # the repository's studies/
+from studies import validate  # noqa: E402
 
 
 def _data(r: int = 10, n: int = 200, offset: float = 0.02) -> dict:
