@@ -33,6 +33,7 @@ _GROUPS = [
     ("roughness", "roughness", "Analyse measured roughness and fit sine series (paper §2.2)."),
     ("halfspace", "halfspace", "Viscoelastic half-space steady sliding contact (paper §2.3)."),
     ("fem", "fem", "Finite-strain FEM micromechanical sliding test (paper §2.4)."),
+    ("material", "material", "Read DMA data, fit Prony series, shift to temperatures."),
     ("run", "run", "Run the hybrid multiscale pipeline from a TOML config (paper §2.1)."),
     ("plot", "plot", "Redraw figures from a results NetCDF file."),
     ("cache", "cache", "Inspect or clear the result cache."),

@@ -205,21 +205,29 @@ class DMAData:
     def physical_problems(self, tolerance: float = 0.03) -> list[str]:
         """What a Prony series cannot represent: ``E'`` falling with frequency.
 
-        A generalized Maxwell solid has ``E'`` rising monotonically with ``ω``; a fall of
-        more than ``tolerance`` (relative, default 3 %: beyond typical DMA scatter) from
-        the largest ``E'`` at lower frequencies, within one isotherm, is reported.
+        A generalized Maxwell solid has ``E'`` rising monotonically with ``ω``. Within each
+        isotherm, ``E'`` smoothed by a 5-point running median is compared with its running
+        maximum from low frequency; a fall of more than ``max(tolerance, 5 σ)`` is
+        reported, where ``tolerance`` is 3 % by default and ``σ`` is the data's relative
+        scatter, estimated from the median absolute second difference of ``log E'``.
         """
         problems = []
         for iso in self.isotherms():
-            e1 = iso.storage
-            peak = np.maximum.accumulate(e1)
-            drop = 1.0 - e1 / peak
+            log_e = np.log(iso.storage)
+            if log_e.size < 3:
+                continue
+            scatter = float(np.median(np.abs(np.diff(log_e, 2)))) / 0.6745 / np.sqrt(6.0)
+            smooth = np.array([np.median(log_e[max(i - 2, 0):i + 3])
+                               for i in range(log_e.size)])
+            drop = 1.0 - np.exp(smooth - np.maximum.accumulate(smooth))
             k = int(np.argmax(drop))
-            if drop[k] > tolerance:
-                j = int(np.argmax(e1[:k + 1]))
+            limit = max(tolerance, 5.0 * scatter)
+            if drop[k] > limit:
+                j = int(np.argmax(smooth[:k + 1]))
                 at = "" if iso is self else f" at {iso.temperature:g} °C"
                 problems.append(
-                    f"E' falls by {100 * drop[k]:.1f} % between ω = {iso.frequency[j]:.4g} and "
+                    f"E' falls by {100 * drop[k]:.1f} % (> {100 * limit:.1f} %, the scatter "
+                    f"allowance) between ω = {iso.frequency[j]:.4g} and "
                     f"{iso.frequency[k]:.4g} rad/s{at}; a Prony series needs E' rising with "
                     f"frequency: check the shift factors and units")
         return problems

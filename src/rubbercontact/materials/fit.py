@@ -13,7 +13,8 @@ the glassy peak):
 2. *Refinement* (``refine=True``, default): the kept ``E_∞, E_i, τ_i`` are refined
    together by nonlinear least squares (trust region, analytic Jacobian) in
    ``log E`` and ``log τ`` — so the moduli stay positive — with ``τ_i`` bounded to
-   ``[0.1/ω_max, 10/ω_min]``. The result is never worse than step 1.
+   ``[0.1/ω_max, 10/ω_min]``. The result is never worse than step 1. Branches the
+   refinement drives within 1 % of one time are merged and the rest refined once more.
 
 Rule for the number of terms (``terms=None``): fit with 0.5, 1, 1.5 and 2 grid times per
 decade (``n = round(density · decades) + 1``), in that order, and take the first whose rms
@@ -24,7 +25,7 @@ one's (the noise floor: more terms then only fit the scatter); else the densest.
 from __future__ import annotations
 
 import warnings
-from dataclasses import dataclass
+from dataclasses import dataclass, replace
 from pathlib import Path
 
 import numpy as np
@@ -200,18 +201,33 @@ def _refine(dma: DMAData, sol: _Solution, e_inf_fixed: float | None) -> _Solutio
     e_inf = float(np.exp(out.x[0])) if free else float(e_inf_fixed)
     moduli = np.exp(out.x[int(free):int(free) + n])
     times = np.exp(out.x[int(free) + n:])
-    # branches that the refinement drove onto one time are one branch
-    order = np.argsort(times)
-    times, moduli = times[order], moduli[order]
-    groups = np.concatenate([[0], np.cumsum(np.diff(np.log(times)) > 1e-9)])
-    merged_t = np.array([times[groups == g].mean() for g in np.unique(groups)])
-    merged_e = np.array([moduli[groups == g].sum() for g in np.unique(groups)])
-    return _Solution(sol.terms, e_inf, merged_e, merged_t, rms)
+    return _Solution(sol.terms, e_inf, moduli, times, rms)
+
+
+def _merge(sol: _Solution, rel: float = 0.01) -> _Solution:
+    """Branches whose times differ by < ``rel`` (1 %) are one branch: sum the moduli, take
+    the modulus-weighted geometric mean time (the refinement drives redundant branches
+    together; the data cannot tell them apart)."""
+    order = np.argsort(sol.times)
+    times, moduli = sol.times[order], sol.moduli[order]
+    groups = np.concatenate([[0], np.cumsum(np.diff(np.log(times)) > rel)])
+    ids = np.unique(groups)
+    e = np.array([moduli[groups == g].sum() for g in ids])
+    t = np.array([np.exp(np.average(np.log(times[groups == g]), weights=moduli[groups == g]))
+                  for g in ids])
+    return _Solution(sol.terms, sol.e_inf, e, t, sol.rms)
 
 
 def _solve(dma: DMAData, n: int, e_inf_fixed: float | None, refine: bool) -> _Solution:
     sol = _nnls(dma, n, e_inf_fixed)
-    return _refine(dma, sol, e_inf_fixed) if refine else sol
+    if not refine:
+        return sol
+    sol = _refine(dma, sol, e_inf_fixed)
+    merged = _merge(sol)
+    if merged.moduli.size == sol.moduli.size:
+        return sol
+    again = _refine(dma, replace(merged, rms=np.inf), e_inf_fixed)
+    return again if again.moduli.size else sol
 
 
 def fit_prony(dma: DMAData, terms: int | None = None, *, tolerance: float = 0.01,

@@ -49,6 +49,15 @@ def _scalar_or_array(x: np.ndarray):
     return float(x) if x.ndim == 0 else x
 
 
+def _power(log10_a, law: str):
+    log10_a = np.asarray(log10_a)
+    if np.any(np.abs(log10_a) > 300):
+        worst = float(log10_a.flat[np.argmax(np.abs(log10_a))])
+        raise InputError(f"temperature: the {law} shift factor a_T = 10^{worst:.4g} "
+                         f"overflows; the law is far outside its range there")
+    return _scalar_or_array(10.0**log10_a)
+
+
 @dataclass(frozen=True)
 class WLF:
     """Williams–Landel–Ferry shift: ``log10 a_T = −C1 (T − T_ref) / (C2 + T − T_ref)``.
@@ -101,7 +110,7 @@ class WLF:
 
     def shift(self, temperature):
         """``a_T = τ(T)/τ(T_ref)`` [-] at ``temperature`` [°C]."""
-        return _scalar_or_array(10.0 ** np.asarray(self.log10_shift(temperature)))
+        return _power(self.log10_shift(temperature), "WLF")
 
     def rereferenced(self, t_ref: float) -> WLF:
         """The same law referred to ``t_ref`` [°C]: ``C1' = C1 C2/(C2 + ΔT)``, ``C2' = C2 + ΔT``.
@@ -148,7 +157,7 @@ class Arrhenius:
 
     def shift(self, temperature):
         """``a_T = τ(T)/τ(T_ref)`` [-] at ``temperature`` [°C]."""
-        return _scalar_or_array(10.0 ** np.asarray(self.log10_shift(temperature)))
+        return _power(self.log10_shift(temperature), "Arrhenius")
 
     def rereferenced(self, t_ref: float) -> Arrhenius:
         """The same law referred to ``t_ref`` [°C] (same activation energy)."""
