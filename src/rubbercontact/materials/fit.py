@@ -14,7 +14,8 @@ the glassy peak):
    together by nonlinear least squares (trust region, analytic Jacobian) in
    ``log E`` and ``log τ`` — so the moduli stay positive — with ``τ_i`` bounded to
    ``[0.1/ω_max, 10/ω_min]``. The result is never worse than step 1. Branches the
-   refinement drives within 1 % of one time are merged and the rest refined once more.
+   refinement drives within 1 % of one time are merged, those below 1e-6 of the data
+   everywhere dropped, and the rest refined once more.
 
 Rule for the number of terms (``terms=None``): fit with 0.5, 1, 1.5 and 2 grid times per
 decade (``n = round(density · decades) + 1``), in that order, and take the first whose rms
@@ -204,12 +205,17 @@ def _refine(dma: DMAData, sol: _Solution, e_inf_fixed: float | None) -> _Solutio
     return _Solution(sol.terms, e_inf, moduli, times, rms)
 
 
-def _merge(sol: _Solution, rel: float = 0.01) -> _Solution:
-    """Branches whose times differ by < ``rel`` (1 %) are one branch: sum the moduli, take
-    the modulus-weighted geometric mean time (the refinement drives redundant branches
-    together; the data cannot tell them apart)."""
-    order = np.argsort(sol.times)
-    times, moduli = sol.times[order], sol.moduli[order]
+def _merge(dma: DMAData, sol: _Solution, rel: float = 0.01) -> _Solution:
+    """Drop branches below 1e-6 of E' and of E'' at every data point; merge branches whose
+    times differ by < ``rel`` (1 %): sum the moduli, take the modulus-weighted geometric
+    mean time (the refinement drives redundant branches together or to zero; the data
+    cannot tell them apart)."""
+    u = dma.frequency[:, None] * sol.times
+    share = np.maximum(sol.moduli * u**2 / (1 + u**2) / dma.storage[:, None],
+                       sol.moduli * u / (1 + u**2) / dma.loss[:, None]).max(axis=0)
+    keep = share >= 1e-6
+    order = np.argsort(sol.times[keep])
+    times, moduli = sol.times[keep][order], sol.moduli[keep][order]
     groups = np.concatenate([[0], np.cumsum(np.diff(np.log(times)) > rel)])
     ids = np.unique(groups)
     e = np.array([moduli[groups == g].sum() for g in ids])
@@ -223,9 +229,11 @@ def _solve(dma: DMAData, n: int, e_inf_fixed: float | None, refine: bool) -> _So
     if not refine:
         return sol
     sol = _refine(dma, sol, e_inf_fixed)
-    merged = _merge(sol)
+    merged = _merge(dma, sol)
     if merged.moduli.size == sol.moduli.size:
         return sol
+    if merged.moduli.size == 0:
+        return merged
     again = _refine(dma, replace(merged, rms=np.inf), e_inf_fixed)
     return again if again.moduli.size else sol
 
@@ -328,8 +336,9 @@ def fit_prony(dma: DMAData, terms: int | None = None, *, tolerance: float = 0.01
     rep = _report(dma, fitted, best, candidates, rule, tolerance, decades)
     if rep.rms_error > WARN_RMS:
         warnings.warn(f"{dma.source or 'DMA data'}: Prony fit rms residual "
-                      f"{100 * rep.rms_error:.1f} % (> {100 * WARN_RMS:g} %): the data are "
-                      f"noisy or not those of a linear viscoelastic solid; see the fit plot",
+                      f"{100 * rep.rms_error:.1f} % (> {100 * WARN_RMS:g} %) with {rep.terms} "
+                      f"terms: too few terms, noisy data, or not a linear viscoelastic "
+                      f"solid; see the fit plot",
                       DMAWarning, stacklevel=2)
     provenance = {"source": dma.source} if dma.source else {}
     if dma.temperature is not None:
