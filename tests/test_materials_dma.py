@@ -52,7 +52,7 @@ def test_fit_recovers_the_series_within_one_percent():
     # the fitted curve's error is ~ σ √(P/2N) = 0.5 % √(19/194) = 0.16 % rms for P = 19
     # unknowns (9 branches) and 2N = 194 values, a few times that at worst inside the range;
     # the model family contains the truth, so there is no bias: 1 % is 2-5x the expected
-    # worst case (measured: |E*| 0.20 %, E' 0.2 %, E'' 0.28 %).
+    # worst case (measured: |E*| 0.20 %, E' 0.21 %, E'' 0.23 %).
     dma = dma_from_material(SBR, OMEGA, noise=0.005, seed=7)
     fit = fit_prony(dma, report=True)
     w = _dense(dma)
@@ -60,18 +60,20 @@ def test_fit_recovers_the_series_within_one_percent():
     assert np.max(np.abs(got - true) / np.abs(true)) < 0.01
     assert np.max(np.abs(got.real / true.real - 1)) < 0.01
     assert np.max(np.abs(got.imag / true.imag - 1)) < 0.01
-    # the residual against the data is the noise itself: σ √(1 − P/2N) = 0.45 %
-    assert 0.8 * 0.005 < fit.report.rms_error < 1.1 * 0.005
+    # the residual against the data is the noise itself: σ √(1 − P/2N) = 0.48 % (P = 17)
+    # (measured 0.42 %: the refined times absorb a little more of the scatter than P counts)
+    assert 0.7 * 0.005 < fit.report.rms_error < 1.05 * 0.005
     assert fit.report.n_points == 97 and fit.material.n_branches == fit.report.terms_kept
 
 
 def test_noise_free_series_is_recovered_to_solver_precision():
     # exact Prony data: the refined fit reproduces E(ω) to the optimiser's tolerance
+    # (measured 4e-11)
     dma = dma_from_material(SBR, OMEGA)
     mat = fit_prony(dma)
     w = _dense(dma)
     err = np.abs(mat.complex_modulus(w) / SBR.complex_modulus(w) - 1)
-    assert err.max() < 1e-4
+    assert err.max() < 1e-6
     assert mat.equilibrium_modulus == pytest.approx(4.17, rel=1e-4)
 
 
