@@ -2,7 +2,8 @@ r"""Hard-wall contact: ``u >= 0``, ``σ >= 0``, ``u σ = 0`` with ``<σ> = σ0``
 
 *Active set* (``method="active-set"``, the default for an elastic material): primal–dual
 active-set (semismooth Newton) iteration on the complementarity problem. Given the set ``A``:
-solve ``u_A = 0``, ``σ = 0`` off ``A``, ``<σ> = σ0`` (:func:`.contact_set.contact_solve`); then
+solve ``u_A = 0``, ``σ = 0`` off ``A``, ``<σ> = σ0``
+(:func:`~rubbercontact.halfspace.contact_set.contact_solve`); then
 ``A ← {σ > 0 on A} ∪ {u < −ε off A}`` (``ε = 1e-12 max|z|``). Stops when ``A`` no longer
 changes; the result then satisfies ``σ >= 0``, ``u >= −ε`` and ``σ u = 0`` up to the linear
 tolerance. Start: the contact set of a Winkler foundation ``σ = k_W (z − h)₊`` with the

@@ -184,8 +184,7 @@ def _hard_wall_soft(prob: Problem, soft: InteractionLaw, tol: float,
         prob.matvecs += sym.matvecs
         if not hw.converged:
             return None
-        shift = shift_for_law(soft, hw.w - prob.z, prob.sigma0)
-        so = newton_law(prob, soft, tol, max_iter, hw.sigma, shift)
+        so = newton_from(prob, soft, hw, tol, max_iter, loose=True, mixed=False)
         if not so.converged:
             return None
     act = wall_soft_active_set(prob, soft, tol, min(max_iter, 100), so.sigma, so.ubar)
@@ -205,8 +204,7 @@ def _active_set_path(prob: Problem, law: InteractionLaw, soft: InteractionLaw, t
     act = _hard_wall_soft(prob, soft, max(tol, 1e-8), max_iter)
     if act is None:
         return None
-    shift = shift_for_law(law, act.w - prob.z, prob.sigma0)
-    out = newton_law(prob, law, tol, max_iter, act.sigma, shift)
+    out = newton_from(prob, law, act, tol, max_iter, loose=True, mixed=False)
     if not out.converged:
         return None
     info = {**out.info, "continuation": [1.0], "wall_soft_active_set_iterations": act.iterations,
