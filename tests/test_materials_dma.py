@@ -326,3 +326,28 @@ def test_cli_bad_input_exits_2_with_one_line(args, message, capsys):
     err = capsys.readouterr().err.strip()
     assert code == 2
     assert len(err.splitlines()) == 1 and err.startswith("error:") and message in err
+
+
+# --- a config's [material] table ---------------------------------------------------------------
+def test_load_material_from_spec():
+    from rubbercontact.materials import load_material
+
+    assert load_material({"preset": "sbr"}).as_dict() == SBR.as_dict()
+    wlf = {"law": "WLF", "c1": 8.86, "c2": 101.6}
+    mat = load_material({"dma": "dma_synthetic_sbr.csv", "reference_temperature": 20.0,
+                         "shift": wlf}, base_dir=EXAMPLES)
+    assert mat.shift == WLF(8.86, 101.6, 20.0)
+    assert mat.provenance["reference_temperature"] == 20.0
+    master = load_material({"dma": "dma_synthetic_sbr_isotherms.csv",
+                            "reference_temperature": 20.0}, base_dir=EXAMPLES)
+    assert master.shift.c1 == pytest.approx(8.86, rel=0.02)
+    inline = load_material({"equilibrium_modulus": 2.0, "moduli": [1.0],
+                            "relaxation_times": [1e-3], "shift": {**wlf, "t_ref": 0.0}})
+    assert inline.at_temperature(10.0).relaxation_times[0] == pytest.approx(
+        1e-3 * WLF(8.86, 101.6, 0.0).shift(10.0), rel=1e-14)
+    for bad, message in (({"preset": "sbr", "dma": "x.csv"}, "exactly one"),
+                         ({"preset": "sbr", "terms": 3}, "apply to 'dma' only"),
+                         ({"preset": "sbr", "shift": wlf}, "give t_ref"),
+                         ({"preset": "sbr", "colour": 1}, "unknown key")):
+        with pytest.raises(InputError, match=message):
+            load_material(bad)

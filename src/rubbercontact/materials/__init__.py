@@ -11,7 +11,8 @@ from .fit import FitReport, PronyFit, fit_prony
 from .master import MasterCurve, master_curve
 from .maxwell import GeneralizedMaxwell, sbr
 from .shift import WLF, Arrhenius, shift_law_from_dict
+from .spec import load_material
 
 __all__ = ["GeneralizedMaxwell", "sbr", "DMAData", "DMAWarning", "read_dma",
            "dma_from_material", "fit_prony", "FitReport", "PronyFit", "WLF", "Arrhenius",
-           "shift_law_from_dict", "MasterCurve", "master_curve"]
+           "shift_law_from_dict", "MasterCurve", "master_curve", "load_material"]
