@@ -55,7 +55,7 @@ def cell_config(workers: int, cache: Path, tall: tuple[float, int, float] | None
                 periods: int | None = None):
     """The quick validation's section 3 config, with the full FEM on the tall cell if asked
     and sliding ``periods`` periods of the full cell (default: the validation's)."""
-    quick = validate._config("section3", "quick", workers, cache, Path("/tmp"))
+    quick = validate.case_config("section3", "quick", workers, cache, Path("/tmp"))
     data = quick.model_dump(mode="json", exclude_none=True)
     if periods is not None:
         data["fem"]["full_periods"] = periods

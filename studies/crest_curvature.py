@@ -63,6 +63,7 @@ from rubbercontact.hybrid.windowing import law_in_pressure, window_average
 from rubbercontact.roughness import SineSeries
 from rubbercontact.sweep import ResultCache
 
+from . import _compare as compare
 from . import sampling_study, validate
 from ._rows import publish
 from .crest_section3 import law_tables
@@ -269,9 +270,9 @@ def fem_part(cfg, velocity: float, realizations, material, base, table, fem: lis
                      "contact_fraction": (dims, arr[:, None, ..., 1])},
                     coords={"model": models, "velocity": [velocity],
                             "realization": np.arange(len(rows)), "pressure": pressures})
-    ds = validate.with_realization_means(ds)
+    ds = compare.with_realization_means(ds)
     others = tuple(models[1:])
-    eq = validate.eq28_first(ds, None, models=others)[velocity]
+    eq = compare.eq28_first(ds, None, models=others)[velocity]
     areas, e, ci = eq
     fm = ds["friction_mean"].sel(velocity=velocity)
     lines = [f"| model | eq. 28 at equal area ({areas.min():.3f}-{areas.max():.3f}) | "

@@ -37,6 +37,7 @@ from rubbercontact.hybrid.pipeline import (
 )
 from rubbercontact.hybrid.windowing import law_in_pressure
 
+from . import _compare as compare
 from . import validate
 from ._rows import publish
 from .scale_separation import crest_resolved_loads
@@ -115,7 +116,7 @@ def main(argv=None) -> int:
     args = ap.parse_args(argv)
     ds = xr.load_dataset(args.results)
     n_real = ds.sizes["realization"]
-    cfg = validate._config("section3", "quick", 1, args.cache, Path("/tmp/crest_section3"),
+    cfg = validate.case_config("section3", "quick", 1, args.cache, Path("/tmp/crest_section3"),
                            n_real)
     with warnings.catch_warnings():
         warnings.simplefilter("ignore")
@@ -127,7 +128,7 @@ def main(argv=None) -> int:
     if not np.allclose(ds["phase"].values,
                        [r.phases for r in base.realizations(n_real, seed=cfg.seed)]):
         raise SystemExit(f"{args.results}: its realizations are not those of the section 3 "
-                         "quick config (seed or surface changed); rerun studies/validate.py")
+                         "quick config (seed or surface changed); rerun python -m studies validate")
     mu_c = np.full((ds.sizes["velocity"], n_real, ds.sizes["pressure"]), np.nan)
     area_c = np.full_like(mu_c, np.nan)
     for iv, v in enumerate(ds["velocity"].values):
@@ -144,7 +145,7 @@ def main(argv=None) -> int:
     crest["friction"] = (("model", "velocity", "realization", "pressure"), mu_c[None])
     crest["contact_fraction"] = (("model", "velocity", "realization", "pressure"),
                                  area_c[None])
-    crest = validate.with_realization_means(crest)
+    crest = compare.with_realization_means(crest)
     keep = ["friction", "contact_fraction", "friction_mean", "contact_fraction_mean"]
     both = xr.concat([ds[keep], crest[keep]], dim="model")
     models = ["vhs", "hybrid-windowed", "hybrid-crest"]
@@ -167,7 +168,7 @@ def main(argv=None) -> int:
             lines.append(f"| {v:g} | {p:g} | " + " | ".join(cells) + " |")
     lines += ["", "Eq. 28 against the FEM:", "",
               "| v [mm/s] | compared | " + " | ".join(models) + " |", "|---|---|---|---|---|"]
-    areas = validate._friction_at_common_areas(both)
+    areas = compare.friction_at_common_areas(both)
     for v in both["velocity"].values:
         s = both.sel(velocity=v)
         fem = s["friction_mean"].sel(model="fem").values

@@ -45,6 +45,8 @@ from rubbercontact.hybrid.pipeline import (
     make_runner,
 )
 
+from . import _compare as compare
+from . import _validation_report as vreport
 from . import validate
 from ._rows import publish
 
@@ -57,7 +59,7 @@ DEFAULT_LOADS = ["50:0.15", "50:0.35", "10:0.15", "50:0.8", "10:0.35", "10:0.8"]
 
 def _full_config(mesh: tuple[int, int], grading: float, workers: int, cache: Path):
     """The quick validation's section 3 config with the full FEM on ``mesh``/``grading``."""
-    quick = validate._config("section3", "quick", workers, cache, Path("/tmp"))
+    quick = validate.case_config("section3", "quick", workers, cache, Path("/tmp"))
     data = quick.model_dump(mode="json", exclude_none=True)
     data["fem"]["full_mesh"] = list(mesh)
     data["fem"]["full_grading"] = grading
@@ -134,7 +136,7 @@ def _with_reference(ds: xr.Dataset, fine: dict) -> xr.Dataset:
         sel = {"model": "fem", "velocity": v, "pressure": p}
         ds["friction"].loc[sel] = mu
         ds["contact_fraction"].loc[sel] = a
-    return validate.with_realization_means(ds)
+    return compare.with_realization_means(ds)
 
 
 def report(ds: xr.Dataset, coarse: dict, fine: dict, name: str, base: str,
@@ -181,8 +183,8 @@ def report(ds: xr.Dataset, coarse: dict, fine: dict, name: str, base: str,
     if len(reals) < ds.sizes["realization"]:
         return "\n".join(lines) + "\n"
     paper, refined = _with_reference(ds, coarse), _with_reference(ds, fine)
-    before, after = validate.eq28_at_equal_area(paper), validate.eq28_at_equal_area(refined)
-    ci = validate._eq28_intervals(refined)
+    before, after = compare.eq28_at_equal_area(paper), compare.eq28_at_equal_area(refined)
+    ci = compare.eq28_intervals(refined)
     lines += ["", "Eq. 28 at equal contact area (areas log-spaced over the range every "
               f"model's sweep covers, as in VALIDATION.md), with the {base} reference and "
               f"with the {name} reference at the loads above (the FEM at any other load from "
@@ -198,7 +200,7 @@ def report(ds: xr.Dataset, coarse: dict, fine: dict, name: str, base: str,
               "paired bootstrap over the 5 realizations (2000 resamples; the sampling "
               "uncertainty of comparing realization means): " + "; ".join(
                   f"{v:g} mm/s " + ", ".join(
-                      f"{m} {validate._interval_text(*interval)} %"
+                      f"{m} {vreport.interval_text(*interval)} %"
                       for m, interval in c.items())
                   for v, c in ci.items()) + "."]
     lines += ["", "Sensitivity to the FEM's contact area (eq. 28 compares at equal area, and "
@@ -208,7 +210,7 @@ def report(ds: xr.Dataset, coarse: dict, fine: dict, name: str, base: str,
               "| FEM area factor | " + " | ".join(
                   f"{v:g} mm/s windowed | {v:g} mm/s VHS" for v in after) + " |",
               "|---|" + "---|---|" * len(after)]
-    for factor, errs in validate.area_sensitivity(refined).items():
+    for factor, errs in compare.area_sensitivity(refined).items():
         lines.append(f"| {factor:g} | " + " | ".join(
             f"{100 * errs[v]['hybrid-windowed']:.1f} % | {100 * errs[v]['vhs']:.1f} %"
             if v in errs else " | " for v in after) + " |")

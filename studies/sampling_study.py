@@ -41,6 +41,9 @@ import rubbercontact as rc
 from rubbercontact.hybrid.law import law_from_results
 from rubbercontact.io.results import write_law
 
+from . import _compare as compare
+from . import _section3_report as s3report
+from . import _validation_report as vreport
 from . import validate
 from ._rows import publish
 from .fem_reference_mesh import _mesh, _mesh_name
@@ -58,7 +61,7 @@ def study_config(velocities, realizations: int, mesh, grading: float, workers: i
     realizations and the full FEM on ``mesh`` / ``grading``; with ``min_creep_times``
     every FEM test (law and full) slides that many longest retardation times; with
     ``law_file`` the hybrids read that law instead of building one."""
-    quick = validate._config("section3", "quick", workers, cache, outdir, realizations)
+    quick = validate.case_config("section3", "quick", workers, cache, outdir, realizations)
     data = quick.model_dump(mode="json", exclude_none=True)
     data["velocities"] = [float(v) for v in velocities]
     data["fem"]["full_mesh"] = list(mesh)
@@ -188,18 +191,18 @@ def report(ds: xr.Dataset, ref: xr.Dataset | None, warnings_seen: list[str]) -> 
              "", "| v [mm/s] | realizations | areas | windowed hybrid | VHS | pointwise hybrid |",
              "|---|---|---|---|---|---|"]
     for k in sorted({min(5, n), n}):
-        for v, (areas, e, ci) in validate.eq28_first(ds, k, MODELS).items():
+        for v, (areas, e, ci) in compare.eq28_first(ds, k, MODELS).items():
             lines.append(f"| {v:g} | {k} | {areas.min():.3f}-{areas.max():.3f} | " + " | ".join(
-                f"{100 * e[m]:.1f} %" + (f" ({validate._interval_text(*ci[m])})"
+                f"{100 * e[m]:.1f} %" + (f" ({vreport.interval_text(*ci[m])})"
                                          if m in ci else "") for m in MODELS) + " |")
     if n >= 2:
         lines += ["", "Spread between realizations (sample standard deviation; s.e. = "
                   "s.d./√n, the standard error of the realization mean):", ""]
         lines += _spread_lines(ds)
-    lines += ["", validate._per_realization_sentence(ds)]
+    lines += ["", s3report.per_realization_sentence(ds)]
     lines += ["", "Compute time of this case (each solve's own time, also for solves taken "
               "from the cache; two workers on two cores, so indicative):", ""]
-    lines += validate._cost_lines(ds)
+    lines += vreport.cost_lines(ds)
     if ref is not None:
         base = run_name(ref)
         # the hybrid differs only when the law did (e.g. longer sliding)
@@ -216,12 +219,12 @@ def report(ds: xr.Dataset, ref: xr.Dataset | None, warnings_seen: list[str]) -> 
             lines += ["", f"## {model}: this run ({name}) against the reference ({base})",
                       ""] + _against_reference(ds, ref, "this run", "reference", model)
         m = min(n, ref.sizes["realization"])
-        sub = validate.with_realization_means(
+        sub = compare.with_realization_means(
             ref.isel(realization=slice(0, m)).sel(velocity=ds["velocity"].values))
         lines += ["", f"The reference's eq. 28 at equal area over its first {m} "
                   "realization(s): " + "; ".join(
                       f"{v:g} mm/s " + ", ".join(f"{mm} {100 * e[mm]:.1f} %" for mm in MODELS)
-                      for v, (_a, e) in validate.eq28_at_equal_area(sub, MODELS).items())
+                      for v, (_a, e) in compare.eq28_at_equal_area(sub, MODELS).items())
                   + "."]
     unsteady = [w for w in warnings_seen if "steady" in w]
     if unsteady:
@@ -267,7 +270,7 @@ def main(argv=None) -> int:
         law_file = creep_settled_law(args, mesh, grading)
     cfg = study_config(args.velocities, args.realizations, mesh, grading, args.workers,
                        args.cache, args.outdir, args.min_creep_times, law_file)
-    ds, _wall, _figs, msgs = validate._run(args.outdir.name, cfg, args.outdir.parent)
+    ds, _wall, _figs, msgs = validate.run_case(args.outdir.name, cfg, args.outdir.parent)
     ref = xr.load_dataset(args.reference) if args.reference.exists() else None
     return publish(report(ds, ref, msgs), args.report)
 

@@ -54,6 +54,8 @@ import numpy as np
 import rubbercontact as rc
 from rubbercontact.hybrid.pipeline import make_runner
 
+from . import _compare as compare
+from . import _validation_report as vreport
 from . import validate
 from ._rows import append_row, publish, read_rows
 from .cell_creep import SEED, VELOCITY, run_case
@@ -181,7 +183,7 @@ def eq28_data(law: Path | None, workers: int, cache: Path, n: int, factors: dict
     FEM from the cache), its hybrids reading ``law`` (default: the validation's), and its
     phase data per :data:`FEM_VARIANTS`: the FEM as run (3 periods), times the settling
     factors at every load, and times them from :data:`SETTLED_FROM` up."""
-    cfg = validate._config("section3", "quick", workers, cache, ROOT / "results",
+    cfg = validate.case_config("section3", "quick", workers, cache, ROOT / "results",
                            EQ28_REALIZATIONS)
     data = cfg.model_dump(mode="json", exclude_none=True)
     data.update(velocities=[VELOCITY], loads={"pressures": list(EQ28_LOADS)})
@@ -204,7 +206,7 @@ def eq28_data(law: Path | None, workers: int, cache: Path, n: int, factors: dict
                 settled["friction"].loc[at] = float(ds["friction"].sel(at)) * f_mu
                 settled["contact_fraction"].loc[at] = (float(ds["contact_fraction"].sel(at))
                                                        * f_a)
-        out[variant] = validate.phase_average_data(settled, cfg, n)[VELOCITY]
+        out[variant] = compare.phase_average_data(settled, cfg, n)[VELOCITY]
     return out
 
 
@@ -239,10 +241,10 @@ def eq28_section(runs: list[dict], resamples: int) -> tuple[list[str], list[dict
     for run in runs:
         for kind in FEM_VARIANTS:
             for label, data in (("all", run[kind]), ("below 2 MPa",
-                                                     validate._below(run[kind], 2.0))):
-                e, ci = validate.eq28_phase_averaged({VELOCITY: data}, resamples)[VELOCITY]
-                lo, hi = validate._phase_area_range(data)
-                cells = [f"{100 * e[m]:.1f} % ({validate._interval_text(*ci[m], resamples)})"
+                                                     compare.below_load(run[kind], 2.0))):
+                e, ci = compare.eq28_phase_averaged({VELOCITY: data}, resamples)[VELOCITY]
+                lo, hi = compare.phase_area_range(data)
+                cells = [f"{100 * e[m]:.1f} % ({vreport.interval_text(*ci[m], resamples)})"
                          if m in ci else "-" for m in EQ28_MODELS]
                 out.append(f"| {run['law']} | {kind} | {label} | {lo:.3f}-{hi:.3f} | "
                            + " | ".join(cells) + " |")
@@ -251,7 +253,7 @@ def eq28_section(runs: list[dict], resamples: int) -> tuple[list[str], list[dict
                                 "error": {m: float(e[m]) for m in EQ28_MODELS},
                                 "interval": {m: list(ci[m]) for m in EQ28_MODELS if m in ci},
                                 "resamples": resamples})
-            curves = validate.phase_mean_curves(run[kind])["phase"]
+            curves = compare.phase_mean_curves(run[kind])["phase"]
             curves_lines.append(
                 f"| {run['law']} | {kind} | " + " | ".join(
                     f"{curves['fem'][1][k]:.3f} ({curves['fem'][0][k]:.4f}) / "
@@ -284,7 +286,7 @@ def main(argv=None) -> int:
                     help="with --eq28: also a law whose FEM points slide this many longest "
                          "retardation times (built through the cache, as "
                          "sampling_study.py --law-min-creep-times does)")
-    ap.add_argument("--phase-realizations", type=int, default=validate.PHASE_REALIZATIONS)
+    ap.add_argument("--phase-realizations", type=int, default=compare.PHASE_REALIZATIONS)
     ap.add_argument("--resamples", type=int, default=2000)
     ap.add_argument("--cache", type=Path, default=ROOT / ".validation-cache")
     args = ap.parse_args(argv)
@@ -319,7 +321,7 @@ def main(argv=None) -> int:
                           label) for law, label in laws]
         lines, records = eq28_section(runs, args.resamples)
         text += "\n" + "\n".join(lines)
-        # the rows VALIDATION.md shows (validate.SETTLED_EQ28), written whole or not at all
+        # the rows VALIDATION.md shows (s3report.SETTLED_EQ28), written whole or not at all
         publish(json.dumps(records, indent=1), args.report.with_suffix(".json"), echo=False)
     return publish(text, args.report)
 

@@ -48,3 +48,32 @@ def test_runner_runs_a_study_from_the_command_line():
                          capture_output=True, text=True, timeout=120)
     assert out.returncode == 0, out.stderr
     assert out.stdout.startswith("usage: python -m studies validate")
+
+
+def test_template_blocks_unwrap_paragraphs_keep_tables_and_refuse_missing_fields(tmp_path,
+                                                                                  monkeypatch):
+    import studies._templates as templates
+
+    (tmp_path / "t.md").write_text("a comment\n<!-- block: one -->\nA ${x}\nwrapped line.\n\n"
+                                   "| a | b |\n|---|---|\n<!-- block: two -->\nno fields\n")
+    monkeypatch.setattr(templates, "TEMPLATES", tmp_path)
+    templates.blocks.cache_clear()
+    try:
+        assert templates.render("t", "one", x=1.5) == "A 1.5 wrapped line.\n\n| a | b |\n|---|---|"
+        assert templates.render("t", "two") == "no fields"
+        with pytest.raises(KeyError):
+            templates.render("t", "one")
+    finally:
+        templates.blocks.cache_clear()
+
+
+def test_every_template_block_is_used_by_a_study():
+    from studies._templates import TEMPLATES, blocks
+
+    literals = {n.value for p in (ROOT / "studies").glob("*.py")
+                for n in ast.walk(ast.parse(p.read_text(encoding="utf-8")))
+                if isinstance(n, ast.Constant) and isinstance(n.value, str)}
+    for path in sorted(TEMPLATES.glob("*.md")):
+        assert path.stem in literals, f"{path.name} is not rendered by any study"
+        unused = sorted(set(blocks(path.stem)) - literals)
+        assert not unused, f"{path.name}: blocks {unused} are not rendered by any study"
