@@ -36,12 +36,14 @@ import rubbercontact as rc
 from rubbercontact.hybrid.pipeline import _translated_to_zero_phase
 
 from ._rows import append_row, publish, read_rows
+from ._templates import render
 
 DESCRIPTION = "How far from steady sliding are the FEM tests the validation stops after 3 periods?"
 
 ROOT = Path(__file__).resolve().parents[1]
 SEED, REALIZATIONS = 2021, 5          # the section 3 validation's realizations
 VALIDATION_PERIODS = 3                # what the quick validation allows
+FULL_CELL, LAW_CELL = 0.25, 0.0625    # cell widths [mm]: section 3's period, its λ_hs
 
 
 def _case(spec: str) -> dict:
@@ -106,7 +108,7 @@ def _summary(row: dict) -> str:
 
 def _period_s(row: dict) -> float:
     """Duration of one sliding period [s]: cell width over speed."""
-    width = 0.25 if row["kind"] == "full" else 0.0625          # mm
+    width = FULL_CELL if row["kind"] == "full" else LAW_CELL
     return width / row["velocity"]
 
 
@@ -123,6 +125,10 @@ def _drift_time(row: dict) -> float:
     return -_period_s(row) / slope if slope < 0 else np.nan
 
 
+def _r(block: str, **fields) -> str:
+    return render("fem_steadiness", block, **fields)
+
+
 def _time_scales(rows: list[dict]) -> str:
     """Why the tests settle slowly: the cell creeps under the mean friction stress."""
     mat = rc.materials.sbr()
@@ -130,32 +136,23 @@ def _time_scales(rows: list[dict]) -> str:
     j_inf = 1.0 / mat.equilibrium_modulus
     ends = {v: VALIDATION_PERIODS * _period_s({"kind": "full", "velocity": v})
             for v in (10.0, 50.0)}
-    text = (f"**Time scales.** The SBR's longest relaxation time is {1e3 * tau:.1f} ms, but "
-            "under the constant mean shear stress of sliding (τ = μ p̄) the cell creeps, and "
-            f"creep runs on retardation times: the longest is {1e3 * lam:.1f} ms "
-            "(`GeneralizedMaxwell.retardation_times`). After the validation's 0.75 mm of "
-            "sliding the creep compliance has reached " + " and ".join(
-                f"{100 * float(mat.creep_compliance(t)) / j_inf:.0f} % of 1/E∞ at {v:g} mm/s "
-                f"({1e3 * t:.1f} ms)" for v, t in ends.items())
-            + ". Toward its end the cell's bulk shear strain is about τ/G∞ = 3μp̄/E∞ "
-            "(incompressible), of order 1 from 2 MPa up.")
+    creep = " and ".join(
+        _r("creep_at", percent=f"{100 * float(mat.creep_compliance(t)) / j_inf:.0f}",
+           velocity=f"{v:g}", time=f"{1e3 * t:.1f}") for v, t in ends.items())
+    text = _r("time_scales", relaxation=f"{1e3 * tau:.1f}", retardation=f"{1e3 * lam:.1f}",
+              distance=f"{VALIDATION_PERIODS * FULL_CELL:g}", creep=creep)
     drifts = [(r, _drift_time(r)) for r in rows if "mean_separation" in r]
     drifts = [(r, t) for r, t in drifts if np.isfinite(t)]
     if drifts:
-        text += (" The mean separation of the long law runs approaches its final value with "
-                 "an e-folding time of " + ", ".join(
-                     f"{1e3 * t:.1f} ms ({_mesh_label(r)}, {r['velocity']:g} mm/s, "
-                     f"{r['pressure']:g} MPa, "
-                     f"ū {1e3 * r['mean_separation'][0]:.2f} -> "
-                     f"{1e3 * r['mean_separation'][-1]:.2f} um, A "
-                     f"{r['contact_fraction'][0]:.3f} -> {r['contact_fraction'][-1]:.3f}, "
-                     f"3μp̄/E∞ = {3 * r['friction'][-1] * r['pressure'] * j_inf:.2f})"
-                     for r, t in drifts)
-                 + ": the face lifts off as the bulk shear creeps in, on the creep time. "
-                 "Creep under the normal load alone would enlarge the contact, so this points "
-                 "to the finite-strain coupling of the large bulk shear with the contact."
-                 " With enough sliding it makes ū rise with p̄ near E∞ (the law screens "
-                 "those points out as non-monotone).")
+        text += " " + _r("drift", runs=", ".join(
+            _r("drift_run", time=f"{1e3 * t:.1f}", mesh=_mesh_label(r),
+               velocity=f"{r['velocity']:g}", pressure=f"{r['pressure']:g}",
+               u_first=f"{1e3 * r['mean_separation'][0]:.2f}",
+               u_last=f"{1e3 * r['mean_separation'][-1]:.2f}",
+               a_first=f"{r['contact_fraction'][0]:.3f}",
+               a_last=f"{r['contact_fraction'][-1]:.3f}",
+               shear=f"{3 * r['friction'][-1] * r['pressure'] * j_inf:.2f}")
+            for r, t in drifts))
     finals: dict = {}
     for r in rows:
         if "mean_separation" in r and r["kind"] == "law":
@@ -163,31 +160,27 @@ def _time_scales(rows: list[dict]) -> str:
                               {})[r["pressure"]] = r["mean_separation"][-1]
     pairs = [(k, u) for k, u in finals.items() if len(u) > 1]
     if pairs:
-        text += (" Final ū against p̄ in the long runs: " + "; ".join(
-            f"{label}, {v:g} mm/s: " + " / ".join(f"{1e3 * u[p]:.2f}" for p in sorted(u))
-            + f" um at {' / '.join(f'{p:g}' for p in sorted(u))} MPa ("
-            + ("falls" if all(np.diff([u[p] for p in sorted(u)]) < 0) else "rises")
-            + " with p̄)" for (_model, label, v), u in pairs) + ".")
+        text += " " + _r("finals", runs="; ".join(
+            _r("finals_run", mesh=label, velocity=f"{v:g}",
+               separations=" / ".join(f"{1e3 * u[p]:.2f}" for p in sorted(u)),
+               pressures=" / ".join(f"{p:g}" for p in sorted(u)),
+               trend="falls" if all(np.diff([u[p] for p in sorted(u)]) < 0) else "rises")
+            for (_model, label, v), u in pairs))
     return text
 
 
 def report(rows: list[dict]) -> str:
     commit = subprocess.run(["git", "rev-parse", "--short", "HEAD"], capture_output=True,
                             text=True, cwd=ROOT).stdout.strip()
-    lines = ["# FEM steadiness: the validation's 3-period tests run longer", "",
-             f"Generated by `studies/fem_steadiness.py` ({datetime.now(UTC):%Y-%m-%d}, "
-             f"commit {commit}). Each test runs the stated number of sliding periods without "
-             "stopping; the validation keeps the average over period "
-             f"{VALIDATION_PERIODS} (when it is not steady earlier). Columns: the "
-             f"period-{VALIDATION_PERIODS} average μ (A), the range of the period averages "
-             f"from period {VALIDATION_PERIODS} on, their mean, and how far the "
-             f"period-{VALIDATION_PERIODS} value lies from that mean (friction / area).", "",
+    lines = [_r("title"), "",
+             _r("intro", date=f"{datetime.now(UTC):%Y-%m-%d}", commit=commit,
+                periods=VALIDATION_PERIODS), "",
              "| cell | mesh | v [mm/s] | σ0 [MPa] | r | period 3 μ (A) | μ range | A range | "
              "mean from period 3 μ (A) | period 3 vs mean |",
              "|---|---|---|---|---|---|---|---|---|---|"]
     lines += [_summary(r) for r in rows]
     lines += ["", _time_scales(rows)]
-    lines += ["", "Every period's average (μ, A):", ""]
+    lines += ["", _r("every_period"), ""]
     for r in rows:
         cells = ", ".join(f"{m:.4f} ({a:.4f})" for m, a in zip(r["friction"],
                                                               r["contact_fraction"],
@@ -196,7 +189,7 @@ def report(rows: list[dict]) -> str:
                      f"{r['pressure']:g} MPa, realization {r['realization']} "
                      f"({r['wall_time']:.0f} s): {cells}")
         if "mean_separation" in r:
-            lines.append("  - mean separation ū [um] per period: " + ", ".join(
+            lines.append("  - " + _r("separation_label") + " " + ", ".join(
                 f"{1e3 * u:.3f}" for u in r["mean_separation"]))
     return "\n".join(lines) + "\n"
 
