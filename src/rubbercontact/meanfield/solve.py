@@ -1,0 +1,249 @@
+"""Entry points: :func:`solve` (one speed and load, optionally enriched by the FEM law) and
+:func:`friction_curve` (the vectorised path: many speeds at once).
+
+The theory is in :mod:`.contact` (contact mechanics) and :mod:`.friction` (friction); the
+enrichment in :mod:`.enriched`.
+"""
+
+from __future__ import annotations
+
+import time
+from dataclasses import asdict, dataclass, field
+
+import numpy as np
+
+from .._validation import finite_array, positive_scalar
+from ..errors import InputError
+from ..materials.maxwell import GeneralizedMaxwell
+from .contact import (
+    ANGLES_2D,
+    CELL_POINTS,
+    AreaCurve,
+    PressureDistribution,
+    contact_fraction,
+    g_cumulative,
+    half_space_compliance,
+    modal_response,
+    pressure_distribution,
+)
+from .enriched import as_pressure_law, check_interface, march_with_layer, weigh_law
+from .friction import (
+    PERSSON_GAMMA,
+    FrictionCorrection,
+    check_weighting,
+    friction_contributions,
+)
+from .psd import PSD
+
+
+@dataclass(frozen=True)
+class MeanFieldOptions:
+    """Modelling and discretisation choices (one object, passed as is).
+
+    Attributes
+    ----------
+    correction
+        Persson's ``S(q)``: ``"none"`` (S = 1, default) or ``"persson"`` (:mod:`.friction`).
+    gamma
+        ``γ`` of the ``"persson"`` correction.
+    weighting
+        Contact fraction weighing each node's friction: ``"auto"`` (default: ``"after"``
+        for a sine series, ``"cell"`` for a continuous spectrum), ``"after"`` or ``"cell"``
+        (:mod:`.friction`).
+    interface
+        With a law: ``"rigid"`` (default) or ``"law"`` (the law's compliance in series
+        with the half-space, :mod:`.enriched`).
+    angles
+        Gauss–Legendre points over the wave-vector direction (2D).
+    cell_points
+        Gauss–Legendre points per node for the friction weights.
+    pressure_points
+        Samples of ``P(σ)``.
+    """
+
+    correction: str = "none"
+    gamma: float = PERSSON_GAMMA
+    weighting: str = "auto"
+    interface: str = "rigid"
+    angles: int = ANGLES_2D
+    cell_points: int = CELL_POINTS
+    pressure_points: int = 801
+
+    def __post_init__(self) -> None:
+        FrictionCorrection(self.correction, self.gamma)   # validates both
+        check_interface(self.interface)
+        check_weighting(self.weighting)
+        for name in ("angles", "cell_points", "pressure_points"):
+            val = getattr(self, name)
+            if isinstance(val, bool) or int(val) != val or val < 2:
+                raise InputError(f"{name}: must be an integer >= 2, got {val!r}")
+
+    @property
+    def friction_correction(self) -> FrictionCorrection:
+        return FrictionCorrection(self.correction, self.gamma)
+
+    def weighting_for(self, psd: PSD) -> str:
+        """The node weighting used for ``psd`` (``"auto"`` resolved)."""
+        if self.weighting != "auto":
+            return self.weighting
+        return "after" if psd.waves is not None else "cell"
+
+
+@dataclass(frozen=True)
+class MeanFieldResult:
+    """Friction and contact of the mean-field theory at one speed and load.
+
+    Attributes
+    ----------
+    friction, friction_ls, friction_hs
+        Total ``μ`` and its low-slope (the theory's hysteresis) and high-slope (the law,
+        0 without one) parts [-].
+    contact_fraction
+        ``A/A0`` [-]: ``A(ζ_max)`` without a law, ``∫P α_hs dσ`` with one.
+    contact_fraction_ls
+        ``A(ζ_max)`` of the spectrum given (the low-slope contact, with a law) [-].
+    friction_full
+        The full-contact limit ``Σ f_i/σ0`` [-].
+    pressure_distribution
+        ``P(σ)`` at the end of the spectrum (the split magnification, with a law).
+    area
+        Contact fraction against magnification.
+    friction_spectrum
+        ``(q_i, μ_i)``: each node's part of ``friction_ls``.
+    inputs
+        Velocity, mean pressure, ν, dimension, the spectrum's source, the options, and
+        whether a law was used.
+    """
+
+    friction: float
+    friction_ls: float
+    friction_hs: float
+    contact_fraction: float
+    contact_fraction_ls: float
+    friction_full: float
+    pressure_distribution: PressureDistribution
+    area: AreaCurve
+    friction_spectrum: tuple[np.ndarray, np.ndarray]
+    inputs: dict = field(default_factory=dict)
+    elapsed: float = 0.0
+
+
+@dataclass(frozen=True)
+class FrictionCurve:
+    """``μ(v)`` and ``A(v)`` of the plain theory at one load (arrays over ``velocities``)."""
+
+    velocities: np.ndarray
+    friction: np.ndarray
+    contact_fraction: np.ndarray
+    friction_full: np.ndarray
+    mean_pressure: float
+    inputs: dict = field(default_factory=dict)
+
+
+def _check(psd, material, mean_pressure, nu):
+    if not isinstance(psd, PSD):
+        raise InputError(f"psd: expected a rubbercontact.meanfield.PSD, got "
+                         f"{type(psd).__name__}")
+    if not isinstance(material, GeneralizedMaxwell):
+        raise InputError(f"material: expected a GeneralizedMaxwell, got "
+                         f"{type(material).__name__}")
+    sigma0 = positive_scalar("mean_pressure", mean_pressure, unit="MPa")
+    if isinstance(nu, bool) or not (isinstance(nu, int | float) and 0.0 <= nu <= 0.5):
+        raise InputError(f"nu: Poisson's ratio must lie in [0, 0.5], got {nu!r}")
+    return sigma0
+
+
+def _speed(velocity) -> float:
+    if isinstance(velocity, bool) or not isinstance(velocity, int | float | np.integer |
+                                                    np.floating):
+        raise InputError(f"velocity: expected a number in mm/s, got {velocity!r}")
+    if not np.isfinite(velocity):
+        raise InputError(f"velocity: must be finite, got {velocity} mm/s")
+    return float(velocity)
+
+
+def solve(psd: PSD, material: GeneralizedMaxwell, velocity: float, mean_pressure: float,
+          nu: float = 0.5, law=None, options: MeanFieldOptions | None = None
+          ) -> MeanFieldResult:
+    """Hysteretic friction and contact area of the mean-field theory.
+
+    Parameters
+    ----------
+    psd
+        Roughness spectrum (:class:`.PSD`); with a ``law``, the *low-slope* spectrum
+        (``psd.partition(m2_threshold)[1]``), the law standing for the scales beyond it.
+    material
+        Rubber (Young's moduli).
+    velocity
+        Sliding speed [mm/s] (sign as in :func:`rubbercontact.halfspace.solve_sliding`).
+    mean_pressure
+        ``σ0`` [MPa], > 0.
+    nu
+        Poisson's ratio in ``E_r = E/(1 − ν²)``.
+    law
+        ``None`` (plain theory), or the high-slope law: a table at this speed
+        (:func:`rubbercontact.hybrid.law_at_velocity`; the hybrid's ``interface_law``
+        dict) or a law ``xarray.Dataset`` (:func:`rubbercontact.hybrid.effective_law`).
+    options
+        :class:`MeanFieldOptions`.
+
+    Returns
+    -------
+    MeanFieldResult
+    """
+    t0 = time.perf_counter()
+    sigma0 = _check(psd, material, mean_pressure, nu)
+    v = _speed(velocity)
+    opts = options or MeanFieldOptions()
+    if opts is not None and not isinstance(opts, MeanFieldOptions):
+        raise InputError(f"options: expected MeanFieldOptions, got {type(opts).__name__}")
+    plaw = None if law is None else as_pressure_law(law, v)
+    if plaw is not None and psd.dimension != 1:
+        raise InputError("law: the FEM law is a plane-strain (1D) result; enrich 1D spectra")
+    comp = half_space_compliance(psd.wavenumbers, psd.variances, psd.dimension, material,
+                                 v, nu, opts.angles)
+    if plaw is not None and opts.interface == "law":
+        g, resp = march_with_layer(comp, sigma0, plaw)
+    else:
+        resp = modal_response(comp)
+        g = g_cumulative(resp.pressure_variance, sigma0)
+    parts = friction_contributions(resp.friction_stress, g, sigma0, opts.friction_correction,
+                                   opts.cell_points, opts.weighting_for(psd))
+    q = psd.wavenumbers
+    dist = pressure_distribution(float(g[-1]), sigma0, q[-1], q[-1] / q[0],
+                                 opts.pressure_points)
+    mu_ls = float(parts.sum())
+    area_ls = dist.contact_fraction
+    mu_hs, area = (0.0, area_ls) if plaw is None else weigh_law(dist, plaw)
+    inputs = {"velocity": v, "mean_pressure": sigma0, "nu": float(nu),
+              "dimension": psd.dimension, "psd": psd.source, "law": plaw is not None,
+              "material": material.name, **asdict(opts),
+              "weighting": opts.weighting_for(psd)}
+    return MeanFieldResult(
+        friction=mu_ls + mu_hs, friction_ls=mu_ls, friction_hs=float(mu_hs),
+        contact_fraction=float(area), contact_fraction_ls=area_ls,
+        friction_full=float(resp.friction_stress.sum() / sigma0), pressure_distribution=dist,
+        area=AreaCurve(q, q / q[0], contact_fraction(g), g),
+        friction_spectrum=(q, parts), inputs=inputs, elapsed=time.perf_counter() - t0)
+
+
+def friction_curve(psd: PSD, material: GeneralizedMaxwell, velocities, mean_pressure: float,
+                   nu: float = 0.5, options: MeanFieldOptions | None = None) -> FrictionCurve:
+    """``μ(v)``, ``A(v)`` of the plain theory for many speeds in one vectorised pass.
+
+    The same numbers as :func:`solve` at each speed (no law: a law table belongs to one
+    speed). Cost: one complex modulus per node, speed and direction, then cumulative sums.
+    """
+    sigma0 = _check(psd, material, mean_pressure, nu)
+    v = finite_array("velocities", velocities, ndim=1)
+    opts = options or MeanFieldOptions()
+    comp = half_space_compliance(psd.wavenumbers, psd.variances, psd.dimension, material,
+                                 v, nu, opts.angles)
+    resp = modal_response(comp)
+    g = g_cumulative(resp.pressure_variance, sigma0)
+    parts = friction_contributions(resp.friction_stress, g, sigma0, opts.friction_correction,
+                                   opts.cell_points, opts.weighting_for(psd))
+    return FrictionCurve(v, parts.sum(axis=-1), contact_fraction(g[..., -1]),
+                         resp.friction_stress.sum(axis=-1) / sigma0, sigma0,
+                         {"nu": float(nu), "dimension": psd.dimension, "psd": psd.source,
+                          "material": material.name, **asdict(opts)})
