@@ -191,7 +191,7 @@ def test_enrichment_by_the_theory_s_own_law_is_the_plain_theory():
     # P(σ) on 801 points: measured 3e-5 (area) and 1.4e-5 (friction); 2e-4 allowed.
     t2 = rc.roughness.asphalt_ac8()
     hs, ls = mf.PSD.from_sines(t2).partition(1.0)
-    opts = mf.MeanFieldOptions(weighting="cell")
+    opts = mf.MeanFieldOptions(weighting="cell", interface="rigid")
     for v, p in ((10.0, 0.2), (50.0, 1.6)):
         law = theory_law(hs, SBR, v, np.geomspace(1e-4, 1e3, 600), options=opts)
         whole = mf.solve(mf.PSD.from_sines(t2), SBR, v, p, options=opts)
@@ -265,10 +265,11 @@ def test_bad_input_is_refused_with_a_clear_message():
 
 def test_agrees_with_the_bem_on_a_small_random_surface():
     # Six octaves, m2 = 0.15-0.5 per wave, SBR at 10 mm/s, 0.35 MPa (about 12 % contact),
-    # BEM averaged over 4 random phases at 4096 points (μ and A converged to < 1 % there).
-    # docs/validation/meanfield.md measures this class within -35..+4 % in area and
-    # -15..+11 % in friction at 10 mm/s; the tolerance is the issue's 15 % target in
-    # friction and 30 % in area, where the 1D theory is known to be low.
+    # BEM averaged over 4 random phases at 4096 points (μ and A within 0.5 % of 16384
+    # points). Measured: μ −8 %, A −25 % (BEM 0.151, 0.146; the phases' μ spread 0.117–0.183,
+    # a standard error of 11 %). On this class at 10 mm/s docs/validation/meanfield.md finds
+    # μ −25 … −4 % and A −32 … −6 %: the 1D theory's area is low at small loads. Held to the
+    # issue's 15 % in μ and to 30 % in A.
     lam = 8.0 / 2.0 ** np.arange(6)
     m2 = np.array([0.3, 0.15, 0.5, 0.25, 0.4, 0.2])
     surf = SineSeries(lam, m2 * np.sqrt(2) * lam / (2 * np.pi))
@@ -279,3 +280,22 @@ def test_agrees_with_the_bem_on_a_small_random_surface():
     res = mf.solve(mf.PSD.from_sines(surf), SBR, 10.0, 0.35)
     assert res.friction == pytest.approx(mu_b, rel=0.15)
     assert res.contact_fraction == pytest.approx(a_b, rel=0.30)
+
+
+def test_law_layer_in_full_contact_is_the_series_compliance_closed_form():
+    # A low-slope sine far below σ0 is in full contact; with the law's layer (compliance
+    # c = 1/20 mm/MPa for this table) in series, σ_q = z_q/(M + c), so
+    # μ_ls = (Δ²/2)|1/(M + c)|² (−q Im M)/σ0 with M = 2/(q E_r(qv)).
+    lam, amp, v, sigma0 = 1.0, 1e-4, 10.0, 5.0
+    q = 2 * np.pi / lam
+    m = 2 / (q * _er(q * v))
+    exact = amp**2 / 2 / np.abs(m + 0.05) ** 2 * (-q * m.imag) / sigma0
+    ls = mf.PSD.from_sines(SineSeries([lam], [amp]))
+    layer = mf.solve(ls, SBR, v, sigma0, law=_table())
+    rigid = mf.solve(ls, SBR, v, sigma0, law=_table(),
+                     options=mf.MeanFieldOptions(interface="rigid"))
+    assert layer.contact_fraction_ls == pytest.approx(1.0, abs=1e-12)
+    assert layer.friction_ls == pytest.approx(exact, rel=1e-4)      # the table's PCHIP
+    assert rigid.friction_ls == pytest.approx(q**2 * amp**2 * _er(q * v).imag / (4 * sigma0),
+                                              rel=1e-12)
+    assert layer.friction_ls < rigid.friction_ls

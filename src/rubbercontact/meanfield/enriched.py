@@ -28,16 +28,17 @@ law is the mean over a periodic array of cells at a uniform mean pressure). Read
 hybrid's windowed reading (:mod:`rubbercontact.hybrid.windowing`): the pressure is averaged
 over the smallest low-slope scale.
 
-Closing the interface with the law (``interface="law"``)
---------------------------------------------------------
+Closing the interface with the law (``interface="law"``, the default)
+--------------------------------------------------------------------
 Between the rubber and the low-slope surface the high-slope scale acts as a soft layer whose
 compliance is the law's ``c(σ) = −dū/dσ_hs`` (the hybrid's BEM solves the low-slope scale
 with that law as the interaction). In series with the half-space it lowers the pressure a
 low-slope mode generates in full contact, ``T = 1/(M + c)`` (:mod:`.contact`), and with it
 ``G`` and ``μ_ls``. The layer's compliance depends on its pressure; at magnification ``ζ``
 the theory takes it at the mean contact pressure ``σ0/A(ζ)`` of the contact resolved so far
-(a march in ``ζ``). ``interface="rigid"`` (default) neglects the layer: the low-slope contact
-is that of the hard wall.
+(a march in ``ζ``). ``interface="rigid"`` neglects the layer: the low-slope contact is that
+of the hard wall. Against the windowed hybrid with the same law the layer is the closer of
+the two (docs/validation/meanfield.md).
 """
 
 from __future__ import annotations

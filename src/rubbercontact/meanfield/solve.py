@@ -51,8 +51,8 @@ class MeanFieldOptions:
         for a sine series, ``"cell"`` for a continuous spectrum), ``"after"`` or ``"cell"``
         (:mod:`.friction`).
     interface
-        With a law: ``"rigid"`` (default) or ``"law"`` (the law's compliance in series
-        with the half-space, :mod:`.enriched`).
+        With a law: ``"law"`` (default: the law's compliance in series with the
+        half-space, :mod:`.enriched`) or ``"rigid"`` (hard-wall low-slope contact).
     angles
         Gauss–Legendre points over the wave-vector direction (2D).
     cell_points
@@ -64,7 +64,7 @@ class MeanFieldOptions:
     correction: str = "none"
     gamma: float = PERSSON_GAMMA
     weighting: str = "auto"
-    interface: str = "rigid"
+    interface: str = "law"
     angles: int = ANGLES_2D
     cell_points: int = CELL_POINTS
     pressure_points: int = 801

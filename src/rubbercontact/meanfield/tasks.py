@@ -29,7 +29,7 @@ PRESSURE_QUANTILE = 0.999
 def meanfield_task(surface: dict, material: dict, velocity: float, mean_pressure: float,
                    nu: float = 0.5, interface_law: dict | None = None,
                    correction: str = "none", gamma: float = 0.5, weighting: str = "auto",
-                   interface: str = "rigid") -> xr.Dataset:
+                   interface: str = "law") -> xr.Dataset:
     """One mean-field solve (:func:`rubbercontact.meanfield.solve`).
 
     Parameters
