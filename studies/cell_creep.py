@@ -59,7 +59,7 @@ def run_case(p: float, ratio: float, periods: int, realization: int = 0) -> dict
         warnings.simplefilter("ignore")     # unsteady / sheared: that is what is measured
         out = rc.fem.sliding_test(surf, mat, p, VELOCITY, mesh=(COLUMNS, rows),
                                   height_ratio=ratio, periods=periods, min_periods=periods,
-                                  steps_per_period=COLUMNS, grading=grading)
+                                  steps_per_period=COLUMNS, grading=grading, solver="transient")
     h = out.history
     slide = h["phase"] == 2
     per = out.stats.periods

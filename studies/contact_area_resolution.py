@@ -18,7 +18,7 @@ width ``h`` over the contact half-width ``a``:
    ``c`` times the local chord sag, ``c = 1`` in the package. Inside a contact on a crest
    a straight segment touches near its middle and its nodes lift off by about one sag, so
    ``c = 1`` sits on the edge of that classification. The variants are computed from the
-   same solves by wrapping ``fem.sliding.face_contact_fraction`` here (the package is not
+   same solves by wrapping ``fem.transient.face_contact_fraction`` here (the package is not
    changed).
 
 Cases run with ``--contact-points`` per face segment (default 4, the package's and the
@@ -45,7 +45,7 @@ from pathlib import Path
 import numpy as np
 
 import rubbercontact as rc
-from rubbercontact.fem import sliding as fem_sliding
+from rubbercontact.fem import transient as fem_sliding
 from rubbercontact.fem.contact import contact_fraction
 
 from ._rows import append_row, read_rows
@@ -112,7 +112,7 @@ def threshold_case(kind: str, nx: int, penalty: float, m: int) -> dict:
                 [W_LAM], [W_AMP], [np.pi / 2 + 2 * np.pi * offset / nx])
             _, a = _with_threshold_variants(lambda s=surf: rc.fem.sliding_test(
                 s, rc.materials.GeneralizedMaxwell.elastic(W_E), pbar, 0.0, mesh=(nx, 45),
-                grading=GRADING, contact_points=m, penalty_factor=penalty))
+                grading=GRADING, contact_points=m, penalty_factor=penalty, solver="transient"))
             areas[str(offset)] = {str(c): v for c, v in a.items()}
         return {"case": kind, "nx": nx, "offset": penalty, "penalty": penalty,
                 "contact_points": m,
@@ -126,7 +126,7 @@ def threshold_case(kind: str, nx: int, penalty: float, m: int) -> dict:
         warnings.simplefilter("ignore")
         out, a = _with_threshold_variants(lambda: rc.fem.sliding_test(
             surf, mat, S_PRESSURE, S_VELOCITY, mesh=(nx, 45), grading=GRADING, contact_points=m,
-            periods=4, penalty_factor=penalty))
+            periods=4, penalty_factor=penalty, solver="transient"))
     return {"case": kind, "nx": nx, "offset": penalty, "penalty": penalty,
             "contact_points": m,
             "reference": vhs.contact_fraction, "areas": {"0": {str(c): v for c, v in a.items()}},
@@ -142,7 +142,7 @@ def westergaard_case(nx: int, offset: float, m: int) -> dict:
     surf = rc.roughness.SineSeries([W_LAM], [W_AMP], [np.pi / 2 + 2 * np.pi * offset * h / W_LAM])
     t0 = time.perf_counter()
     out = rc.fem.sliding_test(surf, rc.materials.GeneralizedMaxwell.elastic(W_E), pbar, 0.0,
-                              mesh=(nx, 45), grading=GRADING, contact_points=m)
+                              mesh=(nx, 45), grading=GRADING, contact_points=m, solver="transient")
     return {"case": "westergaard", "nx": nx, "offset": offset, "h_over_a": h / a,
             "contact_points": m,
             "reference": W_FRACTION, "fem": out.contact_fraction,
@@ -158,7 +158,7 @@ def sliding_case(nx: int, m: int) -> dict:
     with warnings.catch_warnings():
         warnings.simplefilter("ignore")
         fem = rc.fem.sliding_test(surf, mat, S_PRESSURE, S_VELOCITY, mesh=(nx, 45),
-                                  grading=GRADING, contact_points=m, periods=4)
+                                  grading=GRADING, contact_points=m, periods=4, solver="transient")
     a = vhs.contact_fraction * S_LAM / 2
     return {"case": "sliding", "nx": nx, "offset": 0.0, "h_over_a": S_LAM / nx / a,
             "contact_points": m,

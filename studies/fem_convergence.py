@@ -87,7 +87,7 @@ def run_case(case: dict, velocity: float, periods: int) -> dict:
                                       grading=case["grading"],
                                       steps_per_period=case["steps_per_period"],
                                       contact_points=case["contact_points"],
-                                      history_order=case["history_order"])
+                                      history_order=case["history_order"], solver="transient")
         except rc.errors.ConvergenceError as err:
             return {**case, "velocity": velocity, "failed": str(err),
                     "wall_s": time.perf_counter() - t0}

@@ -78,7 +78,7 @@ def run_case(case: dict, periods: int) -> dict:
                                   grading=case["grading"], periods=periods,
                                   min_periods=periods,
                                   viscous_model=case.get("viscous_model", "simo"),
-                                  steps_per_period=spp, height_ratio=0.75)
+                                  steps_per_period=spp, height_ratio=0.75, solver="transient")
     h = out.history
     sliding = h["phase"] == 2
     mu = h["friction"][sliding].reshape(-1, spp).mean(axis=1)

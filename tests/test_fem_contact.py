@@ -258,7 +258,7 @@ def test_convergence_error_carries_diagnostics_and_last_state():
 
     with pytest.raises(ConvergenceError) as info:
         rc.fem.sliding_test(rc.roughness.high_slope_wave(), rc.materials.sbr(), 1.0, 10.0,
-                            mesh=(16, 12), max_newton=1, max_cutbacks=1)
+                            mesh=(16, 12), max_newton=1, max_cutbacks=1, solver="transient")
     err = info.value
     for key in ("step", "time", "residual_history", "cutbacks"):
         assert key in err.diagnostics
@@ -298,7 +298,8 @@ def test_impaled_face_is_reported():
     with pytest.warns(RuntimeWarning, match="impaled"):
         try:
             rc.fem.sliding_test(surf, rc.materials.sbr(), 0.35, 10.0, mesh=(32, 24),
-                                periods=1, min_periods=1, contact_points=1)
+                                periods=1, min_periods=1, contact_points=1,
+                                solver="transient")
         except ConvergenceError:
             pass
 
@@ -314,7 +315,8 @@ def test_segment_contact_keeps_the_asperities_out():
     with warnings.catch_warnings():
         warnings.filterwarnings("error", message=".*impaled")
         out = rc.fem.sliding_test(surf, rc.materials.sbr(), 0.35, 10.0, mesh=(32, 24),
-                                  periods=1, min_periods=1, contact_points=4)
+                                  periods=1, min_periods=1, contact_points=4,
+                                  solver="transient")
     h = surf.period / 32
     assert out.stats.max_segment_penetration < 0.2 * h
     assert out.friction > 0

@@ -1,16 +1,27 @@
 """Kinematically non-linear FEM micromechanical sliding test (paper §2.4, Fig. 4).
 
-``sliding_test(surface, material, mean_pressure, velocity, ...)`` presses a periodic
-plane-strain cell of finite-strain viscoelastic rubber onto a rigid sine-series
-surface and slides it; see :mod:`.sliding` for the protocol and definitions.
-Modules: :mod:`.mesh` (periodic structured mesh), :mod:`.constitutive`
+``steady_sliding(surface, material, mean_pressure, velocity, ...)`` solves the steady
+state of a periodic plane-strain cell of finite-strain viscoelastic rubber sliding over
+a rigid sine-series surface directly; ``sliding_test(..., solver="transient")`` time-steps
+the press / settle / slide protocol. Both take one :class:`FemOptions` and return a
+:class:`SlidingTestResult`.
+
+Modules: :mod:`.options`, :mod:`.mesh` (periodic structured mesh), :mod:`.constitutive`
 (finite-strain generalized Maxwell), :mod:`.element` (Q1/P0 mean dilatation),
 :mod:`.assembly` (CSR scatter), :mod:`.contact` (analytic rigid surface, penalty),
-:mod:`.solver` (Newton), :mod:`.cell` (the test cell), :mod:`.sliding`.
+:mod:`.cell` (the test cell), :mod:`.setup` (one test's cell), :mod:`.solver` (Newton with
+direct solves), :mod:`.transient` (the time-stepped protocol), :mod:`.streamline`,
+:mod:`.steady`, :mod:`.newton_krylov`, :mod:`.multilevel`, :mod:`.steady_solver` (the
+steady solver), :mod:`.result`, :mod:`.sliding` (entry points).
 """
 
 from .constitutive import DEFAULT_BULK_MODULUS, MaterialParameters
-from .sliding import PressureProfile, SlidingTestResult, SolverStats, sliding_test
+from .options import SOLVERS, FemOptions, SteadyOptions, TransientOptions
+from .result import PressureProfile, SlidingTestResult, SolverStats
+from .sliding import make_options, sliding_test, steady_sliding
+from .steady_solver import SteadyState
 
-__all__ = ["DEFAULT_BULK_MODULUS", "MaterialParameters", "PressureProfile",
-           "SlidingTestResult", "SolverStats", "sliding_test"]
+__all__ = ["DEFAULT_BULK_MODULUS", "SOLVERS", "FemOptions", "MaterialParameters",
+           "PressureProfile", "SlidingTestResult", "SolverStats", "SteadyOptions",
+           "SteadyState", "TransientOptions", "make_options", "sliding_test",
+           "steady_sliding"]

@@ -50,10 +50,14 @@ class CellModel:
     contact_points
         Contact points per face segment (1: node-to-surface; see
         :func:`~.contact.evaluate_contact`).
+    sliding_plate
+        Give the top edge's common horizontal displacement its own unknown
+        (``plate_x``, the last one); the steady solver decides what holds it.
     """
 
     def __init__(self, cell: PeriodicCell, surface: SineSeries, params: MaterialParameters,
-                 penalty: float, smoothing: float = 0.0, contact_points: int = 4) -> None:
+                 penalty: float, smoothing: float = 0.0, contact_points: int = 4,
+                 sliding_plate: bool = False) -> None:
         self.cell = cell
         self.surface = surface
         self.params = params
@@ -70,11 +74,30 @@ class CellModel:
         self.plate = 2 * free_nodes.size
         dof_map[2 * cell.top_nodes + 1] = self.plate
         self.n = self.plate + 1
+        self.plate_x = None
+        if sliding_plate:
+            self.plate_x = self.n
+            dof_map[2 * cell.top_nodes] = self.plate_x
+            self.n += 1
         self.dof_map = dof_map
         bottom = cell.bottom_nodes
         self.bx = dof_map[2 * bottom]
         self.by = dof_map[2 * bottom + 1]
-        self.asm = Assembler(cell, dof_map, self.n)
+        extra = None
+        if sliding_plate:
+            # The steady solver's preconditioner couples every element to its upstream
+            # neighbour in the row (see streamline.StreamlineKernel); both orders, so the
+            # pattern stays structurally symmetric.
+            red = dof_map[cell.element_dofs]
+            up = self.upstream_elements()
+            rows = np.broadcast_to(red[:, :, None], red.shape + (8,)).ravel()
+            cols = np.broadcast_to(red[up][:, None, :], red.shape + (8,)).ravel()
+            ok = (rows >= 0) & (cols >= 0)
+            extra = (np.concatenate([rows[ok], cols[ok]]), np.concatenate([cols[ok], rows[ok]]))
+        self.asm = Assembler(cell, dof_map, self.n, extra)
+        if sliding_plate:
+            self._upos = self.asm.positions(rows[ok], cols[ok])
+            self._uvalid = ok
         # segment k joins face nodes k and k+1 (periodic); they share a bottom-row
         # element, so all 4x4 blocks are in the element pattern
         seg = np.stack([self.bx, self.by, np.roll(self.bx, -1), np.roll(self.by, -1)], axis=1)
@@ -83,6 +106,18 @@ class CellModel:
         self._cpos = self.asm.positions(rows.ravel(), cols.ravel())
         self.segment_length = np.full(cell.nx, cell.hx)
         self.X_face = cell.X[bottom]
+
+    def upstream_elements(self) -> np.ndarray:
+        """Element id of each element's upstream neighbour (same row, one column to −x)."""
+        cell = self.cell
+        e = np.arange(cell.n_elements)
+        i, j = e % cell.nx, e // cell.nx
+        return j * cell.nx + (i - 1) % cell.nx
+
+    def upwind_data(self, blocks: np.ndarray) -> np.ndarray:
+        """CSR data of the element-to-upstream blocks ``(n_el, 8, 8)`` (steady cell only)."""
+        return np.bincount(self._upos, weights=blocks.ravel()[self._uvalid],
+                           minlength=self.asm.nnz)
 
     def new_state(self) -> ViscousState:
         return ViscousState.zeros((self.cell.n_elements, 4), self.params.n_branches,
@@ -104,22 +139,33 @@ class CellModel:
         with np.errstate(invalid="ignore", divide="ignore"):
             out = self.asm.element_output(self.params, u_full, state, dt, tangent)
         r = self.asm.vector(out.fe)
-        cs = evaluate_contact(self.surface, shift, self.face_positions(u_full), self.cell.width,
-                              self.segment_length, self.penalty, self.contact_points,
-                              self.smoothing)
-        # Residual = ∂Π/∂u: the contact force acts ON the rubber, so subtract it.
-        r[self.bx] -= cs.force[:, 0]   # face DOFs are distinct unknowns
-        r[self.by] -= cs.force[:, 1]
+        cs = self.contact(u_full, shift)
+        self.add_contact_forces(r, cs)
         r[self.plate] += load
         if np.any(out.theta <= 0) or np.any(~np.isfinite(out.fe)):
             r[:] = np.nan
         K = None
         if tangent:
-            data = self.asm.matrix_data(out.ke)
-            # a node belongs to two segments: accumulate repeated positions
-            data += np.bincount(self._cpos, weights=cs.stiffness.ravel(), minlength=data.size)
-            K = self.asm.csr(data)
+            K = self.asm.csr(self.add_contact_stiffness(self.asm.matrix_data(out.ke), cs))
         return r, K, Evaluation(out, cs, u_full)
+
+    def contact(self, u_full: np.ndarray, shift: float, smoothing: float | None = None
+                ) -> ContactState:
+        """Penalty contact of the face at displacements ``u_full`` on the surface at ``shift``
+        (``smoothing`` [mm] overrides the model's)."""
+        return evaluate_contact(self.surface, shift, self.face_positions(u_full), self.cell.width,
+                                self.segment_length, self.penalty, self.contact_points,
+                                self.smoothing if smoothing is None else smoothing)
+
+    def add_contact_forces(self, r: np.ndarray, cs: ContactState) -> None:
+        """Residual = ∂Π/∂u: the contact force acts ON the rubber, so subtract it."""
+        r[self.bx] -= cs.force[:, 0]   # face DOFs are distinct unknowns
+        r[self.by] -= cs.force[:, 1]
+
+    def add_contact_stiffness(self, data: np.ndarray, cs: ContactState) -> np.ndarray:
+        """CSR data with the contact tangent added (a node belongs to two segments)."""
+        data += np.bincount(self._cpos, weights=cs.stiffness.ravel(), minlength=data.size)
+        return data
 
     def shift_field(self, U: np.ndarray, ds: float) -> np.ndarray:
         """Predictor: the nodal field translated with the surface, ``u(X) ← u(X + ds)``.
@@ -140,6 +186,7 @@ class CellModel:
         V = U.copy()
         free = self.dof_map >= 0
         free[2 * cell.top_nodes + 1] = False     # the plate keeps its value
+        free[2 * cell.top_nodes] = False
         V[self.dof_map[free]] = a[free]
         return V
 

@@ -79,6 +79,72 @@ def deformation_gradient(dNdX: np.ndarray, ue: np.ndarray) -> np.ndarray:
     return np.eye(2) + np.einsum("eai,egaJ->egiJ", ue, dNdX)
 
 
+def strain_operator(dNdX: np.ndarray, F: np.ndarray) -> np.ndarray:
+    """``B[e, g, I, 8]``: the Green–Lagrange strain increment ``δE_I`` (Voigt, engineering
+    shear) per unit element displacement ``δu_{a,i}`` at every Gauss point."""
+    nel = F.shape[0]
+    B = np.empty((nel, 4, 3, 4, 2))
+    dN1 = dNdX[..., 0][..., :, None]  # (e, g, a, 1)
+    dN2 = dNdX[..., 1][..., :, None]
+    F1 = F[..., None, :, 0]           # F_{i1} -> (e, g, 1, i)
+    F2 = F[..., None, :, 1]
+    B[:, :, 0] = dN1 * F1
+    B[:, :, 1] = dN2 * F2
+    B[:, :, 2] = dN2 * F1 + dN1 * F2
+    return B.reshape(nel, 4, 3, 8)
+
+
+def internal_forces(B: np.ndarray, w: np.ndarray, S: np.ndarray) -> np.ndarray:
+    """Element internal forces ``Σ_g w Bᵀ S`` ``(n_el, 8)`` [N/mm]."""
+    nel = B.shape[0]
+    wS = w[..., None] * S
+    return (wS.reshape(nel, 1, 12) @ B.reshape(nel, 12, 8)).reshape(nel, 8)
+
+
+def tangent_matrices(B: np.ndarray, w: np.ndarray, CC: np.ndarray, S: np.ndarray,
+                     dNdX: np.ndarray, F: np.ndarray, dp: np.ndarray) -> np.ndarray:
+    """Element tangents ``(n_el, 8, 8)``: material part ``Bᵀ ℂ B``, geometric stiffness
+    ``δ_ik ∇N_a·S·∇N_b`` and the mean-dilatation rank-one term ``U''(θ)/V0 · b bᵀ``."""
+    nel = B.shape[0]
+    # Batched small matmuls with the Gauss points folded into the contraction index
+    # are several times faster than einsum here.
+    DB = (CC @ B).reshape(nel, 12, 8)                       # (e, g·I, 8)
+    Bt = (B * w[..., None, None]).transpose(0, 3, 1, 2).reshape(nel, 8, 12)
+    ke = Bt @ DB
+    wS = w[..., None] * S
+    Sm = np.empty((nel, 4, 2, 2))
+    Sm[..., 0, 0] = wS[..., 0]
+    Sm[..., 1, 1] = wS[..., 1]
+    Sm[..., 0, 1] = Sm[..., 1, 0] = wS[..., 2]
+    T = (dNdX @ Sm).transpose(0, 2, 1, 3).reshape(nel, 4, 8)
+    G = T @ dNdX.transpose(0, 1, 3, 2).reshape(nel, 8, 4)
+    ke4 = ke.reshape(nel, 4, 2, 4, 2)
+    ke4[:, :, 0, :, 0] += G
+    ke4[:, :, 1, :, 1] += G
+    # b_{a,i} = Σ_g w J ∂N_a/∂x_i
+    J = F[..., 0, 0] * F[..., 1, 1] - F[..., 0, 1] * F[..., 1, 0]
+    Finv = np.empty_like(F)
+    Finv[..., 0, 0] = F[..., 1, 1] / J
+    Finv[..., 1, 1] = F[..., 0, 0] / J
+    Finv[..., 0, 1] = -F[..., 0, 1] / J
+    Finv[..., 1, 0] = -F[..., 1, 0] / J
+    b = ((w * J)[..., None, None] * (dNdX @ Finv)).sum(axis=1).reshape(nel, 8)
+    V0 = w.sum(axis=1)
+    ke += (dp / V0)[:, None, None] * b[:, :, None] * b[:, None, :]
+    return ke
+
+
+def mean_dilatation(w: np.ndarray, F: np.ndarray, kappa: float
+                    ) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
+    """``(θ, p, dp)``: mean dilatation ``θ = v_e/V_e`` of each element and ``U'(θ)``,
+    ``U''(θ)`` [MPa]."""
+    J = F[..., 0, 0] * F[..., 1, 1] - F[..., 0, 1] * F[..., 1, 0]
+    theta = (w * J).sum(axis=1) / w.sum(axis=1)
+    with np.errstate(divide="ignore", invalid="ignore"):
+        p, dp = pressure(kappa, theta)
+    return theta, p, dp
+
+
 def element_arrays(params: MaterialParameters, dNdX: np.ndarray, w: np.ndarray,
                    ue: np.ndarray, state: ViscousState, dt: float,
                    tangent: bool = True) -> ElementOutput:
@@ -100,49 +166,10 @@ def element_arrays(params: MaterialParameters, dNdX: np.ndarray, w: np.ndarray,
         Also compute the element matrices.
     """
     F = deformation_gradient(dNdX, ue)
-    J = F[..., 0, 0] * F[..., 1, 1] - F[..., 0, 1] * F[..., 1, 0]
-    V0 = w.sum(axis=1)
-    theta = (w * J).sum(axis=1) / V0
-    with np.errstate(divide="ignore", invalid="ignore"):
-        p, dp = pressure(params.kappa, theta)
-    S, CC, J, Cinv, new_state = update_stress(
-        params, F, np.broadcast_to(p[:, None], J.shape), state, dt, tangent)
-    nel = F.shape[0]
-    # B[e, g, I, a, i]: δE_I (Voigt, engineering shear) per unit δu_{a,i}.
-    B = np.empty((nel, 4, 3, 4, 2))
-    dN1 = dNdX[..., 0][..., :, None]  # (e, g, a, 1)
-    dN2 = dNdX[..., 1][..., :, None]
-    F1 = F[..., None, :, 0]           # F_{i1} -> (e, g, 1, i)
-    F2 = F[..., None, :, 1]
-    B[:, :, 0] = dN1 * F1
-    B[:, :, 1] = dN2 * F2
-    B[:, :, 2] = dN2 * F1 + dN1 * F2
-    B = B.reshape(nel, 4, 3, 8)
-    wS = w[..., None] * S
-    fe = (wS.reshape(nel, 1, 12) @ B.reshape(nel, 12, 8)).reshape(nel, 8)
-    ke = None
-    if tangent:
-        # Batched small matmuls with the Gauss points folded into the contraction index
-        # are several times faster than einsum here.
-        DB = (CC @ B).reshape(nel, 12, 8)                       # (e, g·I, 8)
-        Bt = (B * w[..., None, None]).transpose(0, 3, 1, 2).reshape(nel, 8, 12)
-        ke = Bt @ DB
-        # Geometric stiffness δ_ik ∇N_a·S·∇N_b.
-        Sm = np.empty((nel, 4, 2, 2))
-        Sm[..., 0, 0] = wS[..., 0]
-        Sm[..., 1, 1] = wS[..., 1]
-        Sm[..., 0, 1] = Sm[..., 1, 0] = wS[..., 2]
-        T = (dNdX @ Sm).transpose(0, 2, 1, 3).reshape(nel, 4, 8)
-        G = T @ dNdX.transpose(0, 1, 3, 2).reshape(nel, 8, 4)
-        ke4 = ke.reshape(nel, 4, 2, 4, 2)
-        ke4[:, :, 0, :, 0] += G
-        ke4[:, :, 1, :, 1] += G
-        # Mean-dilatation rank-one term: U''(θ)/V0 · b bᵀ, b_{a,i} = Σ_g w J ∂N_a/∂x_i.
-        Finv = np.empty_like(F)
-        Finv[..., 0, 0] = F[..., 1, 1] / J
-        Finv[..., 1, 1] = F[..., 0, 0] / J
-        Finv[..., 0, 1] = -F[..., 0, 1] / J
-        Finv[..., 1, 0] = -F[..., 1, 0] / J
-        b = ((w * J)[..., None, None] * (dNdX @ Finv)).sum(axis=1).reshape(nel, 8)
-        ke += (dp / V0)[:, None, None] * b[:, :, None] * b[:, None, :]
+    theta, p, dp = mean_dilatation(w, F, params.kappa)
+    S, CC, _, _, new_state = update_stress(
+        params, F, np.broadcast_to(p[:, None], theta.shape + (4,)), state, dt, tangent)
+    B = strain_operator(dNdX, F)
+    fe = internal_forces(B, w, S)
+    ke = tangent_matrices(B, w, CC, S, dNdX, F, dp) if tangent else None
     return ElementOutput(fe, ke, new_state, S, F, theta, p)

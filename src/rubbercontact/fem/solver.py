@@ -72,6 +72,42 @@ class _Factor:
         return x
 
 
+class _GeneralFactor:
+    """LU of a structurally symmetric, non-symmetric matrix (the steady preconditioner).
+
+    Diagonal pivots on the minimum-degree ordering of ``A + Aᵀ`` keep the fill of the
+    symmetric case; a residual check falls back to threshold pivoting.
+    """
+
+    def __init__(self, K: sp.csr_matrix) -> None:
+        self.Kc = K.tocsc()
+        try:
+            self.lu = splu(self.Kc, permc_spec="MMD_AT_PLUS_A", diag_pivot_thresh=0.0,
+                           options={"SymmetricMode": True})
+            self.pivoted = False
+        except RuntimeError:
+            self.lu = splu(self.Kc, permc_spec="MMD_AT_PLUS_A")
+            self.pivoted = True
+        self.checked = False
+
+    def solve(self, r: np.ndarray) -> np.ndarray:
+        x = self.lu.solve(r)
+        if not self.checked:   # once: the factor is either accurate or not
+            self.checked = True
+            bad = not np.all(np.isfinite(x)) or (
+                np.linalg.norm(self.Kc @ x - r) > 1e-6 * max(np.linalg.norm(r), 1e-300))
+            if bad and not self.pivoted:
+                self.lu = splu(self.Kc, permc_spec="MMD_AT_PLUS_A")
+                self.pivoted = True
+                x = self.lu.solve(r)
+        return x
+
+
+def factorize_general(K: sp.csr_matrix) -> _GeneralFactor:
+    """Factorization of the non-symmetric ``K`` (CSR), see :class:`_GeneralFactor`."""
+    return _GeneralFactor(K)
+
+
 def factorize(K: sp.csr_matrix) -> _Factor:
     """Factorization of the symmetric matrix ``K`` (given as CSR), see :class:`_Factor`."""
     return _Factor(K)

@@ -22,7 +22,7 @@ import xarray as xr
 
 from .._validation import finite_array, positive_scalar
 from ..errors import InputError
-from ..fem.sliding import BULK_SHEAR_EVIDENCE, BULK_SHEAR_LIMIT
+from ..fem.result import BULK_SHEAR_LIMIT, BULK_SHEAR_STUDY
 from ..materials import GeneralizedMaxwell
 from ..roughness import SineSeries
 
@@ -96,10 +96,8 @@ def sheared_cells_message(diag: dict, label, what: str,
     where = ", ".join(f"{label(*idx)} ({g[idx]:.2f})" for idx in big[:6])
     return (f"{what}: {len(big)} of {int(np.isfinite(g).sum())} FEM tests sheared as a whole "
             f"by more than {limit:g} (mean face displacement / cell height), largest first: "
-            f"{where}{', ...' if len(big) > 6 else ''}. There the friction stress exceeds the "
-            f"relaxed shear modulus; such tests settle only after several retardation times "
-            f"(fem.min_creep_times) and, until then, depend on the cell height: "
-            f"{BULK_SHEAR_EVIDENCE}")
+            f"{where}{', ...' if len(big) > 6 else ''}: the friction stress exceeds E∞/3 there "
+            f"({BULK_SHEAR_STUDY})")
 
 
 def describe_unsteady(diag: dict, label) -> tuple[int, str, bool]:

@@ -1,0 +1,267 @@
+"""Options of the FEM sliding test: one object from the config to the task.
+
+:class:`FemOptions` holds what defines the cell and its numerics, and which solver runs
+it; :class:`SteadyOptions` and :class:`TransientOptions` the controls of each solver.
+All are frozen dataclasses of plain values, so a task carries them as a dict
+(:meth:`FemOptions.to_dict`) and the result cache keys on every field.
+"""
+
+from __future__ import annotations
+
+from dataclasses import asdict, dataclass, field, fields, replace
+from typing import Any
+
+from .._validation import positive_scalar
+from ..errors import InputError
+
+#: ``"steady"`` solves the travelling-wave problem directly (:mod:`.steady_solver`);
+#: ``"transient"`` time-steps the press / settle / slide protocol (:mod:`.transient`).
+SOLVERS = ("steady", "transient")
+#: Finite-strain viscoelastic models (see :mod:`.constitutive`).
+VISCOUS_MODELS = ("simo", "reese-govindjee")
+
+
+def _integer(name: str, value: Any, low: int) -> int:
+    if isinstance(value, bool) or not isinstance(value, (int, float)) or int(value) != value \
+            or value < low:
+        raise InputError(f"{name}: must be an integer >= {low}, got {value!r}")
+    return int(value)
+
+
+@dataclass(frozen=True)
+class SteadyOptions:
+    """Controls of the steady solver (the defaults serve every case tested).
+
+    Attributes
+    ----------
+    krylov_rtol
+        Largest relative GMRES tolerance of an inexact Newton step.
+    max_krylov
+        GMRES iterations per Newton iteration.
+    refactor_krylov
+        Keep the factorized preconditioner for the next Newton iteration while GMRES needs
+        at most this many iterations.
+    newton_per_step
+        Newton iterations per continuation step before the step is halved.
+    first_step
+        First continuation step in the homotopy parameter ``λ`` (0 … 1).
+    min_step
+        Smallest continuation step before the path is declared failed.
+    max_steps
+        Continuation steps (converged or halved) per path.
+    coarse_elements
+        Elements per shortest wavelength of the coarsest mesh of the nested iteration
+        (the continuation runs there; 0 switches nested iteration off).
+    fallback
+        If the steady solve fails, run the transient test and say so in the status.
+    """
+
+    krylov_rtol: float = 1e-2
+    max_krylov: int = 200
+    refactor_krylov: int = 0
+    newton_per_step: int = 15
+    first_step: float = 0.25
+    min_step: float = 1.0 / 512
+    max_steps: int = 60
+    coarse_elements: int = 32
+    fallback: bool = True
+
+    def validate(self) -> SteadyOptions:
+        positive_scalar("steady.krylov_rtol", self.krylov_rtol)
+        if not self.krylov_rtol < 1:
+            raise InputError(f"steady.krylov_rtol: must be < 1, got {self.krylov_rtol}")
+        _integer("steady.max_krylov", self.max_krylov, 1)
+        _integer("steady.refactor_krylov", self.refactor_krylov, 0)
+        _integer("steady.newton_per_step", self.newton_per_step, 1)
+        _integer("steady.max_steps", self.max_steps, 1)
+        _integer("steady.coarse_elements", self.coarse_elements, 0)
+        for name in ("first_step", "min_step"):
+            v = positive_scalar(f"steady.{name}", getattr(self, name))
+            if v > 1:
+                raise InputError(f"steady.{name}: must be in (0, 1], got {v}")
+        return self
+
+
+@dataclass(frozen=True)
+class TransientOptions:
+    """Controls of the time-stepped press / settle / slide protocol.
+
+    Attributes
+    ----------
+    periods
+        Maximum number of sliding periods (raised to cover ``min_sliding_time``).
+    steps_per_period
+        Steps per period of travel (None: ``nx``, one element of travel per step).
+    min_periods
+        Minimum sliding periods before steadiness is checked.
+    min_sliding_time
+        Minimum sliding time [s] before the steadiness check, in whole periods.
+    steady_tol
+        Relative agreement of successive period averages that ends the test.
+    settle_time
+        Hold time under load before sliding [s] (None: ``5 τ_max``; ``100 τ_max`` if v = 0).
+    press_steps
+        Load increments of the press phase.
+    max_cutbacks
+        Halvings of a failing step before the test gives up.
+    newton_max_step
+        Largest change of any unknown per Newton iteration, in smallest element sizes.
+    slow_branch_start
+        Start branches much slower than a period at their steady row-average state.
+    surface_offset
+        Sliding distance of the surface at the start [mm] (the steady solver reports the
+        offset of its solution, ``stats.surface_offset``; a transient test started there
+        reaches the same steady state).
+    """
+
+    periods: int = 6
+    steps_per_period: int | None = None
+    min_periods: int = 2
+    min_sliding_time: float = 0.0
+    steady_tol: float = 0.01
+    settle_time: float | None = None
+    press_steps: int = 4
+    max_cutbacks: int = 6
+    newton_max_step: float = 0.2
+    slow_branch_start: bool = True
+    surface_offset: float = 0.0
+
+    def validate(self) -> TransientOptions:
+        periods = _integer("periods", self.periods, 1)
+        min_periods = _integer("min_periods", self.min_periods, 1)
+        if min_periods > periods:
+            raise InputError(f"min_periods: {min_periods} exceeds periods = {periods}")
+        if self.steps_per_period is not None:
+            _integer("steps_per_period", self.steps_per_period, 4)
+        positive_scalar("min_sliding_time", self.min_sliding_time, allow_zero=True, unit="s")
+        positive_scalar("steady_tol", self.steady_tol)
+        if self.settle_time is not None:
+            positive_scalar("settle_time", self.settle_time, allow_zero=True, unit="s")
+        _integer("press_steps", self.press_steps, 1)
+        _integer("max_cutbacks", self.max_cutbacks, 0)
+        positive_scalar("newton_max_step", self.newton_max_step)
+        positive_scalar("surface_offset", self.surface_offset, allow_zero=True, unit="mm")
+        return self
+
+
+@dataclass(frozen=True)
+class FemOptions:
+    """The FEM sliding test: cell, numerics, and which solver runs it.
+
+    Attributes
+    ----------
+    mesh
+        Elements ``(nx, ny)``; ``nx`` must give >= 8 elements per shortest wavelength.
+    height_ratio
+        Cell height / width (paper: 0.75).
+    grading
+        Ratio top-row / bottom-row element height (> 1 refines toward the contact face).
+    contact_points
+        Contact points per face segment (1: node-to-surface).
+    penalty_factor
+        Contact penalty ``ε = factor · E_alg/h`` (see :func:`~.contact.penalty_parameter`).
+    contact_smoothing
+        C¹ rounding of the penalty's kink over this fraction of the penetration under the
+        mean pressure, ``p̄/ε`` (see :func:`~.contact.evaluate_contact`); 0 is the plain
+        penalty. A contact point sitting at the kink makes Newton cycle; the rounding acts
+        only where the local pressure is below a few per cent of ``p̄``.
+    bulk_modulus
+        ``κ`` [MPa] (None: :data:`~.constitutive.DEFAULT_BULK_MODULUS`).
+    history_order
+        Time interpolation of the viscous history: 2 quadratic, 1 piecewise linear.
+    viscous_model
+        ``"simo"`` or ``"reese-govindjee"`` (transient solver only).
+    newton_tol
+        Convergence when ``‖r‖ <= newton_tol · p̄ L0``.
+    max_newton
+        Newton iterations per transient step (the steady solver's are in ``steady``).
+    solver
+        ``"steady"`` (default) or ``"transient"`` (:data:`SOLVERS`).
+    steady, transient
+        The controls of each solver.
+    """
+
+    mesh: tuple[int, int] = (120, 90)
+    height_ratio: float = 0.75
+    grading: float = 1.0
+    contact_points: int = 4
+    penalty_factor: float = 100.0
+    contact_smoothing: float = 0.1
+    bulk_modulus: float | None = None
+    history_order: int = 2
+    viscous_model: str = "simo"
+    newton_tol: float = 1e-6
+    max_newton: int = 25
+    solver: str = "steady"
+    steady: SteadyOptions = field(default_factory=SteadyOptions)
+    transient: TransientOptions = field(default_factory=TransientOptions)
+
+    def __post_init__(self) -> None:
+        try:
+            nx, ny = (int(m) for m in self.mesh)
+            if any(int(m) != m for m in self.mesh) or len(self.mesh) != 2:
+                raise ValueError
+        except (TypeError, ValueError):
+            raise InputError(f"mesh: expected two integers (nx, ny), got {self.mesh!r}") from None
+        if nx < 3 or ny < 1:
+            raise InputError(f"mesh: need nx >= 3 and ny >= 1, got {self.mesh!r}")
+        object.__setattr__(self, "mesh", (nx, ny))
+        positive_scalar("height_ratio", self.height_ratio)
+        positive_scalar("grading", self.grading)
+        _integer("contact_points", self.contact_points, 1)
+        positive_scalar("penalty_factor", self.penalty_factor)
+        positive_scalar("contact_smoothing", self.contact_smoothing, allow_zero=True)
+        if self.bulk_modulus is not None:
+            positive_scalar("bulk_modulus", self.bulk_modulus, unit="MPa")
+        if self.history_order not in (1, 2):
+            raise InputError(f"history_order: must be 1 (linear) or 2 (quadratic), got "
+                             f"{self.history_order!r}")
+        if self.viscous_model not in VISCOUS_MODELS:
+            raise InputError(f"viscous_model: must be one of {', '.join(VISCOUS_MODELS)}, got "
+                             f"{self.viscous_model!r}")
+        positive_scalar("newton_tol", self.newton_tol)
+        _integer("max_newton", self.max_newton, 1)
+        if self.solver not in SOLVERS:
+            raise InputError(f"solver: must be one of {', '.join(SOLVERS)}, got {self.solver!r}")
+        if isinstance(self.steady, dict):
+            object.__setattr__(self, "steady", SteadyOptions(**self.steady))
+        if isinstance(self.transient, dict):
+            object.__setattr__(self, "transient", TransientOptions(**self.transient))
+        self.steady.validate()
+        self.transient.validate()
+
+    @property
+    def steps_per_period(self) -> int:
+        """The transient's steps per period (``nx`` unless set)."""
+        return self.transient.steps_per_period or self.mesh[0]
+
+    def to_dict(self) -> dict:
+        """Plain data (every field), e.g. for a task's arguments and its cache key."""
+        out = asdict(self)
+        out["mesh"] = list(self.mesh)
+        return out
+
+    @classmethod
+    def from_dict(cls, data: dict) -> FemOptions:
+        """Inverse of :meth:`to_dict`; unknown keys are an :class:`InputError`."""
+        names = {f.name for f in fields(cls)}
+        unknown = sorted(set(data) - names)
+        if unknown:
+            raise InputError(f"FEM options: unknown key(s) {unknown}")
+        kw = dict(data)
+        for key, sub in (("steady", SteadyOptions), ("transient", TransientOptions)):
+            if isinstance(kw.get(key), dict):
+                bad = sorted(set(kw[key]) - {f.name for f in fields(sub)})
+                if bad:
+                    raise InputError(f"FEM options: unknown key(s) {[f'{key}.{b}' for b in bad]}")
+                kw[key] = sub(**kw[key])
+        if "mesh" in kw:
+            kw["mesh"] = tuple(kw["mesh"])
+        return cls(**kw)
+
+    def with_(self, **changes) -> FemOptions:
+        """A copy with fields changed; ``steady=`` / ``transient=`` may be dicts of changes."""
+        for key in ("steady", "transient"):
+            if isinstance(changes.get(key), dict):
+                changes[key] = replace(getattr(self, key), **changes[key])
+        return replace(self, **changes)

@@ -1,0 +1,261 @@
+"""The steady FEM sliding test against what it must equal: the settled transient test, the
+recurrence it integrates, finite differences, closed forms and the static limits.
+
+Reference for full contact of one sine on a viscoelastic half-space (plane strain,
+ν = 1/2): μ = q²Δ² Im E_r(qv)/(4 σ0) = m2² Im E_r/(2 σ0), E_r = 4E/3.
+"""
+
+import warnings
+
+import numpy as np
+import pytest
+
+import rubbercontact as rc
+from rubbercontact.errors import ConvergenceError, InputError
+from rubbercontact.fem.constitutive import MaterialParameters
+from rubbercontact.fem.options import FemOptions
+from rubbercontact.fem.setup import build_cell
+from rubbercontact.fem.steady import SteadyCell
+from rubbercontact.fem.streamline import streamline_kernel
+
+LAM = 0.0625
+
+
+@pytest.mark.parametrize("order", [1, 2])
+@pytest.mark.parametrize("dt", [1e-6, 5e-5, 1e-3])
+def test_streamline_kernel_is_the_periodic_fixed_point_of_the_transient_update(order, dt):
+    # A row whose stress pattern travels one column per step: a material point sees
+    # pattern[0], pattern[1], ... and its history obeys the transient update (the weights
+    # of the next test). After a warm-up loop one loop is the affine map Q -> A Q + b with
+    # A = e^{-nx dt/τ} per branch, whose fixed point b/(1 − A) is exact. The circulant
+    # kernel must give it at column 0 (to round-off).
+    params = MaterialParameters.from_material(rc.materials.sbr(), history_order=order)
+    nx = 12
+    pattern = np.random.default_rng(1).standard_normal((nx, 3))
+    expected = streamline_kernel(params, dt, nx).apply(pattern[None], axis=1)[0, 0]
+    decay, gamma = params.step_factors(dt)
+    c = params.curvature_factors(dt) if order == 2 else np.zeros_like(gamma)
+    w1, w2 = params.beta * (gamma + c / 2), -params.beta * c / 2
+
+    def one_loop(q):
+        for i in range(1, nx + 1):
+            ds = pattern[i % nx] - pattern[i - 1]
+            ds_prev = pattern[i - 1] - pattern[i - 2]
+            q = decay[:, None] * q + w1[:, None] * ds + w2[:, None] * ds_prev
+        return q
+
+    q0 = np.zeros((params.n_branches, 3))
+    b = one_loop(q0)
+    A = decay[:, None] ** nx
+    np.testing.assert_allclose(one_loop(q0 + 1.0) - b, A * np.ones_like(q0), rtol=1e-9,
+                               atol=1e-13)   # affine with that A (a check on the map)
+    fixed = b / (1.0 - A)
+    np.testing.assert_allclose(fixed.sum(axis=0), expected, rtol=1e-9, atol=1e-12)
+
+
+def test_streamline_kernel_update_matches_constitutive_module():
+    # The kernel's weights are those of update_stress: one step of it with the quadratic
+    # history at equal steps changes Q by β(γ + c/2)ΔS − β(c/2)ΔS_prev (checked through the
+    # code path that the transient test runs).
+    from rubbercontact.fem.constitutive import ViscousState, update_stress
+
+    params = MaterialParameters.from_material(rc.materials.sbr(), history_order=2)
+    dt = 3e-5
+    F = np.eye(2)[None] + 0.01 * np.array([[[0.3, 0.5], [-0.2, 0.1]]])
+    F0 = np.eye(2)[None]
+    p = np.zeros(1)
+    s0 = np.zeros((1, 3))
+    q0 = np.zeros((params.n_branches, 1, 3))
+    st = ViscousState(s0, q0, s0.copy() - 0.001, dt)
+    _, _, _, _, new = update_stress(params, F, p, st, dt, tangent=False)
+    ds = new.s_iso - s0
+    decay, gamma = params.step_factors(dt)
+    c = params.curvature_factors(dt)
+    manual = (params.beta * (gamma + c / 2))[:, None, None] * ds \
+        - (params.beta * c / 2)[:, None, None] * 0.001
+    np.testing.assert_allclose(new.q, manual, rtol=1e-12, atol=1e-15)
+    del F0
+
+
+def _cell(mesh=(16, 8), v=10.0):
+    surf = rc.roughness.high_slope_wave()
+    setup = build_cell(surf, rc.materials.sbr(), 1.0, v, FemOptions(mesh=mesh),
+                       sliding_plate=True)
+    return setup, SteadyCell(setup.model, streamline_kernel(setup.params, setup.dt, mesh[0]))
+
+
+@pytest.mark.parametrize("gauge", ["face", "top"])
+def test_jacobian_matches_central_differences(gauge):
+    # The exact Jacobian (sparse part + FFT memory) against central differences of the
+    # residual at a deformed, partly-in-contact state; the difference error is O(ε²)
+    # ~ 1e-10 relative and round-off ~1e-16/ε² ~ 1e-2 · 1e-14: tolerance 1e-6.
+    setup, cell = _cell()
+    rng = np.random.default_rng(0)
+    U = 1e-5 * rng.standard_normal(setup.model.n)
+    U[setup.model.plate] = -0.002
+    ev = cell.evaluate(U, 0.0, setup.load, gauge)
+    assert np.any(ev.contact.active)
+    for _ in range(3):
+        v = rng.standard_normal(U.size)
+        eps = 1e-7
+        fd = (cell.evaluate(U + eps * v, 0.0, setup.load, gauge).r
+              - cell.evaluate(U - eps * v, 0.0, setup.load, gauge).r) / (2 * eps)
+        assert np.linalg.norm(cell.jvp(ev, v) - fd) <= 1e-6 * np.linalg.norm(fd)
+
+
+def test_newton_converges_quadratically_near_the_solution():
+    # From a converged steady state perturbed by 1e-4 of an element, exact Newton (tight
+    # GMRES) must converge quadratically: r_{k+1} <= C r_k² with C from the first step.
+    from rubbercontact.fem.newton_krylov import Counters, newton_krylov
+    from rubbercontact.fem.options import SteadyOptions
+
+    res = rc.fem.steady_sliding(rc.roughness.high_slope_wave(), rc.materials.sbr(), 1.0, 10.0,
+                                mesh=(24, 12))
+    st = res.state
+    setup, cell = _cell(mesh=(24, 12))
+    U = st.U + 1e-4 * setup.cell.hx * np.random.default_rng(2).standard_normal(st.U.size)
+    out = newton_krylov(cell, U, 0.0, setup.load, "face", 1e-11 * setup.load,
+                        SteadyOptions(krylov_rtol=1e-12, max_krylov=400), Counters())
+    r = np.array(out.residuals)
+    assert out.converged and len(r) <= 6
+    # convergence order from consecutive residuals above the round-off floor: quadratic
+    # once the contact set has settled (a face point may change state in the first steps;
+    # measured 2.4e-2, 1.1e-5, 4.7e-7, 1.1e-9: order 1.9 at the end)
+    r = r[r > 1e-10 * setup.load]
+    order = np.log(r[2:] / r[1:-1]) / np.log(r[1:-1] / r[:-2])
+    assert order.size >= 1 and order[-1] > 1.6, r
+
+
+def test_steady_equals_the_settled_transient_test():
+    # The steady state is the fixed point of the transient test at one element of travel
+    # per step, started at the same surface offset. Coarse cell (24 x 12), 10 mm/s, 1 MPa;
+    # the transient slides 20 periods (125 ms, 7.8 of the SBR's longest retardation
+    # times). Tolerance: ten times the transient's own change over its last period, at
+    # least 1e-4 (measured: the two agree to 1e-6 on 40 x 30 after 30 periods).
+    surf, mat = rc.roughness.high_slope_wave(), rc.materials.sbr()
+    st = rc.fem.steady_sliding(surf, mat, 1.0, 10.0, mesh=(24, 12))
+    with warnings.catch_warnings():
+        warnings.simplefilter("ignore", RuntimeWarning)
+        tr = rc.fem.sliding_test(surf, mat, 1.0, 10.0, mesh=(24, 12), solver="transient",
+                                 periods=20, min_periods=20, steady_tol=1e-12,
+                                 surface_offset=st.stats.surface_offset)
+    h = tr.history
+    slide = h["phase"] == 2
+    n = 24
+    for key, value in (("friction", st.friction), ("contact_fraction", st.contact_fraction),
+                       ("mean_separation", st.mean_separation)):
+        series = h[key][slide]
+        last, before = series[-n:].mean(), series[-2 * n:-n].mean()
+        drift = max(abs(last - before), np.ptp(series[-n:])) / abs(last)
+        assert value == pytest.approx(last, rel=max(1e-4, 10 * drift)), key
+        # the transient tends to a travelling wave: every step of a period the same state
+        assert np.ptp(series[-n:]) < 0.1 * np.ptp(series[:n])
+    assert st.stats.bulk_shear == pytest.approx(tr.stats.bulk_shear, rel=1e-3)
+
+
+def test_small_slope_full_contact_matches_linear_theory():
+    # m2 = 0.1 sine pressed at twice its full-contact pressure (full contact), 10 mm/s:
+    # μ = m2² Im E_r(qv)/(2 σ0). 5 % as for the transient test (mesh of 16 elements per
+    # decay length λ/2π in depth, the cell height, O(m2²)); measured about 1 %.
+    mat = rc.materials.sbr()
+    q, v = 2 * np.pi / LAM, 10.0
+    amp = 0.1 * np.sqrt(2) / q
+    er = mat.reduced_modulus(q * v)
+    p = 2 * np.pi * abs(er) * amp / LAM
+    out = rc.fem.steady_sliding(rc.roughness.SineSeries([LAM], [amp]), mat, p, v,
+                                mesh=(32, 24))
+    assert out.contact_fraction == pytest.approx(1.0, abs=1e-12)
+    assert out.friction == pytest.approx(0.01 * er.imag / (2 * p), rel=0.05)
+    assert out.stats.solver == "steady" and out.stats.steady
+
+
+def test_elastic_material_has_no_friction_and_the_static_state():
+    # No history: the steady problem is the static one. The sine's crest sits on a node
+    # (nx divisible by 4), so the configuration is symmetric and μ vanishes to round-off;
+    # ū equals the static (v = 0) test's within the Newton tolerance.
+    mat = rc.materials.GeneralizedMaxwell.elastic(4.17)
+    surf = rc.roughness.SineSeries([LAM], [0.005])
+    moving = rc.fem.steady_sliding(surf, mat, 0.3, 10.0, mesh=(32, 24))
+    static = rc.fem.sliding_test(surf, mat, 0.3, 0.0, mesh=(32, 24), solver="transient")
+    assert 0.05 < moving.contact_fraction < 0.95
+    assert abs(moving.friction) < 1e-8
+    assert moving.mean_separation == pytest.approx(static.mean_separation, rel=1e-5)
+    assert moving.contact_fraction == pytest.approx(static.contact_fraction, abs=1e-4)
+
+
+@pytest.mark.filterwarnings("ignore:mean_pressure")
+def test_speed_limits_are_the_relaxed_and_the_glassy_static_solutions():
+    # v -> 0: every branch relaxes within a step, the history vanishes: the elastic solid
+    # E∞, exactly. v -> ∞: the oscillating part of the stress sees the glassy modulus
+    # E∞ + Σ E_i, the row means stay relaxed, which differs from the glassy static
+    # solution only at second order in the strain (m2 = 0.02 here: 1 %). At both ends the
+    # friction vanishes against its value at 10 mm/s.
+    mat = rc.materials.sbr()
+    surf = rc.roughness.SineSeries([LAM], [0.02 * np.sqrt(2) * LAM / (2 * np.pi)])
+    e_glass = mat.equilibrium_modulus + float(np.sum(mat.moduli))
+    kw = {"mesh": (32, 24), "bulk_modulus": 1e6}   # incompressible at the glassy modulus too
+    for v, modulus, rel, speeds in ((1e-9, mat.equilibrium_modulus, 1e-5, (1.0, 1e2, 1e4)),
+                                    (1e14, e_glass, 0.01, (1e6, 1e8, 1e10))):
+        p = 0.3 * np.pi * 4 * modulus / 3 * surf.amplitudes[0] / LAM   # 30 % of full contact
+        moving = rc.fem.steady_sliding(surf, mat, p, v, **kw)
+        scan = max(rc.fem.steady_sliding(surf, mat, p, u, **kw).friction for u in speeds)
+        static = rc.fem.steady_sliding(surf, rc.materials.GeneralizedMaxwell.elastic(modulus),
+                                       p, 0.0, **kw)
+        assert abs(moving.friction) < 1e-3 * scan
+        assert moving.mean_separation == pytest.approx(static.mean_separation, rel=rel)
+        assert moving.contact_fraction == pytest.approx(static.contact_fraction,
+                                                        abs=max(rel, 1e-4))
+
+
+def test_a_neighbouring_speed_starts_the_next_solve():
+    # Continuation: the solution at 10 mm/s starts the one at 20 mm/s; the answer is the
+    # one a fresh solve finds (same discrete problem; the steady states may sit at other
+    # surface offsets, so within the sub-column sensitivity measured on this mesh, 2 %),
+    # in fewer Newton iterations.
+    surf, mat = rc.roughness.high_slope_wave(), rc.materials.sbr()
+    a = rc.fem.steady_sliding(surf, mat, 1.0, 10.0, mesh=(24, 12))
+    fresh = rc.fem.steady_sliding(surf, mat, 1.0, 20.0, mesh=(24, 12))
+    cont = rc.fem.steady_sliding(surf, mat, 1.0, 20.0, mesh=(24, 12), start=a.state)
+    assert cont.friction == pytest.approx(fresh.friction, rel=0.02)
+    assert cont.mean_separation == pytest.approx(fresh.mean_separation, rel=0.02)
+    assert cont.stats.newton_iterations < fresh.stats.newton_iterations
+    assert "neighbour" in cont.stats.tried[0]
+
+
+def test_failure_falls_back_to_the_transient_test_and_says_so():
+    surf, mat = rc.roughness.high_slope_wave(), rc.materials.sbr()
+    with pytest.warns(RuntimeWarning, match="steady FEM solve failed"):
+        out = rc.fem.steady_sliding(surf, mat, 1.0, 10.0, mesh=(16, 8), newton_per_step=1,
+                                    max_steps=2)
+    assert out.stats.solver == "transient (fallback)"
+    assert "steady failed" in out.stats.status and "press" in out.stats.status
+    with pytest.raises(ConvergenceError) as info:
+        rc.fem.steady_sliding(surf, mat, 1.0, 10.0, mesh=(16, 8), newton_per_step=1,
+                              max_steps=2, fallback=False)
+    assert info.value.diagnostics["tried"]
+
+
+@pytest.mark.parametrize("kw, field", [
+    ({"viscous_model": "reese-govindjee"}, "viscous_model"),
+    ({"periods": 4}, "periods"),
+    ({"mesh": (6, 5)}, "mesh"),
+    ({"coarse_elements": -1}, "coarse_elements"),
+    ({"krylov_rtol": 2.0}, "krylov_rtol"),
+    ({"bogus": 1}, "bogus"),
+])
+def test_bad_input_names_the_field(kw, field):
+    with pytest.raises(InputError, match=field):
+        rc.fem.steady_sliding(rc.roughness.high_slope_wave(), rc.materials.sbr(), 1.0, 10.0,
+                              **kw)
+
+
+def test_result_dataset_and_options_round_trip():
+    out = rc.fem.steady_sliding(rc.roughness.high_slope_wave(), rc.materials.sbr(), 1.0, 10.0,
+                                mesh=(24, 12))
+    ds = out.to_dataset()
+    assert ds.attrs["solver"] == "steady"
+    assert ds["friction"].attrs["units"] == "1" and float(ds["friction"]) == out.friction
+    opts = FemOptions(mesh=(24, 12), grading=2.0)
+    assert FemOptions.from_dict(opts.to_dict()) == opts
+    with pytest.raises(InputError, match="unknown"):
+        FemOptions.from_dict({"meshes": [1, 2]})
