@@ -33,9 +33,10 @@ exact in full contact (``A = 1``).
 elastic energy that a mode does *not* store near the edges of the contact patches. It too is
 exact in full contact and lowers the friction where the contact is small.
 
-We default to ``S = 1``: it is the theory's own friction, and against our 1D BEM it is the
-closer of the two on the random multi-wave surfaces of the validation
-(docs/validation/meanfield.md gives both).
+We default to ``S = 1``: it is the theory's own friction, and against our BEM it is the
+closer of the two on the multi-wave surfaces and on the 2D map of the validation; on a 1D
+self-affine profile over four decades Persson's ``S`` is the closer
+(docs/validation/meanfield.md gives both everywhere).
 """
 
 from __future__ import annotations

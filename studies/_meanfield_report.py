@@ -1,0 +1,394 @@
+"""Report of studies/meanfield.py: the theory recomputed on the study's rows, tables,
+figures and prose (studies/templates/meanfield.md)."""
+
+from __future__ import annotations
+
+import time
+import warnings
+from pathlib import Path
+
+import numpy as np
+
+import rubbercontact as rc
+from rubbercontact import meanfield as mf
+from rubbercontact.roughness import SineSeries
+
+from ._meanfield_cases import SPEEDS, make_map, self_affine_profile
+from ._templates import render
+
+SBR = rc.materials.sbr()
+TARGET = 0.15
+A_RANGE = (0.01, 0.5)
+
+
+def _series(d: dict) -> SineSeries:
+    return SineSeries(d["wavelengths"], d["amplitudes"], d.get("phases"))
+
+
+def _psd(row: dict) -> mf.PSD:
+    if row["kind"] == "2d":
+        return mf.PSD.from_map(make_map(seed=row["seed"], **row["map"]), row["map"]["length"])
+    if row["kind"] == "selfaffine":
+        return self_affine_profile(n=4 * int(round(row["params"]["length"]
+                                                   / row["params"]["lam_min"])),
+                                   seed=row["seed"], **row["params"])[1]
+    return mf.PSD.from_sines(_series(row["surface"]))
+
+
+def _pct(x: float) -> str:
+    return f"{100 * x:+.0f} %"
+
+
+def _rng(e: np.ndarray) -> str:
+    return f"{_pct(e.mean())} [{_pct(e.min())}, {_pct(e.max())}]" if e.size else "–"
+
+
+def _points(rows, options: mf.MeanFieldOptions | None = None) -> list[dict]:
+    """Every 1D row with the theory's μ and A and the BEM means (and standard errors)."""
+    out = []
+    for r in rows:
+        if r["kind"] not in ("1d", "selfaffine"):
+            continue
+        res = mf.solve(_psd(r), SBR, r["v"], r["p"], options=options)
+        mu, area = np.mean(r["bem_mu"]), np.mean(r["bem_A"])
+        se = np.std(r["bem_mu"], ddof=1) / np.sqrt(len(r["bem_mu"])) if len(r["bem_mu"]) > 1 \
+            else np.nan
+        out.append({**r, "mf_mu": res.friction, "mf_A": res.contact_fraction, "mu": mu,
+                    "A": area, "mu_se": se, "e_mu": res.friction / mu - 1,
+                    "e_A": res.contact_fraction / area - 1,
+                    "in_range": A_RANGE[0] <= area <= A_RANGE[1]})
+    return out
+
+
+def _is_random(case: str) -> bool:
+    return case.startswith("random")
+
+
+def _choices_table(rows, variants) -> str:
+    lines = ["| variant | μ error, random ladders | μ within 15 % | μ error, section 3 "
+             "| μ error, Table 2 | μ error, CAPTIF |", "|---|---|---|---|---|---|"]
+    for label, opts in variants:
+        pts = [p for p in _points(rows, opts) if p["in_range"] and p["kind"] == "1d"]
+        rnd = np.array([p["e_mu"] for p in pts if _is_random(p["case"])])
+        cols = [_rng(rnd), f"{np.mean(np.abs(rnd) <= TARGET):.0%}" if rnd.size else "–"]
+        for name in ("section 3", "Table 2", "CAPTIF fit"):
+            cols.append(_rng(np.array([p["e_mu"] for p in pts if p["case"] == name])))
+        lines.append(f"| {label} | " + " | ".join(cols) + " |")
+    return "\n".join(lines)
+
+
+def _validation_table(points) -> str:
+    lines = ["| surface | waves | max m2 | points (BEM A in 1–50 %) | μ error mean [min, max] "
+             "| A error mean [min, max] | μ and A within 15 % |", "|---|---|---|---|---|---|---|"]
+    for case in dict.fromkeys(p["case"] for p in points):
+        pts = [p for p in points if p["case"] == case and p["in_range"]]
+        if not pts:
+            continue
+        first = pts[0]
+        if "surface" in first:
+            s = _series(first["surface"])
+            waves, m2 = str(s.size), f"{s.rms_slopes().max():.2f}"
+        else:
+            waves, m2 = f"{int(round(first['params']['length'] / first['params']['lam_min']))} " \
+                        "harmonics", "–"
+        e_mu = np.array([p["e_mu"] for p in pts])
+        e_a = np.array([p["e_A"] for p in pts])
+        ok = np.mean((np.abs(e_mu) <= TARGET) & (np.abs(e_a) <= TARGET))
+        lines.append(f"| {case} | {waves} | {m2} | {len(pts)} | {_rng(e_mu)} | {_rng(e_a)} "
+                     f"| {ok:.0%} |")
+    return "\n".join(lines)
+
+
+def _speed_table(points) -> str:
+    lines = ["| v [mm/s] | μ error, random ladders | A error, random ladders | μ error, all "
+             "multi-wave | A error, all multi-wave |", "|---|---|---|---|---|"]
+    for v in SPEEDS:
+        rnd = [p for p in points if p["v"] == v and p["in_range"] and _is_random(p["case"])]
+        allp = [p for p in points if p["v"] == v and p["in_range"] and p["kind"] == "1d"]
+        cols = [_rng(np.array([p[k] for p in sel])) for sel in (rnd,) for k in ("e_mu", "e_A")]
+        cols += [_rng(np.array([p[k] for p in allp])) for k in ("e_mu", "e_A")]
+        lines.append(f"| {v:g} | " + " | ".join(cols) + " |")
+    return "\n".join(lines)
+
+
+def _speed_curve_table(rows) -> str:
+    lines = ["| v [mm/s] | BEM μ (± s.e.) | theory μ | μ error | BEM A | theory A | A error |",
+             "|---|---|---|---|---|---|---|"]
+    for r in sorted((r for r in rows if r["kind"] == "speed"), key=lambda r: r["v"]):
+        res = mf.solve(mf.PSD.from_sines(_series(r["surface"])), SBR, r["v"], r["p"])
+        mu, area = np.mean(r["bem_mu"]), np.mean(r["bem_A"])
+        se = np.std(r["bem_mu"], ddof=1) / np.sqrt(len(r["bem_mu"]))
+        lines.append(f"| {r['v']:g} | {mu:.3f} ± {se:.3f} | {res.friction:.3f} | "
+                     f"{_pct(res.friction / mu - 1)} | {area:.4f} | {res.contact_fraction:.4f} "
+                     f"| {_pct(res.contact_fraction / area - 1)} |")
+    return "\n".join(lines)
+
+
+def _area_bias(points) -> dict:
+    rnd = [p for p in points if _is_random(p["case"]) and p["in_range"]]
+    small = np.array([p["A"] / p["mf_A"] for p in rnd if p["A"] < 0.05])
+    large = np.array([p["A"] / p["mf_A"] for p in rnd if p["A"] > 0.25])
+    slow = np.array([p["A"] / p["mf_A"] for p in rnd if p["v"] <= 1.0])
+    fast = np.array([p["A"] / p["mf_A"] for p in rnd if p["v"] >= 500.0])
+    mu_slow = np.array([p["e_mu"] for p in rnd if p["v"] <= 1.0])
+    mu_fast = np.array([p["e_mu"] for p in rnd if p["v"] >= 500.0])
+    f = "{:.2f}".format
+    return {"small_lo": f(small.min()), "small_hi": f(small.max()), "large_lo": f(large.min()),
+            "large_hi": f(large.max()), "slow_ratio": f(slow.mean()), "fast_ratio": f(fast.mean()),
+            "mu_slow": _pct(mu_slow.mean()), "mu_fast": _pct(mu_fast.mean())}
+
+
+def _self_affine_table(points) -> tuple[str, dict]:
+    lines = ["| v [mm/s] | σ0 [MPa] | N | realization | BEM μ | BEM A | theory μ | theory A "
+             "| μ error | A error | μ with S = ½ + ½A² | its error | BEM time [s] |",
+             "|---" * 13 + "|"]
+    persson = mf.MeanFieldOptions(correction="persson")
+    e1, e2 = [], []
+    for p in sorted((p for p in points if p["kind"] == "selfaffine"),
+                    key=lambda p: (p["v"], p["seed"], p["n"])):
+        mu_s = mf.solve(_psd(p), SBR, p["v"], p["p"], options=persson).friction
+        e1.append(p["e_mu"])
+        e2.append(mu_s / p["mu"] - 1)
+        lines.append(f"| {p['v']:g} | {p['p']:.4g} | 2^{int(np.log2(p['n']))} | {p['seed']} "
+                     f"| {p['mu']:.4f} | {p['A']:.4f} | {p['mf_mu']:.4f} | {p['mf_A']:.4f} "
+                     f"| {_pct(p['e_mu'])} | {_pct(p['e_A'])} | {mu_s:.4f} | "
+                     f"{_pct(e2[-1])} | {p['bem_time']:.0f} |")
+    sa = [p for p in points if p["kind"] == "selfaffine"]
+    t20 = [p["bem_time"] for p in sa if p["n"] == 2**20]
+    t18 = [p["bem_time"] for p in sa if p["n"] == 2**18]
+    return "\n".join(lines), {"sa_default": _rng(np.array(e1)), "sa_persson": _rng(np.array(e2)),
+                               "t20": f"{max(t20) / 60:.0f}" if t20 else "–",
+                               "t18": f"{max(t18) / 60:.1f}" if t18 else "–"}
+
+
+def _spectrum_table(rows) -> tuple[str, dict]:
+    lines = ["| v [mm/s] | σ0 [MPa] | BEM μ (4 realizations) | theory μ | BEM A / theory A "
+             "| BEM / theory, dissipation in the wave bands | BEM share above the roughness's "
+             "cut-off |", "|---|---|---|---|---|---|---|"]
+    fields = {}
+    for r in sorted((r for r in rows if r["kind"] == "spectrum"), key=lambda r: r["v"]):
+        s = _series(r["surface"])
+        res = mf.solve(mf.PSD.from_sines(s), SBR, r["v"], r["p"])
+        bem_a = np.mean(r["bem_A"])
+        bands = np.asarray(r["bem_bands"])
+        total, in_band = bands.sum(), bands[1:-1].sum()
+        tag = "slow" if r["v"] <= 1.0 else "fast"
+        fields.update({f"band_{tag}": f"{in_band / res.friction:.2f}",
+                       f"tail_{tag}": f"{bands[-1] / total:.0%}",
+                       f"area_{tag}": f"{bem_a / res.contact_fraction:.2f}"})
+        lines.append(f"| {r['v']:g} | {r['p']:.4g} | {total:.3f} | {res.friction:.3f} | "
+                     f"{bem_a / res.contact_fraction:.2f} | {in_band / res.friction:.2f} | "
+                     f"{bands[-1] / total:.0%} |")
+    return "\n".join(lines), fields
+
+
+def _hybrid_rows(rows) -> list[dict]:
+    out = []
+    for r in rows:
+        if r["kind"] != "hybrid":
+            continue
+        s = _series(r["surface"])
+        hs, ls = mf.PSD.from_sines(s).partition(1.0)
+        with warnings.catch_warnings():
+            warnings.simplefilter("ignore", rc.hybrid.LawWarning)
+            rigid = mf.solve(ls, SBR, r["v"], r["p"], law=r["law"],
+                             options=mf.MeanFieldOptions(interface="rigid"))
+            layer = mf.solve(ls, SBR, r["v"], r["p"], law=r["law"])
+        plain = mf.solve(mf.PSD.from_sines(s), SBR, r["v"], r["p"])
+        out.append({**r, "win": (np.mean(r["win_mu"]), np.mean(r["win_A"])),
+                    "vhs": (np.mean(r["bem_mu"]), np.mean(r["bem_A"])),
+                    "rigid": (rigid.friction, rigid.contact_fraction),
+                    "layer": (layer.friction, layer.contact_fraction),
+                    "plain": (plain.friction, plain.contact_fraction)})
+    return out
+
+
+def _hybrid_table(hyb) -> str:
+    lines = ["| surface | v [mm/s] | σ0 [MPa] | hybrid-windowed μ / A | meanfield-hybrid "
+             "(law layer) μ / A | error μ / A | rigid interface μ / A | error μ / A "
+             "| VHS μ / A | meanfield μ / A |", "|---|---|---|---|---|---|---|---|---|---|"]
+    for h in hyb:
+        w = h["win"]
+
+        def pair(x):
+            return f"{x[0]:.3f} / {x[1]:.4f}"
+
+        def err(x, w=w):
+            return f"{_pct(x[0] / w[0] - 1)} / {_pct(x[1] / w[1] - 1)}"
+
+        lines.append(f"| {h['case']} | {h['v']:g} | {h['p']:.4g} | {pair(w)} | "
+                     f"{pair(h['layer'])} | {err(h['layer'])} | {pair(h['rigid'])} | "
+                     f"{err(h['rigid'])} | {pair(h['vhs'])} | {pair(h['plain'])} |")
+    return "\n".join(lines)
+
+
+def _two_d_table(rows) -> tuple[str, list]:
+    lines = ["| v [mm/s] | σ0 [MPa] | map | BEM μ | BEM A | theory μ | theory A | μ error "
+             "| A error | BEM time [s] |", "|---|---|---|---|---|---|---|---|---|---|"]
+    errs = []
+    for r in sorted((r for r in rows if r["kind"] == "2d"), key=lambda r: (r["v"], r["p"])):
+        res = mf.solve(_psd(r), SBR, r["v"], r["p"])
+        e = (res.friction / r["bem_mu"][0] - 1, res.contact_fraction / r["bem_A"][0] - 1)
+        errs.append(e)
+        lines.append(f"| {r['v']:g} | {r['p']:.4g} | {r['seed']} | {r['bem_mu'][0]:.4f} | "
+                     f"{r['bem_A'][0]:.4f} | {res.friction:.4f} | {res.contact_fraction:.4f} "
+                     f"| {_pct(e[0])} | {_pct(e[1])} | {r['bem_time']:.1f} |")
+    return "\n".join(lines), errs
+
+
+def _log_ticks(ax) -> None:
+    from matplotlib.ticker import FixedLocator, NullFormatter, ScalarFormatter
+
+    ax.set_xscale("log")
+    ax.xaxis.set_major_locator(FixedLocator([0.01, 0.02, 0.05, 0.1, 0.2, 0.5]))
+    ax.xaxis.set_major_formatter(ScalarFormatter())
+    ax.xaxis.set_minor_formatter(NullFormatter())
+
+
+def _figures(points, hyb, rows, folder: Path) -> list[str]:
+    import matplotlib
+
+    matplotlib.use("Agg")
+    import matplotlib.pyplot as plt
+
+    names = []
+    fig, axes = plt.subplots(1, 2, figsize=(11, 4.2), sharex=True)
+    cases = list(dict.fromkeys(p["case"] for p in points))
+    marks = dict(zip(SPEEDS, "os^D", strict=True))
+    for ci, case in enumerate(cases):
+        for v in SPEEDS:
+            sel = [p for p in points if p["case"] == case and p["v"] == v]
+            if not sel:
+                continue
+            for ax, key in zip(axes, ("e_mu", "e_A"), strict=True):
+                ax.plot([p["A"] for p in sel], [100 * p[key] for p in sel], marks.get(v, "x"),
+                            color=f"C{ci}", ms=5, label=case if v == SPEEDS[1] else None)
+    for ax, title in zip(axes, ("friction", "contact area"), strict=True):
+        _log_ticks(ax)
+        ax.axhspan(-100 * TARGET, 100 * TARGET, color="0.9")
+        ax.axhline(0, color="k", lw=0.8)
+        ax.set_xlabel("BEM contact fraction")
+        ax.set_ylabel(f"theory / BEM − 1 [%] ({title})")
+    axes[0].legend(fontsize=7, title="markers: 1, 10, 50, 500 mm/s = o s ^ D", title_fontsize=7)
+    fig.tight_layout()
+    fig.savefig(folder / "meanfield_errors.png", dpi=120)
+    names.append("meanfield_errors.png")
+    plt.close(fig)
+
+    press = [r for r in rows if r["kind"] == "pressure"]
+    if press:
+        r = press[0]
+        res = mf.solve(mf.PSD.from_sines(_series(r["surface"])), SBR, r["v"], r["p"])
+        d = res.pressure_distribution
+        e = np.asarray(r["edges"])
+        fig, ax = plt.subplots(figsize=(6, 4))
+        ax.stairs(r["density"], e, label="BEM (8 realizations, σ > 0)")
+        ax.plot(d.sigma, d.density, label="theory P(σ)")
+        ax.set_xlim(0, e[-1])
+        ax.set_xlabel("contact pressure σ [MPa]")
+        ax.set_ylabel("P(σ) [1/MPa]")
+        ax.set_title(f"{r['case']}, {r['v']:g} mm/s, σ0 = {r['p']:.3g} MPa", fontsize=9)
+        ax.legend()
+        fig.tight_layout()
+        fig.savefig(folder / "meanfield_pressure.png", dpi=120)
+        names.append("meanfield_pressure.png")
+        plt.close(fig)
+
+    if hyb:
+        fig, axes = plt.subplots(1, 2, figsize=(11, 4.2))
+        for ax, v in zip(axes, (10.0, 50.0), strict=True):
+            for ci, case in enumerate(dict.fromkeys(h["case"] for h in hyb)):
+                sel = [h for h in hyb if h["case"] == case and h["v"] == v]
+                for key, mk, lab in (("win", "o-", "hybrid-windowed"),
+                                     ("layer", "s--", "meanfield-hybrid (law layer)"),
+                                     ("rigid", "^:", "meanfield-hybrid, rigid interface")):
+                    ax.plot([h[key][1] for h in sel], [h[key][0] for h in sel], mk,
+                                color=f"C{ci}", label=f"{case}: {lab}")
+            ax.set_title(f"{v:g} mm/s, stand-in (linear) law", fontsize=9)
+            _log_ticks(ax)
+            ax.set_xlabel("contact fraction")
+            ax.set_ylabel("friction μ")
+        axes[0].legend(fontsize=7)
+        fig.tight_layout()
+        fig.savefig(folder / "meanfield_hybrid.png", dpi=120)
+        names.append("meanfield_hybrid.png")
+        plt.close(fig)
+
+    speed = sorted((r for r in rows if r["kind"] == "speed"), key=lambda r: r["v"])
+    sa = [p for p in points if p["kind"] == "selfaffine" and p["seed"] == 1]
+    v = np.logspace(-4, 6, 301)
+    fig, ax = plt.subplots(figsize=(6.8, 4.4))
+    if speed:
+        p0 = speed[0]["p"]
+        curve = mf.friction_curve(mf.PSD.from_sines(_series(speed[0]["surface"])), SBR, v, p0)
+        ax.semilogx(v, curve.friction, "C0", label=f"Table 2, σ0 = {p0:g} MPa: theory")
+        ax.errorbar([r["v"] for r in speed], [np.mean(r["bem_mu"]) for r in speed],
+                    yerr=[np.std(r["bem_mu"], ddof=1) / np.sqrt(len(r["bem_mu"]))
+                          for r in speed], fmt="o", color="C0", label="Table 2: BEM")
+    for i, p in enumerate(sorted({(p["v"], p["p"]) for p in sa})):
+        curve = mf.friction_curve(_psd(sa[0]), SBR, v, p[1])
+        ax.semilogx(v, curve.friction, f"C{i + 1}", lw=1,
+                    label=f"self-affine 4 decades, σ0 = {p[1]:.3g} MPa: theory")
+        bem = sorted((q for q in sa if (q["v"], q["p"]) == p), key=lambda q: q["n"])[-1:]
+        ax.plot([p[0]], [bem[0]["mu"]], "s", color=f"C{i + 1}",
+                label=f"self-affine: BEM at {p[0]:g} mm/s, N = 2^{int(np.log2(bem[0]['n']))}")
+    ax.set_xlabel("sliding speed v [mm/s]")
+    ax.set_ylabel("friction μ")
+    ax.legend(fontsize=7)
+    fig.tight_layout()
+    fig.savefig(folder / "meanfield_speed.png", dpi=120)
+    names.append("meanfield_speed.png")
+    plt.close(fig)
+    return names
+
+
+def _cost(points) -> dict:
+    psd = mf.PSD.self_affine(hurst=0.8, qr=2 * np.pi / 10, q1=2 * np.pi / 1e-4, rms_slope=0.7)
+    v = np.logspace(-4, 6, 201)
+    t0 = time.perf_counter()
+    mf.friction_curve(psd, SBR, v, 0.3)
+    sweep = time.perf_counter() - t0
+    t0 = time.perf_counter()
+    for _ in range(20):
+        mf.solve(mf.PSD.from_sines(rc.roughness.asphalt_ac8()), SBR, 10.0, 0.3)
+    one = (time.perf_counter() - t0) / 20
+    bem = {k: np.mean([p["bem_time"] for p in points if p["case"] == k]) for k in
+           ("Table 2", "self-affine 4 decades") if any(p["case"] == k for p in points)}
+    return {"sweep": f"{sweep:.2f}", "sweep_nodes": psd.size, "one": f"{1e3 * one:.1f}",
+            "bem_t2": f"{bem.get('Table 2', np.nan):.2f}",
+            "bem_sa": f"{bem.get('self-affine 4 decades', np.nan):.0f}"}
+
+
+def report(rows, *, figures: Path, date: str, commit: str, wall: float, variants) -> str:
+    points = _points(rows)
+    hyb = _hybrid_rows(rows)
+    two_d, errs_2d = _two_d_table(rows)
+    spec, spec_fields = _spectrum_table(rows)
+    sa_table, sa_fields = _self_affine_table(points)
+    names = _figures(points, hyb, rows, figures)
+    rnd = [p for p in points if _is_random(p["case"]) and p["in_range"]]
+    both = np.mean([(abs(p["e_mu"]) <= TARGET) and (abs(p["e_A"]) <= TARGET) for p in rnd])
+    n_1d = sum(r["kind"] == "1d" for r in rows)
+    out = [render("meanfield", "title"), "",
+           render("meanfield", "intro", date=date, commit=commit, points=n_1d,
+                  wall=f"{wall / 60:.1f}"), "",
+           render("meanfield", "theory"), "",
+           render("meanfield", "choices"), "", _choices_table(rows, variants), "",
+           render("meanfield", "validation", share=f"{both:.0%}", n_random=len(rnd)), "",
+           _validation_table(points), "", render("meanfield", "by_speed"), "",
+           _speed_table(points), "",
+           render("meanfield", "speed_curve",
+                  load=next((f"{r['p']:g}" for r in rows if r["kind"] == "speed"), "–")), "",
+           _speed_curve_table(rows), "",
+           render("meanfield", "off", **_area_bias(points), **spec_fields), "", spec, "",
+           render("meanfield", "self_affine", t20=sa_fields["t20"], t18=sa_fields["t18"]), "",
+           sa_table, "",
+           render("meanfield", "broadband", sa_default=sa_fields["sa_default"],
+                  sa_persson=sa_fields["sa_persson"]), "",
+           render("meanfield", "hybrid"), "", _hybrid_table(hyb), "",
+           render("meanfield", "two_d",
+                  mu=_rng(np.array([e[0] for e in errs_2d])) if errs_2d else "–",
+                  area=_rng(np.array([e[1] for e in errs_2d])) if errs_2d else "–"), "",
+           two_d, "", render("meanfield", "cost", **_cost(points)), ""]
+    out += [f"![{n[:-4]}]({n})" for n in names]
+    return "\n".join(out) + "\n"
