@@ -59,7 +59,6 @@ pressures = [0.3, 1.0]
 n = 512
 [fem]
 mesh = [30, 23]
-periods = 2
 [law]
 pressures = [0.3, 1.0]
 [execution]
@@ -112,7 +111,7 @@ def test_run_with_the_fem_on_a_subset_is_not_a_failure(tmp_path, capsys):
 
     cfg = tmp_path / "tiny.toml"
     cfg.write_text(TINY.replace("realizations = 1", "realizations = 2")
-                   .replace("periods = 2", "periods = 2\nrealizations = 1"))
+                   .replace("mesh = [30, 23]", "mesh = [30, 23]\nrealizations = 1"))
     assert main(["run", str(cfg), "--quiet"]) == 0
     captured = capsys.readouterr()
     assert "fem ran on 1 of 2 realizations" in captured.out

@@ -259,3 +259,22 @@ def test_result_dataset_and_options_round_trip():
     assert FemOptions.from_dict(opts.to_dict()) == opts
     with pytest.raises(InputError, match="unknown"):
         FemOptions.from_dict({"meshes": [1, 2]})
+
+
+def test_speed_sweep_by_continuation_follows_the_loss_peak():
+    # Friction against speed over six decades on a coarse cell: each point starts from its
+    # neighbour (one homotopy step each); the curve rises from ~0 at 1e-3 mm/s, peaks and
+    # falls, and every point agrees with a fresh solve within the sub-column sensitivity
+    # of this mesh (2 %, see the continuation test above).
+    surf, mat = rc.roughness.high_slope_wave(), rc.materials.sbr()
+    v = np.geomspace(1e-3, 1e3, 7)
+    sweep = rc.fem.steady_sweep(surf, mat, 1.0, v, mesh=(24, 12))
+    mu = np.array([r.friction for r in sweep])
+    assert all(r.stats.solver == "steady" for r in sweep)
+    assert all("neighbour" in r.stats.tried[0] for r in sweep[1:])
+    k = int(np.argmax(mu))
+    assert 0 < k < v.size - 1 and mu[0] < 0.05 * mu[k] and mu[-1] < 0.5 * mu[k]
+    fresh = rc.fem.steady_sliding(surf, mat, 1.0, float(v[k]), mesh=(24, 12))
+    assert mu[k] == pytest.approx(fresh.friction, rel=0.02)
+    with pytest.raises(InputError, match="equal length"):
+        rc.fem.steady_sweep(surf, mat, [1.0, 2.0], [1.0, 2.0, 3.0])

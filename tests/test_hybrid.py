@@ -135,7 +135,7 @@ def test_elastic_high_slope_law_gives_zero_mu_hs(tmp_path):
     cfg = _config(tmp_path, surface={"preset": "section3"},
                   models=["hybrid", "hybrid-windowed"],
                   material={"preset": None, "equilibrium_modulus": 4.17},
-                  realizations=1, fem={"mesh": [16, 12], "periods": 2},
+                  realizations=1, fem={"mesh": [16, 12]},
                   law={"pressures": [0.1, 0.3, 1.0]})
     ds = rc.hybrid.run(cfg, progress=False)
     assert np.all(ds["status"].values == "ok")
@@ -161,7 +161,7 @@ def test_small_slope_hybrid_agrees_with_vhs(tmp_path):
     cfg = _config(tmp_path, surface={"wavelengths": [0.0625, 0.25],
                                      "amplitudes": [0.0014, 0.004], "m2_threshold": 0.08},
                   loads={"pressures": [0.1, 0.2, 0.4]}, realizations=1,
-                  halfspace={"n": 2048}, fem={"mesh": [32, 24], "periods": 3},
+                  halfspace={"n": 2048}, fem={"mesh": [32, 24]},
                   law={"pressures": [0.02, 0.05, 0.1, 0.2, 0.4, 0.8]})
     ds = rc.hybrid.run(cfg, progress=False)
     vhs, hyb = ds.sel(model="vhs"), ds.sel(model="hybrid")
@@ -188,89 +188,84 @@ def _first_sweep(cfg) -> list:
 
 
 def test_full_fem_options_reach_the_fem_task(tmp_path):
-    # The full-surface FEM gets its own mesh, grading and time step; the contact sampling
-    # and the history order are shared with the law.
+    # The full-surface FEM gets its own mesh, grading and (transient) time step; the contact
+    # sampling and the history order are shared with the law. One options object carries
+    # them all into the task (and into its cache key).
     seen = _first_sweep(_config(
         tmp_path, models=["fem"], surface={"preset": "section3"},
-        fem={"mesh": [40, 30], "full_mesh": [96, 40], "full_grading": 4.0,
-             "full_steps_per_period": 48, "contact_points": 3, "history_order": 1,
-             "periods": 12, "full_periods": 3}))
-    kw = seen[0].kwargs
+        fem={"solver": "transient", "mesh": [40, 30], "full_mesh": [96, 40],
+             "full_grading": 4.0, "full_steps_per_period": 48, "contact_points": 3,
+             "history_order": 1, "periods": 12, "full_periods": 3}))
     assert seen[0].function.endswith(":fem_task")
-    assert (kw["mesh"], kw["grading"], kw["steps_per_period"], kw["contact_points"],
-            kw["history_order"], kw["periods"]) == ([96, 40], 4.0, 48, 3, 1, 3)
+    opts = rc.fem.FemOptions.from_dict(seen[0].kwargs["options"])
+    assert (opts.mesh, opts.grading, opts.transient.steps_per_period, opts.contact_points,
+            opts.history_order, opts.transient.periods, opts.solver) == (
+        (96, 40), 4.0, 48, 3, 1, 3, "transient")
     # without full_periods the full FEM runs the law's number of periods
     seen = _first_sweep(_config(tmp_path, models=["fem"], surface={"preset": "section3"},
-                                fem={"mesh": [40, 30], "periods": 5}))
-    assert seen[0].kwargs["periods"] == 5
+                                fem={"solver": "transient", "mesh": [40, 30], "periods": 5}))
+    assert seen[0].kwargs["options"]["transient"]["periods"] == 5
     with pytest.raises(rc.errors.InputError, match="full_periods"):
-        rc.config.parse_config(_config(tmp_path, fem={"full_periods": 0}))
+        rc.config.parse_config(_config(tmp_path, fem={"solver": "transient",
+                                                      "full_periods": 0}))
 
 
-def test_history_order_reaches_the_law_tasks(tmp_path):
-    for order in (1, 2):
-        seen = _first_sweep(_config(tmp_path, models=["hybrid"], surface={"preset": "section3"},
-                                    fem={"mesh": [40, 30], "history_order": order}))
-        assert seen and all(t.kwargs["history_order"] == order for t in seen)
-    with pytest.raises(rc.errors.InputError, match="history_order"):
-        rc.config.parse_config(_config(tmp_path, fem={"history_order": 3}))
+def test_the_steady_solver_is_the_default_and_rejects_transient_options(tmp_path):
+    seen = _first_sweep(_config(tmp_path, models=["hybrid"], surface={"preset": "section3"},
+                                fem={"mesh": [40, 30], "steady": {"coarse_elements": 0}}))
+    assert seen and all(t.kwargs["options"]["solver"] == "steady" for t in seen)
+    assert all(t.kwargs["options"]["steady"]["coarse_elements"] == 0 for t in seen)
+    for key, value in (("periods", 4), ("steps_per_period", 64), ("min_creep_times", 5.0),
+                       ("viscous_model", "reese-govindjee")):
+        with pytest.raises(rc.errors.InputError, match=f"{key}.*transient|transient.*{key}"):
+            rc.config.parse_config(_config(tmp_path, fem={key: value}))
+    with pytest.raises(rc.errors.InputError, match="unknown key"):
+        rc.config.parse_config(_config(tmp_path, fem={"steady": {"coarse": 3}}))
 
 
-def test_viscous_model_reaches_the_fem_tasks_and_keeps_simo_cache_keys(tmp_path):
-    for model, models in (("reese-govindjee", ["hybrid"]), ("reese-govindjee", ["fem"]),
-                          ("simo", ["hybrid"]), ("simo", ["fem"])):
-        seen = _first_sweep(_config(tmp_path, models=models, surface={"preset": "section3"},
-                                    fem={"mesh": [40, 30], "viscous_model": model}))
-        assert seen
-        for t in seen:
-            # the default is left out of the task, so results cached before the option
-            # existed stay valid
-            assert t.kwargs.get("viscous_model") == (None if model == "simo" else model)
-    with pytest.raises(rc.errors.InputError, match="viscous_model"):
-        rc.config.parse_config(_config(tmp_path, fem={"viscous_model": "maxwell"}))
+@pytest.mark.parametrize("field, values", [
+    ("history_order", (1, 2)), ("grading", (1.0, 4.0)), ("contact_points", (2, 4))])
+def test_fem_options_reach_every_task_and_its_cache_key(tmp_path, field, values):
+    keys = []
+    for value in values:
+        for models in (["hybrid"], ["fem"]):
+            fem = {"mesh": [40, 30], field: value}
+            if field == "grading" and models == ["fem"]:
+                fem = {"mesh": [40, 30], "full_grading": value}
+            seen = _first_sweep(_config(tmp_path, models=models,
+                                        surface={"preset": "section3"}, fem=fem))
+            assert seen and all(t.kwargs["options"][field] == value for t in seen)
+            keys.append(seen[0].key())
+    assert len(set(keys)) == len(keys)       # every option value is its own cache entry
+    with pytest.raises(rc.errors.InputError, match=field):
+        rc.config.parse_config(_config(tmp_path, fem={field: 0}))
 
 
-def test_law_grading_reaches_the_law_tasks_and_keeps_ungraded_cache_keys(tmp_path):
-    for grading in (1.0, 4.0):
-        seen = _first_sweep(_config(tmp_path, models=["hybrid"], surface={"preset": "section3"},
-                                    fem={"mesh": [40, 30], "grading": grading}))
-        assert seen
-        for t in seen:
-            # the default is left out of the task, so laws cached before the option
-            # existed stay valid
-            assert t.kwargs.get("grading") == (None if grading == 1.0 else grading)
-    with pytest.raises(rc.errors.InputError, match="grading"):
-        rc.config.parse_config(_config(tmp_path, fem={"grading": 0.0}))
-    with pytest.raises(rc.errors.InputError, match="grading"):
-        rc.hybrid.effective_law(rc.roughness.high_slope_wave(), rc.materials.sbr(), [1.0],
-                                [10.0], grading=-1.0)
-
-
-def test_min_creep_times_reach_every_fem_task_and_keep_cache_keys(tmp_path):
-    # fem.min_creep_times k: every FEM test slides at least k longest retardation times of
-    # the material (SBR: 16.3 ms) before its steadiness check. Unset, the task carries no
-    # such argument, so results cached before the option existed stay valid.
+def test_min_creep_times_reach_every_transient_fem_task(tmp_path):
+    # fem.min_creep_times k: every transient test slides at least k longest retardation
+    # times of the material (SBR: 16.3 ms) before its steadiness check.
     lam = float(rc.materials.sbr().retardation_times().max())
     assert 0.015 < lam < 0.018            # measured 16.3 ms (tests/test_materials.py)
     for k, models in ((None, ["hybrid"]), (None, ["fem"]), (5.0, ["hybrid"]), (5.0, ["fem"])):
-        fem = {"mesh": [40, 30]} | ({} if k is None else {"min_creep_times": k})
+        fem = {"solver": "transient", "mesh": [40, 30]} | (
+            {} if k is None else {"min_creep_times": k})
         seen = _first_sweep(_config(tmp_path, models=models, surface={"preset": "section3"},
                                     fem=fem))
         assert seen
         for t in seen:
-            if k is None:
-                assert "min_sliding_time" not in t.kwargs
-            else:
-                assert t.kwargs["min_sliding_time"] == pytest.approx(k * lam, rel=1e-12)
+            got = t.kwargs["options"]["transient"]["min_sliding_time"]
+            assert got == (0.0 if k is None else pytest.approx(k * lam, rel=1e-12))
     for bad in (0.0, -1.0, 100.0):
         with pytest.raises(rc.errors.InputError, match="min_creep_times"):
-            rc.config.parse_config(_config(tmp_path, fem={"min_creep_times": bad}))
+            rc.config.parse_config(_config(tmp_path, fem={"solver": "transient",
+                                                          "min_creep_times": bad}))
     # an elastic material does not creep: no minimum
-    from rubbercontact.hybrid.pipeline import min_sliding_time
-
-    cfg = rc.config.parse_config(_config(tmp_path, fem={"min_creep_times": 5.0}))
-    assert min_sliding_time(cfg, rc.materials.GeneralizedMaxwell.elastic(4.0)) == 0.0
-    assert min_sliding_time(cfg, rc.materials.sbr()) == pytest.approx(5 * lam, rel=1e-12)
+    cfg = rc.config.parse_config(_config(tmp_path, fem={"solver": "transient",
+                                                        "min_creep_times": 5.0}))
+    elastic = rc.materials.GeneralizedMaxwell.elastic(4.0)
+    assert cfg.fem.options(elastic).transient.min_sliding_time == 0.0
+    assert cfg.fem.options(rc.materials.sbr()).transient.min_sliding_time == pytest.approx(
+        5 * lam, rel=1e-12)
 
 
 def _runner_with_stand_in_fem(diagnostics):
@@ -420,7 +415,7 @@ def test_tests_that_slid_less_than_three_retardation_times_are_named(tmp_path):
 
     hs = rc.roughness.high_slope_wave()
     with pytest.warns(rc.hybrid.LawWarning, match=r"law: 1 of 2 FEM tests slid less than 3 "
-                                                  r"times .* \(16.3 ms\).*v=50 p=1"):
+                                                  r"retardation times \(16.3 ms\).*v=50 p=1"):
         law = assemble_law([res(10 * lam), res(0.5 * lam)], [0.5, 1.0], [50.0], hs, mat, {})
     assert law["sliding_time"].attrs["units"] == "s"
 
@@ -434,7 +429,7 @@ def test_cells_in_bulk_shear_are_named_in_the_law_and_the_results(tmp_path):
     diag = {"bulk_shear": np.array([[0.4, 1.3, np.nan, 2.1]])}
     msg = sheared_cells_message(diag, lambda i, j: f"p{j}", "law")
     assert msg.startswith("law: 2 of 3 FEM tests sheared as a whole by more than 1 ")
-    assert "largest first: p3 (2.10), p1 (1.30)." in msg
+    assert "largest first: p3 (2.10), p1 (1.30):" in msg
     assert sheared_cells_message({"bulk_shear": np.array([0.99, np.nan])},
                                  lambda i: "", "law") is None
     assert sheared_cells_message({}, lambda i: "", "law") is None     # old cache entries
@@ -490,22 +485,26 @@ def test_friction_at_area_uses_only_loads_whose_area_grows(tmp_path):
 
 
 def test_fem_task_records_its_sliding_time():
-    # 2 periods of the 0.0625 mm cell at 10 mm/s: 12.5 ms (an elastic cell is steady
-    # after the minimum of 2 periods).
+    # Transient: 2 periods of the 0.0625 mm cell at 10 mm/s: 12.5 ms (an elastic cell is
+    # steady after the minimum of 2 periods). Steady: settled by construction (inf).
     from rubbercontact.hybrid.tasks import fem_task
 
     surf = rc.roughness.SineSeries([0.0625], [0.003])
-    out = fem_task(surf.as_dict(), rc.materials.GeneralizedMaxwell.elastic(4.17).as_dict(),
-                   10.0, 0.3, mesh=(16, 8), periods=2, steps_per_period=8)
+    mat = rc.materials.GeneralizedMaxwell.elastic(4.17).as_dict()
+    opts = rc.fem.make_options(mesh=(16, 8), solver="transient", periods=2,
+                               steps_per_period=8)
+    out = fem_task(surf.as_dict(), mat, 10.0, 0.3, options=opts.to_dict())
     assert float(out["sliding_time"]) == pytest.approx(2 * 0.0625 / 10.0, rel=1e-12)
-    assert out["sliding_time"].attrs["units"] == "s"
+    assert out["sliding_time"].attrs["units"] == "s" and out.attrs["solver"] == "transient"
+    out = fem_task(surf.as_dict(), mat, 10.0, 0.3, options={"mesh": [16, 8]})
+    assert np.isinf(float(out["sliding_time"])) and out.attrs["solver"] == "steady"
 
 
 def _law_run_config(tmp_path, name, **over):
     # The paper's high-slope wave alone on a coarse cell: a cheap viscoelastic law.
     cfg = _config(tmp_path, surface={"preset": "high_slope_wave"}, models=["hybrid"],
                   realizations=1, loads={"pressures": [0.3, 1.0]},
-                  fem={"mesh": [30, 23], "periods": 2}, law={"pressures": [0.3, 1.0]},
+                  fem={"mesh": [30, 23]}, law={"pressures": [0.3, 1.0]},
                   execution={"workers": 1, "cache": str(tmp_path / f"cache-{name}")})
     cfg.update(over)
     return cfg

@@ -103,15 +103,25 @@ class HalfSpaceConfig(_Strict):
 Mesh = tuple[Annotated[int, Field(ge=4)], Annotated[int, Field(ge=2)]]
 
 
+#: FemConfig fields that only the time-stepped (transient) solver uses.
+TRANSIENT_ONLY = ("periods", "steps_per_period", "full_periods", "full_steps_per_period",
+                  "min_creep_times")
+
+
 class FemConfig(_Strict):
     """FEM sliding test (paper §2.4): used for the law and for the full-surface model."""
 
+    solver: Literal["steady", "transient"] = Field(
+        "steady", description="steady: the steady state solved directly (settled by "
+                              "construction); transient: time-stepped press/settle/slide")
     mesh: Mesh = Field((120, 90), description="elements (nx, ny) of the high-slope cell")
     full_mesh: Mesh | None = Field(
         None, description="elements (nx, ny) of the full-surface FEM model (default: mesh)")
     height_ratio: PositiveFloat = Field(0.75, description="cell height / width [-]")
-    periods: int = Field(4, ge=1, le=100, description="maximum sliding distance in periods")
-    steps_per_period: int | None = Field(None, ge=4, description="time steps per period")
+    periods: int = Field(4, ge=1, le=100, description="transient: maximum sliding distance "
+                                                      "in periods")
+    steps_per_period: int | None = Field(None, ge=4, description="transient: time steps per "
+                                                                 "period")
     contact_points: int = Field(
         4, ge=1, le=64, description="contact points per face segment (1: node-to-surface)")
     history_order: Literal[1, 2] = Field(
@@ -119,8 +129,8 @@ class FemConfig(_Strict):
                        "order in dt), 1 piecewise linear (first order for fast branches)")
     viscous_model: Literal["simo", "reese-govindjee"] = Field(
         "simo", description="finite-strain viscoelasticity: simo (stress-like internal "
-                            "variables) or reese-govindjee (the paper's; multiplicative split, "
-                            "first order in dt, ~5x the cost)")
+                            "variables) or reese-govindjee (the paper's; multiplicative "
+                            "split, first order in dt; transient solver only)")
     grading: PositiveFloat = Field(
         1.0, le=100, description="top/bottom element height ratio of the law cell's mesh "
                                  "(> 1 refines toward the contact face)")
@@ -128,13 +138,12 @@ class FemConfig(_Strict):
         1.0, le=100, description="top/bottom element height ratio of the full-surface FEM mesh "
                                  "(> 1 refines toward the contact face)")
     full_steps_per_period: int | None = Field(
-        None, ge=4, description="time steps per period of the full-surface FEM "
+        None, ge=4, description="transient: time steps per period of the full-surface FEM "
                                 "(default: steps_per_period)")
     full_periods: int | None = Field(
-        None, ge=1, le=100, description="maximum sliding distance of the full-surface FEM in "
-                                        "its (longer) periods (default: periods); the law "
-                                        "cell's period is shorter, so equal sliding distance "
-                                        "needs more law periods")
+        None, ge=1, le=100, description="transient: maximum sliding distance of the "
+                                        "full-surface FEM in its (longer) periods (default: "
+                                        "periods)")
     realizations: int | None = Field(
         None, ge=1, le=10_000,
         description="run the full-surface FEM on the first this many realizations only "
@@ -143,11 +152,52 @@ class FemConfig(_Strict):
                     "mean_N(VHS) + mean_R(FEM - VHS) (needs the vhs model)")
     min_creep_times: float | None = Field(
         None, gt=0, le=50,
-        description="slide every FEM test (law and full) at least this many of the "
-                    "material's longest retardation time before its steadiness check, "
-                    "raising periods / full_periods where needed: under the friction stress "
-                    "the cell creeps in shear on that time, more slowly than successive "
-                    "period averages reveal (5 settles it to ~1 %; default: off)")
+        description="transient: slide every FEM test at least this many of the material's "
+                    "longest retardation time before its steadiness check (the bulk creeps "
+                    "on that time)")
+    steady: dict[str, Any] = Field(
+        default_factory=dict, description="controls of the steady solver "
+                                          "(rubbercontact.fem.SteadyOptions fields)")
+
+    @model_validator(mode="after")
+    def _solver_options(self) -> FemConfig:
+        if self.solver == "steady":
+            given = [k for k in TRANSIENT_ONLY if k in self.model_fields_set]
+            if given:
+                raise ValueError(f"{', '.join(given)} apply to solver = 'transient' only "
+                                 f"(the steady solver has no time steps or sliding distance)")
+            if self.viscous_model != "simo":
+                raise ValueError("viscous_model = 'reese-govindjee' needs solver = 'transient'")
+        from .fem.options import SteadyOptions
+
+        unknown = set(self.steady) - set(SteadyOptions.__dataclass_fields__)
+        if unknown:
+            raise ValueError(f"steady: unknown key(s) {sorted(unknown)}; allowed: "
+                             f"{', '.join(SteadyOptions.__dataclass_fields__)}")
+        SteadyOptions(**self.steady).validate()
+        return self
+
+    def options(self, material, full: bool = False):
+        """The :class:`~rubbercontact.fem.FemOptions` of the law cell, or of the full-surface
+        model (``full=True``), for ``material`` (whose retardation time sizes
+        ``min_creep_times``)."""
+        from .fem.options import FemOptions, SteadyOptions, TransientOptions
+
+        times = material.retardation_times()
+        min_time = (float(self.min_creep_times * times.max())
+                    if self.min_creep_times is not None and times.size else 0.0)
+        transient = TransientOptions(
+            periods=(self.full_periods or self.periods) if full else self.periods,
+            steps_per_period=((self.full_steps_per_period or self.steps_per_period) if full
+                              else self.steps_per_period),
+            min_sliding_time=min_time)
+        return FemOptions(
+            mesh=tuple((self.full_mesh or self.mesh) if full else self.mesh),
+            height_ratio=self.height_ratio,
+            grading=self.full_grading if full else self.grading,
+            contact_points=self.contact_points, history_order=self.history_order,
+            viscous_model=self.viscous_model, solver=self.solver,
+            steady=SteadyOptions(**self.steady), transient=transient)
 
 
 class LawConfig(_Strict):
@@ -330,9 +380,7 @@ DEFAULT_CONFIG: dict = {
     "models": ["vhs", "hybrid", "hybrid-windowed", "fem"],
     "halfspace": {"n": 2048},
     # law: 40 elements per 0.0625 mm wavelength; full FEM: 16 per 0.0625 mm wavelength
-    "fem": {"mesh": [40, 30], "steps_per_period": 64, "full_mesh": [64, 48],
-            "full_steps_per_period": 256, "periods": 12, "full_periods": 3,
-            "realizations": 1},
+    "fem": {"mesh": [40, 30], "full_mesh": [64, 48], "realizations": 1},
     "law": {"pressures": [0.05, 0.1, 0.2, 0.5, 1.0, 2.0, 4.0]},
     "execution": {"workers": 2},
     "output": {"directory": "results"},

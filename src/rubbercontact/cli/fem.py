@@ -4,8 +4,8 @@ Options or a TOML file (``--config``) with the keys ``surface`` (a preset name
 ``"high_slope_wave"`` or a table ``{wavelengths, amplitudes, phases}``), ``material``
 (``"sbr"``, a Prony file path, or a table ``{equilibrium_modulus, moduli,
 relaxation_times}``), ``mean_pressure``, ``velocity``, ``mesh = [nx, ny]``,
-``height_ratio``, ``periods``, ``steps_per_period``, ``grading``, ``contact_points``,
-``history_order``, ``viscous_model``.
+``solver``, ``height_ratio``, ``grading``, ``contact_points``, ``history_order``, and for
+the transient solver ``periods``, ``steps_per_period``, ``viscous_model``.
 Command-line options override
 the file.
 """
@@ -21,7 +21,7 @@ import typer
 
 from ..errors import InputError
 
-_KEYS = {"surface", "material", "mean_pressure", "velocity", "mesh", "height_ratio",
+_KEYS = {"surface", "material", "mean_pressure", "velocity", "mesh", "solver", "height_ratio",
          "periods", "steps_per_period", "grading", "contact_points", "history_order",
          "viscous_model"}
 
@@ -90,11 +90,14 @@ def command(
     material: str | None = typer.Option(None, "--material", help="'sbr' (Table 1) or a "
                                         "Prony TOML/CSV file."),
     mesh: str | None = typer.Option(None, "--mesh", help="Elements NXxNY [120x90]."),
+    solver: str | None = typer.Option(None, "--solver", help="steady (the steady state "
+                                      "directly) or transient (time-stepped) [steady]."),
     height_ratio: float | None = typer.Option(None, "--height-ratio",
                                               help="Cell height / width [0.75]."),
-    periods: int | None = typer.Option(None, "--periods", help="Maximum sliding periods [6]."),
+    periods: int | None = typer.Option(None, "--periods", help="Transient: maximum sliding "
+                                       "periods [6]."),
     steps_per_period: int | None = typer.Option(None, "--steps-per-period",
-                                                help="Steps per period [NX]."),
+                                                help="Transient: steps per period [NX]."),
     grading: float | None = typer.Option(None, "--grading", help="Top/bottom element height "
                                          "ratio (> 1 refines toward the contact face) [1]."),
     contact_points: int | None = typer.Option(None, "--contact-points", help="Contact points "
@@ -135,7 +138,7 @@ def command(
         surf = _surface(surface if surface is not None else cfg.get("surface"))
     mat = _material(material if material is not None else cfg.get("material"))
     kw = {"mesh": _mesh(mesh if mesh is not None else cfg.get("mesh", "120x90"))}
-    for name, val in (("height_ratio", height_ratio), ("periods", periods),
+    for name, val in (("solver", solver), ("height_ratio", height_ratio), ("periods", periods),
                       ("steps_per_period", steps_per_period), ("grading", grading),
                       ("contact_points", contact_points), ("history_order", history_order),
                       ("viscous_model", viscous_model)):
@@ -149,8 +152,9 @@ def command(
         if step % 20 == 0:
             typer.echo(f"  step {step:5d}  {phase:6s}  t = {t:.4e} s  μ = {mu:+.4f}", err=True)
 
-    res = fem.sliding_test(surf, mat, p, v, progress=None if quiet or as_json else progress,
-                           **kw)
+    opts = fem.make_options(**kw)
+    res = fem.sliding_test(surf, mat, p, v, options=opts,
+                           progress=None if quiet or as_json else progress)
     s = res.stats
     if as_json:
         typer.echo(json.dumps({
@@ -169,12 +173,19 @@ def command(
         typer.echo(f"  cell shear (face lag/H)  {s.bulk_shear:.4g}"
                    + (f" ({s.bulk_shear_change:+.3g} over the last period)"
                       if np.isfinite(s.bulk_shear_change) else ""))
-        typer.echo(f"  steps {s.steps}, Newton iterations {s.newton_iterations} "
-                   f"({s.newton_iterations / max(s.steps, 1):.1f}/step), factorizations "
-                   f"{s.factorizations}, cut-backs {s.cutbacks}, periods {s.periods}"
-                   f"{'' if s.steady else ' (NOT steady)'}"
-                   + (f", friction change over the last period {100 * s.period_change:.2f} %"
-                      if np.isfinite(s.period_change) else ""))
+        typer.echo(f"  solver {s.solver}" + ("" if s.status == "ok" else f" ({s.status})"))
+        if s.solver == "steady":
+            typer.echo(f"  Newton iterations {s.newton_iterations}, GMRES iterations "
+                       f"{s.krylov_iterations}, factorizations {s.factorizations}, "
+                       f"continuation steps {s.continuation_steps}; "
+                       f"{'; '.join(s.tried)}")
+        else:
+            typer.echo(f"  steps {s.steps}, Newton iterations {s.newton_iterations} "
+                       f"({s.newton_iterations / max(s.steps, 1):.1f}/step), factorizations "
+                       f"{s.factorizations}, cut-backs {s.cutbacks}, periods {s.periods}"
+                       f"{'' if s.steady else ' (NOT steady)'}"
+                       + (f", friction change over the last period {100 * s.period_change:.2f} %"
+                          if np.isfinite(s.period_change) else ""))
         typer.echo(f"  max penetration {s.max_penetration:.3g} mm (between nodes "
                    f"{s.max_segment_penetration:.3g} mm), wall time "
                    f"{s.wall_time:.1f} s (assembly {s.assembly_time:.1f} s, "
@@ -199,8 +210,10 @@ def plot_result(res, path: Path) -> None:
     from ..roughness.sines import SineSeries
 
     surf = SineSeries(**res.surface)
-    fig = plt.figure(figsize=(11, 8), layout="constrained")
-    gs = fig.add_gridspec(3, 2, height_ratios=[2.2, 1, 1])
+    transient = bool(res.history)     # the steady solver has no time history
+    fig = plt.figure(figsize=(11, 8 if transient else 6.5), layout="constrained")
+    gs = fig.add_gridspec(3 if transient else 2, 2,
+                          height_ratios=[2.2, 1, 1] if transient else [2.2, 1])
     ax = fig.add_subplot(gs[0, :])
     xy = res.element_coordinates
     sig = res.element_stress
@@ -222,7 +235,7 @@ def plot_result(res, path: Path) -> None:
     ax.set_aspect("equal", adjustable="datalim")  # widen the periodic view, keep shapes
     ax.set_xlabel("x (mm, rubber frame)")
     ax.set_ylabel("y (mm)")
-    ax.set_title(f"deformed cell at the end: p̄ = {res.mean_pressure:g} MPa, "
+    ax.set_title(f"deformed cell ({res.stats.solver}): p̄ = {res.mean_pressure:g} MPa, "
                  f"v = {res.velocity:g} mm/s (rubber moves +x)\nμ = {res.friction:.4f}, "
                  f"α = {res.contact_fraction:.3f}")
     ax.legend(loc="upper right")
@@ -237,6 +250,10 @@ def plot_result(res, path: Path) -> None:
     axp.set_title("contact pressure along the surface (v > 0: higher on dz/dx > 0 flanks)")
 
     h = res.history
+    if not transient:
+        fig.savefig(path, dpi=150)
+        plt.close(fig)
+        return
     slide = h["phase"] == 2
     xh = h["sliding_distance"] / res.width
     ax1 = fig.add_subplot(gs[2, 0])

@@ -12,7 +12,8 @@ Modules: :mod:`.options`, :mod:`.mesh` (periodic structured mesh), :mod:`.consti
 :mod:`.cell` (the test cell), :mod:`.setup` (one test's cell), :mod:`.solver` (Newton with
 direct solves), :mod:`.transient` (the time-stepped protocol), :mod:`.streamline`,
 :mod:`.steady`, :mod:`.newton_krylov`, :mod:`.multilevel`, :mod:`.steady_solver` (the
-steady solver), :mod:`.result`, :mod:`.sliding` (entry points).
+steady solver), :mod:`.result`, :mod:`.sliding` (entry points), :mod:`.sweep`
+(continuation along loads and speeds).
 """
 
 from .constitutive import DEFAULT_BULK_MODULUS, MaterialParameters
@@ -20,8 +21,9 @@ from .options import SOLVERS, FemOptions, SteadyOptions, TransientOptions
 from .result import PressureProfile, SlidingTestResult, SolverStats
 from .sliding import make_options, sliding_test, steady_sliding
 from .steady_solver import SteadyState
+from .sweep import steady_sweep
 
 __all__ = ["DEFAULT_BULK_MODULUS", "SOLVERS", "FemOptions", "MaterialParameters",
            "PressureProfile", "SlidingTestResult", "SolverStats", "SteadyOptions",
            "SteadyState", "TransientOptions", "make_options", "sliding_test",
-           "steady_sliding"]
+           "steady_sliding", "steady_sweep"]

@@ -20,7 +20,7 @@ from collections.abc import Sequence
 import numpy as np
 import xarray as xr
 
-from .._validation import finite_array, positive_scalar
+from .._validation import finite_array
 from ..errors import InputError
 from ..fem.result import BULK_SHEAR_LIMIT, BULK_SHEAR_STUDY
 from ..materials import GeneralizedMaxwell
@@ -69,13 +69,11 @@ def creep_unsettled_message(diag: dict, material: GeneralizedMaxwell, label, wha
         return None
     where = ", ".join(f"{label(*idx)} ({1e3 * t[idx]:.1f} ms)" for idx in short[:6])
     ran = int(np.isfinite(t).sum())
-    return (f"{what}: {len(short)} of {ran} FEM tests slid less than {times:g} times the "
-            f"material's longest retardation time ({1e3 * lam.max():.1f} ms), shortest first: "
-            f"{where}{', ...' if len(short) > 6 else ''}. The bulk may still be creeping "
-            f"under the friction stress although successive periods agree (at 50 mm/s on the "
-            f"section 3 wave, sliding 5 retardation times moved the law by up to -17 % in "
-            f"friction and -38 % in area at 2-6 MPa, the full FEM by up to -11 % and -10 %; "
-            f"docs/validation/creep_settled.md); fem.min_creep_times slides longer")
+    return (f"{what}: {len(short)} of {ran} FEM tests slid less than {times:g} retardation "
+            f"times ({1e3 * lam.max():.1f} ms), shortest first: {where}"
+            f"{', ...' if len(short) > 6 else ''}; the bulk may still creep although periods "
+            f"agree: use fem.solver = 'steady' or fem.min_creep_times "
+            f"(docs/validation/creep_settled.md)")
 
 
 def sheared_cells_message(diag: dict, label, what: str,
@@ -120,11 +118,7 @@ def describe_unsteady(diag: dict, label) -> tuple[int, str, bool]:
 
 def effective_law(hs_surface: SineSeries, material: GeneralizedMaxwell,
                   pressures: Sequence[float], velocities: Sequence[float], *,
-                  mesh: tuple[int, int] = (120, 90), height_ratio: float = 0.75,
-                  periods: int = 4, steps_per_period: int | None = None,
-                  contact_points: int = 4, history_order: int = 2,
-                  viscous_model: str = "simo", grading: float = 1.0,
-                  min_sliding_time: float = 0.0, runner=None) -> xr.Dataset:
+                  options=None, runner=None, **changes) -> xr.Dataset:
     """Run the FEM sliding test over ``pressures × velocities`` and tabulate the law.
 
     Parameters
@@ -138,27 +132,26 @@ def effective_law(hs_surface: SineSeries, material: GeneralizedMaxwell,
         low-slope solve (checked later by :func:`check_coverage`).
     velocities
         Sliding speeds ``v`` [mm/s], >= 0.
-    mesh, height_ratio, periods, steps_per_period, contact_points, history_order, viscous_model
-        FEM options (see :func:`rubbercontact.fem.sliding_test`).
-    grading
-        Top/bottom element height ratio of the law cell's mesh (> 1 refines toward the
-        contact face, where the deformation concentrates; the same face resolution with
-        fewer rows).
-    min_sliding_time
-        Minimum sliding time [s] of every test before its steadiness check (see
-        :func:`rubbercontact.fem.sliding_test`); 0: none.
+    options
+        The FEM test (:class:`rubbercontact.fem.FemOptions`; default: the steady solver
+        on 120 × 90).
     runner
         Callable ``runner(tasks) -> list`` executing :class:`~rubbercontact.sweep.Task`
         objects, returning per task an ``xr.Dataset`` or a failure record;
         default: the package's sweep executor without cache.
+    **changes
+        Fields of the options by name (``mesh=``, ``grading=``, ``solver=``, ...; see
+        :func:`rubbercontact.fem.make_options`).
 
     Returns
     -------
     xarray.Dataset
         Variables ``mean_separation`` [mm], ``contact_fraction`` [-], ``shear_stress``
         [MPa], ``friction`` [-], ``status`` (``"ok"`` or the failure message), dims
-        ``(velocity, pressure)``; the surface and material in ``attrs``.
+        ``(velocity, pressure)``; the surface, material and FEM options in ``attrs``.
     """
+    from ..fem import make_options
+
     p = np.sort(finite_array("pressures", pressures, ndim=1))
     v = np.sort(finite_array("velocities", velocities, ndim=1))
     if np.any(p <= 0):
@@ -167,23 +160,14 @@ def effective_law(hs_surface: SineSeries, material: GeneralizedMaxwell,
         raise InputError(f"velocities: must be >= 0 mm/s, got {v.tolist()}")
     if hs_surface.size == 0:
         raise InputError("hs_surface: the high-slope surface is empty; no law is needed")
-    grading = positive_scalar("grading", grading)   # fail here, not in every FEM task
-    min_sliding_time = positive_scalar("min_sliding_time", min_sliding_time, allow_zero=True,
-                                       unit="s")
+    opts = make_options(options, **changes)      # fails here, not in every FEM task
     from ..sweep import Task
 
-    fem_opts = {"mesh": [int(m) for m in mesh], "height_ratio": float(height_ratio),
-                "periods": int(periods), "steps_per_period": steps_per_period,
-                "contact_points": int(contact_points), "history_order": int(history_order)}
-    if viscous_model != "simo":   # only then: the existing cache keys stay valid
-        fem_opts["viscous_model"] = str(viscous_model)
-    if grading != 1.0:            # likewise
-        fem_opts["grading"] = float(grading)
-    if min_sliding_time > 0:      # likewise
-        fem_opts["min_sliding_time"] = min_sliding_time
+    fem_opts = opts.to_dict()
     tasks = [Task(function="rubbercontact.hybrid.tasks:fem_task",
                   kwargs={"surface": hs_surface.as_dict(), "material": material.as_dict(),
-                          "velocity": float(vi), "mean_pressure": float(pi), **fem_opts},
+                          "velocity": float(vi), "mean_pressure": float(pi),
+                          "options": fem_opts},
                   label=f"law FEM v={vi:g} mm/s p={pi:g} MPa")
              for vi in v for pi in p]
     results = (runner or _default_runner)(tasks)
@@ -236,8 +220,7 @@ def assemble_law(results, pressures, velocities, hs_surface: SineSeries,
         brackets = " (change over the last period in brackets)" if recorded else ""
         warnings.warn(f"law: {n_bad} of {diag['steady'].size} FEM points did not reach "
                       f"steady sliding within fem.periods{brackets}: {where}; they are kept "
-                      f"(last period's averages); more periods, or fem.min_creep_times, would "
-                      f"settle them",
+                      f"(last period's averages); use fem.solver = 'steady' or more periods",
                       LawWarning, stacklevel=3)
     creep = creep_unsettled_message(diag, material, label, "law")
     if creep:
@@ -369,14 +352,10 @@ def screen_monotone(law: xr.Dataset) -> xr.Dataset:
     kept (ties: the subset with the lower pressures, where the FEM is most reliable);
     every other point keeps its numbers in the table but gets the status
     ``"excluded: non-monotone ..."`` and is named in a :class:`LawWarning`. Typical
-    cause: mean pressures near or beyond the rubber's equilibrium modulus. There the
-    friction stress ``μp̄`` creeps the cell into a bulk shear ``3μp̄/E∞`` of order 1 (on
-    the longest retardation time, 16 ms for SBR), and that finite shear lifts the face
-    off: the steady ``ū`` itself rises with ``p̄`` (docs/validation/fem_steadiness.md: at
-    10 mm/s ``ū`` goes from 3.8 to 12.0 um over 20 periods at 4 MPa, beyond the 11.4 um
-    it settles to at 2 MPa). That is the default Simo-type model; with
-    ``viscous_model = "reese-govindjee"`` the face lifts off less and ``ū`` still falls
-    from 2 to 4 MPa (9.8 to 7.3 um), at about four times the cost.
+    cause: mean pressures near or beyond the rubber's equilibrium modulus, where the
+    friction stress ``μp̄`` shears the cell as a whole by ``3μp̄/E∞`` of order 1 and that
+    finite shear lifts the face off, so that the settled ``ū`` rises with ``p̄``
+    (docs/validation/fem_steadiness.md, docs/validation/material_model.md).
 
     Returns a copy of ``law`` with the updated ``status``.
     """
@@ -397,10 +376,8 @@ def screen_monotone(law: xr.Dataset) -> xr.Dataset:
                 f"law at v={v:g} mm/s: FEM points at p={[float(pressures[j]) for j in dropped]}"
                 f" MPa are excluded, their mean separations "
                 f"{[float(u[j]) for j in dropped]} mm break the strict decrease of u with p "
-                f"(check the FEM convergence and steadiness at those loads; near the "
-                f"equilibrium modulus the cell creeps into a bulk shear of order 1 under the "
-                f"friction stress and its face lifts off, see screen_monotone; "
-                f"fem.viscous_model = 'reese-govindjee' lifts off less)",
+                f"(near the equilibrium modulus the sheared cell's face lifts off; see "
+                f"screen_monotone)",
                 LawWarning, stacklevel=2)
     law["status"] = (law["status"].dims, status.astype(str))
     return law

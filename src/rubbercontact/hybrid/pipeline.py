@@ -224,12 +224,7 @@ def build_law(cfg: RunConfig, hs0: SineSeries, material: GeneralizedMaxwell,
                  else np.geomspace(pressures.min() / 2, pressures.max() * 8, 8))
         t0 = time.perf_counter()
         law = effective_law(hs0, material, law_p, np.asarray(cfg.velocities, float),
-                            mesh=cfg.fem.mesh, height_ratio=cfg.fem.height_ratio,
-                            periods=cfg.fem.periods, steps_per_period=cfg.fem.steps_per_period,
-                            contact_points=cfg.fem.contact_points,
-                            history_order=cfg.fem.history_order,
-                            viscous_model=cfg.fem.viscous_model, grading=cfg.fem.grading,
-                            min_sliding_time=min_sliding_time(cfg, material), runner=runner)
+                            options=cfg.fem.options(material), runner=runner)
         fem_time = time.perf_counter() - t0
     law = screen_monotone(law)
     tables = {float(v): continue_with_linear_shape(law_at_velocity(law, float(v)), hs0,
@@ -371,54 +366,17 @@ def run(config: RunConfig | dict | str | Path, *, runner: Runner | None = None,
     return ds
 
 
-def min_sliding_time(cfg: RunConfig, material: GeneralizedMaxwell) -> float:
-    """Minimum sliding time [s] of every FEM test: ``fem.min_creep_times`` times the
-    material's longest retardation time (0 when unset or for an elastic material)."""
-    if cfg.fem.min_creep_times is None:
-        return 0.0
-    times = material.retardation_times()
-    return float(cfg.fem.min_creep_times * times.max()) if times.size else 0.0
-
-
 def full_fem_task(cfg: RunConfig, surface: SineSeries, material: GeneralizedMaxwell,
                   velocity: float, mean_pressure: float) -> Task:
-    """The sweep task of one full-FEM sliding test (model ``fem``) with the config's options.
-
-    Parameters
-    ----------
-    cfg
-        Run configuration; its ``[fem]`` table gives the mesh (``full_mesh`` or ``mesh``),
-        grading, steps per period, periods, contact points, history order and model.
-    surface
-        The whole surface of one realization (translated to zero phase here).
-    material
-        Rubber.
-    velocity, mean_pressure
-        Sliding speed [mm/s] and nominal pressure [MPa].
-
-    Returns
-    -------
-    rubbercontact.sweep.Task
-        With the same cache key as the ``fem`` model of :func:`run` for that load.
-    """
+    """The sweep task of one full-FEM sliding test (model ``fem``) with the config's options
+    (``cfg.fem.options(material, full=True)``); the surface is translated to zero phase, so
+    that on an all-high-slope surface it is the law's cell and shares its cache entries."""
     from ..sweep import Task
 
-    # Translation-invariant: the same cell as the law's when the surface is all
-    # high-slope, so the cache shares those FEM runs.
     kw = {"surface": _translated_to_zero_phase(surface).as_dict(),
           "material": material.as_dict(), "velocity": float(velocity),
           "mean_pressure": float(mean_pressure),
-          "mesh": list(cfg.fem.full_mesh or cfg.fem.mesh),
-          "height_ratio": cfg.fem.height_ratio,
-          "periods": cfg.fem.full_periods or cfg.fem.periods,
-          "steps_per_period": cfg.fem.full_steps_per_period or cfg.fem.steps_per_period,
-          "contact_points": cfg.fem.contact_points, "history_order": cfg.fem.history_order}
-    if cfg.fem.full_grading != 1.0:   # else the law's cache key
-        kw["grading"] = cfg.fem.full_grading
-    if cfg.fem.viscous_model != "simo":  # keeps existing cache keys
-        kw["viscous_model"] = cfg.fem.viscous_model
-    if cfg.fem.min_creep_times is not None:    # likewise
-        kw["min_sliding_time"] = min_sliding_time(cfg, material)
+          "options": cfg.fem.options(material, full=True).to_dict()}
     return Task(function="rubbercontact.hybrid.tasks:fem_task", kwargs=kw,
                 label=f"fem v={velocity:g} p={mean_pressure:.4g}")
 

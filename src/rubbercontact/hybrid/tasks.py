@@ -16,7 +16,9 @@ from ..materials import GeneralizedMaxwell
 from ..roughness import SineSeries
 
 #: Bump when a change in these task functions changes their answers (read by the sweep cache key).
-CACHE_VERSION = 3   # 2: FEM contact at points along the face segments; 3: quadratic history
+#: 2: FEM contact at points along the face segments; 3: quadratic history; 4: one FemOptions
+#: argument and the steady solver.
+CACHE_VERSION = 4
 
 _UNITS = {
     "friction": "1", "friction_ls": "1", "friction_hs": "1", "contact_fraction": "1",
@@ -145,41 +147,41 @@ def _flat_interface_solve(interface_law: dict, mean_pressure: float, velocity: f
 
 
 def fem_task(surface: dict, material: dict, velocity: float, mean_pressure: float,
-             mesh: list[int] | tuple[int, int] = (120, 90), height_ratio: float = 0.75,
-             periods: int = 4, steps_per_period: int | None = None,
-             contact_points: int = 4, grading: float = 1.0,
-             history_order: int = 2, viscous_model: str = "simo",
-             min_sliding_time: float = 0.0) -> xr.Dataset:
-    """One FEM micromechanical sliding test (paper §2.4), reduced to its time averages."""
+             options: dict | None = None) -> xr.Dataset:
+    """One FEM micromechanical sliding test (paper §2.4), reduced to its scalars.
+
+    ``options`` is a :class:`~rubbercontact.fem.FemOptions` as plain data
+    (:meth:`~rubbercontact.fem.FemOptions.to_dict`); every field is in the cache key.
+    """
     from .. import fem
 
     t0 = time.perf_counter()
-    kwargs = {"mesh": tuple(mesh), "height_ratio": height_ratio, "periods": int(periods),
-              "contact_points": int(contact_points), "grading": float(grading),
-              "history_order": int(history_order), "viscous_model": str(viscous_model),
-              "min_sliding_time": float(min_sliding_time)}
-    if steps_per_period is not None:
-        kwargs["steps_per_period"] = steps_per_period
+    opts = fem.FemOptions.from_dict(options or {})
     surf = _surface(surface)
-    out = fem.sliding_test(surf, _material(material), mean_pressure, velocity, **kwargs)
+    out = fem.sliding_test(surf, _material(material), mean_pressure, velocity, options=opts)
     st = out.stats
+    if st.solver == "steady":
+        sliding_time = np.inf                 # the settled state
+    else:
+        sliding_time = st.periods * surf.period / velocity if velocity > 0 else 0.0
     values = {
         "friction": out.friction, "shear_stress": out.shear_stress,
         "contact_fraction": out.contact_fraction, "mean_separation": out.mean_separation,
         "mean_pressure": mean_pressure, "velocity": velocity,
         "wall_time": time.perf_counter() - t0,
         "steps": st.steps, "newton_iterations": st.newton_iterations, "cutbacks": st.cutbacks,
+        "krylov_iterations": st.krylov_iterations,
         "max_penetration": st.max_penetration, "steady": int(st.steady),
         "period_change": st.period_change, "period_area_change": st.period_area_change,
         "max_segment_penetration": st.max_segment_penetration,
-        "bulk_shear": st.bulk_shear,
+        "bulk_shear": st.bulk_shear, "surface_offset": st.surface_offset,
         # how long it slid (the bulk creeps on the longest retardation time; see law.py)
-        "sliding_time": st.periods * surf.period / velocity if velocity > 0 else 0.0,
+        "sliding_time": sliding_time,
     }
-    ds = _scalars(values, {"model": "fem"})
-    ds["sliding_time"].attrs["units"] = "s"
-    ds["max_penetration"].attrs["units"] = "mm"
-    ds["max_segment_penetration"].attrs["units"] = "mm"
+    ds = _scalars(values, {"model": "fem", "solver": st.solver, "status": st.status})
+    for k, unit in (("sliding_time", "s"), ("max_penetration", "mm"),
+                    ("max_segment_penetration", "mm"), ("surface_offset", "mm")):
+        ds[k].attrs["units"] = unit
     prof = out.pressure_profile
     ds["x_fem"] = ("x_fem", np.asarray(prof.x), {"units": "mm"})
     ds["pressure_profile"] = ("x_fem", np.asarray(prof.pressure), {"units": "MPa"})
