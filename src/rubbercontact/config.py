@@ -162,7 +162,9 @@ class FemConfig(_Strict):
     @model_validator(mode="after")
     def _solver_options(self) -> FemConfig:
         if self.solver == "steady":
-            given = [k for k in TRANSIENT_ONLY if k in self.model_fields_set]
+            # by value, not by whether the key was written: a dumped config re-parses
+            given = [k for k in TRANSIENT_ONLY
+                     if getattr(self, k) != type(self).model_fields[k].default]
             if given:
                 raise ValueError(f"{', '.join(given)} apply to solver = 'transient' only "
                                  f"(the steady solver has no time steps or sliding distance)")

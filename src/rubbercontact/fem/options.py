@@ -49,9 +49,11 @@ class SteadyOptions:
         Smallest continuation step before the path is declared failed.
     max_steps
         Continuation steps (converged or halved) per path.
-    coarse_elements
-        Elements per shortest wavelength of the coarsest mesh of the nested iteration
-        (the continuation runs there; 0 switches nested iteration off).
+    coarse_elements, coarse_columns
+        The coarsest mesh of the nested iteration (where the continuation runs) keeps at
+        least ``coarse_elements`` elements per shortest wavelength and ``coarse_columns``
+        columns (a contact patch must stay several columns wide for its solution to
+        start the finer mesh); ``coarse_elements = 0`` switches nested iteration off.
     fallback
         If the steady solve fails, run the transient test and say so in the status.
     """
@@ -63,7 +65,8 @@ class SteadyOptions:
     first_step: float = 0.25
     min_step: float = 1.0 / 512
     max_steps: int = 60
-    coarse_elements: int = 32
+    coarse_elements: int = 16
+    coarse_columns: int = 48
     fallback: bool = True
 
     def validate(self) -> SteadyOptions:
@@ -75,6 +78,7 @@ class SteadyOptions:
         _integer("steady.newton_per_step", self.newton_per_step, 1)
         _integer("steady.max_steps", self.max_steps, 1)
         _integer("steady.coarse_elements", self.coarse_elements, 0)
+        _integer("steady.coarse_columns", self.coarse_columns, 3)
         for name in ("first_step", "min_step"):
             v = positive_scalar(f"steady.{name}", getattr(self, name))
             if v > 1:

@@ -144,7 +144,8 @@ def _coarse_to_fine(surface, material, p, v, options: FemOptions, counters: Coun
     """The press on the coarsest mesh, refined mesh by mesh; the finest's solution."""
     nx, ny = options.mesh
     per = options.steady.coarse_elements
-    min_nx = int(np.ceil(per * surface.period / surface.wavelengths[0])) if per else nx
+    min_nx = (max(int(np.ceil(per * surface.period / surface.wavelengths[0])),
+                  options.steady.coarse_columns) if per else nx)
     levels = coarse_meshes(nx, ny, min_nx, levels=8)
     setup = build_cell(surface, material, p, v, options, mesh=levels[0], sliding_plate=True)
     U = _press(setup, _kernel(setup), options, counters)

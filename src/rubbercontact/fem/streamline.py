@@ -126,3 +126,18 @@ def streamline_kernel(params: MaterialParameters, dt: float, nx: int) -> Streaml
         for b in range(params.n_branches):
             spec += params.beta[b] * (w1[b] * (1 - z) + w2[b] * (z - z * z)) / (1 - decay[b] * z)
     return StreamlineKernel(spec, nx)
+
+
+def branch_histories(params: MaterialParameters, dt: float, s_iso_rows: np.ndarray
+                     ) -> np.ndarray:
+    """Each branch's steady history ``Q_b`` ``(n_branches, *s_iso_rows.shape)`` for the
+    isochoric stresses ``s_iso_rows`` (rows of ``nx`` points along axis 1): the internal
+    variables a transient test needs to continue from a steady state."""
+    nx = s_iso_rows.shape[1]
+    out = np.zeros((params.n_branches,) + s_iso_rows.shape)
+    for b in range(params.n_branches):
+        one = MaterialParameters(params.mu, params.kappa, params.beta[b:b + 1],
+                                 params.tau[b:b + 1], params.history_order,
+                                 params.viscous_model)
+        out[b] = streamline_kernel(one, dt, nx).apply(s_iso_rows, axis=1)
+    return out

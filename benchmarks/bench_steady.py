@@ -1,0 +1,137 @@
+"""Benchmark: the steady FEM solver against the time-stepped (transient) test, side by side.
+
+Cases (issue 26's performance list), each run by both solvers in one process:
+
+1. ``law``: the validation's law cell, 120 x 23 rows graded x8, 50 mm/s, 2 MPa. Transient
+   creep-settled (``min_creep_times = 5``: 82 ms of sliding) with the validation's time step
+   (60 steps per period) and with one column per step (120, the steady solver's discrete
+   problem, so the answers must agree), against the steady solve.
+2. ``default``: the default test, 120 x 90, 1 MPa, 10 mm/s (``rubbercontact fem``): the
+   transient with its defaults (6 periods) against the steady solve.
+3. ``full``: the section 3 full FEM (240 x 45 graded x8, realization 0 of seed 2021) at 0.35
+   and 2 MPa, 50 mm/s: steady; ``--transient-full`` adds the creep-settled transient (17
+   periods of 240 steps, tens of minutes).
+4. ``sweep``: 13 speeds over 1e-3 ... 1e3 mm/s at 1 MPa on the law cell by continuation,
+   against one fresh point.
+
+Each steady row gives the per-iteration split (assembly / factorization / Krylov). Run
+single-threaded::
+
+    OMP_NUM_THREADS=1 .venv/bin/python benchmarks/bench_steady.py --json /tmp/steady.json
+"""
+
+from __future__ import annotations
+
+import argparse
+import json
+import platform
+import subprocess
+import time
+import warnings
+
+import numpy as np
+
+import rubbercontact as rc
+
+LAW = {"mesh": (120, 23), "grading": 8.0}
+FULL = {"mesh": (240, 45), "grading": 8.0}
+
+
+def _row(label: str, res, cpu: float) -> dict:
+    s = res.stats
+    row = {"case": label, "solver": s.solver, "friction": res.friction,
+           "contact_fraction": res.contact_fraction, "mean_separation_mm": res.mean_separation,
+           "bulk_shear": s.bulk_shear, "cpu_s": cpu, "newton": s.newton_iterations,
+           "factorizations": s.factorizations, "assembly_s": s.assembly_time,
+           "solve_s": s.solve_time}
+    if s.solver == "steady":
+        row.update(krylov=s.krylov_iterations, surface_offset=s.surface_offset,
+                   tried="; ".join(s.tried))
+    else:
+        row.update(steps=s.steps, periods=s.periods, steady=s.steady)
+    print(json.dumps(row), flush=True)
+    return row
+
+
+def _timed(fn):
+    t0 = time.process_time()
+    with warnings.catch_warnings():
+        warnings.simplefilter("ignore", RuntimeWarning)
+        out = fn()
+    return out, time.process_time() - t0
+
+
+def law_case(rows: list) -> None:
+    surf, mat = rc.roughness.high_slope_wave(), rc.materials.sbr()
+    st, cpu = _timed(lambda: rc.fem.steady_sliding(surf, mat, 2.0, 50.0, **LAW))
+    rows.append(_row("law 120x23x8 50mm/s 2MPa", st, cpu))
+    creep = 5 * float(mat.retardation_times().max())
+    for spp in (60, 120):
+        kw = {"solver": "transient", "steps_per_period": spp, "min_sliding_time": creep,
+              "periods": 200, "surface_offset": st.stats.surface_offset if spp == 120 else 0.0}
+        tr, cpu = _timed(lambda kw=kw: rc.fem.sliding_test(surf, mat, 2.0, 50.0, **LAW, **kw))
+        rows.append(_row(f"law 120x23x8 50mm/s 2MPa, {spp} steps/period", tr, cpu))
+
+
+def default_case(rows: list) -> None:
+    surf, mat = rc.roughness.high_slope_wave(), rc.materials.sbr()
+    st, cpu = _timed(lambda: rc.fem.steady_sliding(surf, mat, 1.0, 10.0, mesh=(120, 90)))
+    rows.append(_row("default 120x90 10mm/s 1MPa", st, cpu))
+    tr, cpu = _timed(lambda: rc.fem.sliding_test(surf, mat, 1.0, 10.0, mesh=(120, 90),
+                                                 solver="transient"))
+    rows.append(_row("default 120x90 10mm/s 1MPa", tr, cpu))
+
+
+def full_case(rows: list, transient: bool) -> None:
+    surf = rc.roughness.section3().realizations(1, seed=2021)[0]
+    mat = rc.materials.sbr()
+    for p in (0.35, 2.0):
+        st, cpu = _timed(lambda p=p: rc.fem.steady_sliding(surf, mat, p, 50.0, **FULL))
+        rows.append(_row(f"full 240x45x8 50mm/s {p}MPa", st, cpu))
+        if transient:
+            creep = 5 * float(mat.retardation_times().max())
+            tr, cpu = _timed(lambda p=p: rc.fem.sliding_test(
+                surf, mat, p, 50.0, **FULL, solver="transient", steps_per_period=240,
+                min_sliding_time=creep, periods=100))
+            rows.append(_row(f"full 240x45x8 50mm/s {p}MPa", tr, cpu))
+
+
+def sweep_case(rows: list) -> None:
+    surf, mat = rc.roughness.high_slope_wave(), rc.materials.sbr()
+    v = np.geomspace(1e-3, 1e3, 13)
+    one, cpu1 = _timed(lambda: rc.fem.steady_sliding(surf, mat, 1.0, 1.0, **LAW))
+    rows.append(_row("one point 120x23x8 1mm/s 1MPa", one, cpu1))
+    sweep, cpu = _timed(lambda: rc.fem.steady_sweep(surf, mat, 1.0, v, **LAW))
+    row = {"case": "sweep 13 speeds 1e-3..1e3 mm/s, 1 MPa, 120x23x8", "cpu_s": cpu,
+           "ratio_to_one_point": cpu / cpu1,
+           "friction": [r.friction for r in sweep],
+           "newton": [r.stats.newton_iterations for r in sweep],
+           "solver": [r.stats.solver for r in sweep]}
+    print(json.dumps(row), flush=True)
+    rows.append(row)
+
+
+def main() -> None:
+    ap = argparse.ArgumentParser(description=__doc__.splitlines()[0])
+    ap.add_argument("--cases", default="law,default,full,sweep")
+    ap.add_argument("--transient-full", action="store_true")
+    ap.add_argument("--json", default=None)
+    args = ap.parse_args()
+    commit = subprocess.run(["git", "rev-parse", "--short", "HEAD"], capture_output=True,
+                            text=True, check=False).stdout.strip() or "?"
+    report = {"date": time.strftime("%Y-%m-%d %H:%M UTC", time.gmtime()), "commit": commit,
+              "machine": f"{platform.processor() or platform.machine()}, python "
+                         f"{platform.python_version()}, numpy {np.__version__}", "rows": []}
+    for case in args.cases.split(","):
+        if case == "full":
+            full_case(report["rows"], args.transient_full)
+        else:
+            {"law": law_case, "default": default_case, "sweep": sweep_case}[case](
+                report["rows"])
+        if args.json:
+            with open(args.json, "w") as f:
+                json.dump(report, f, indent=1)
+
+
+if __name__ == "__main__":
+    main()

@@ -1,0 +1,122 @@
+"""The steady FEM on steep real waves: the CAPTIF fits' high-slope cells over the law's range.
+
+The question (issue 26): does the steady solver converge on the steepest cells a real road
+gives — the high-slope part of the CAPTIF fits, both stations together (0.25 + 0.5 mm
+waves, m2 = 2.3 and 1.1) and station 1 alone (three waves 0.25-1 mm, m2 up to 2.8) — at the
+law's pressures up to 10 MPa and speeds 1-100 mm/s? Each point either converges, or says
+why and falls back to the transient test; the report gives which, how, and how long.
+
+Resumable: one JSON line per finished point in ``docs/validation/steep_cells.jsonl``. About
+half an hour single-threaded::
+
+    OMP_NUM_THREADS=1 .venv/bin/python -m studies steep_cells
+"""
+
+from __future__ import annotations
+
+import argparse
+import time
+import warnings
+from pathlib import Path
+
+import numpy as np
+
+import rubbercontact as rc
+from rubbercontact.config import load_config
+from rubbercontact.hybrid.pipeline import _translated_to_zero_phase, build_surface
+
+from ._rows import append_row, publish, read_rows
+from ._templates import render
+
+DESCRIPTION = "The steady FEM on the CAPTIF fits' steep high-slope cells over the law's range."
+
+ROOT = Path(__file__).resolve().parents[1]
+ROWS = ROOT / "docs" / "validation" / "steep_cells.jsonl"
+REPORT = ROOT / "docs" / "validation" / "steep_cells.md"
+PRESSURES = (0.1, 0.3, 1.0, 3.0, 10.0)
+VELOCITIES = (1.0, 3.0, 10.0, 30.0, 100.0)
+MESH = (40, 30)
+
+
+def cells() -> dict[str, rc.roughness.SineSeries]:
+    """The high-slope parts of the CAPTIF fits: both stations, and station 1 alone."""
+    cfg = load_config(ROOT / "examples" / "captif_road.toml")
+    out = {}
+    for name, files in (("stations 0+1", None), ("station 1", [1])):
+        data = cfg.model_dump(mode="json", exclude_none=True)
+        if files is not None:
+            prof = data["surface"]["profiles"]
+            prof["files"] = [prof["files"][i] for i in files]
+        surf, _ = build_surface(rc.config.parse_config(data))
+        hs, _ = surf.partition(data["surface"]["m2_threshold"])
+        out[name] = _translated_to_zero_phase(hs)
+    return out
+
+
+def run_point(cell: str, surface, p: float, v: float) -> dict:
+    t0 = time.process_time()
+    with warnings.catch_warnings(record=True) as caught:
+        warnings.simplefilter("always")
+        try:
+            res = rc.fem.steady_sliding(surface, rc.materials.sbr(), p, v, mesh=MESH)
+        except rc.errors.RubberContactError as exc:
+            return {"cell": cell, "pressure": p, "velocity": v, "solver": "failed",
+                    "status": str(exc)[:300], "cpu_s": time.process_time() - t0}
+    s = res.stats
+    return {"cell": cell, "pressure": p, "velocity": v, "solver": s.solver,
+            "status": s.status, "cpu_s": time.process_time() - t0,
+            "friction": res.friction, "contact_fraction": res.contact_fraction,
+            "bulk_shear": s.bulk_shear, "newton": s.newton_iterations,
+            "continuation_steps": s.continuation_steps, "tried": "; ".join(s.tried),
+            "warnings": sorted({str(w.message)[:120] for w in caught})}
+
+
+def report(rows: list[dict], surfaces: dict) -> str:
+    lines = [render("steep_cells", "header", mesh=f"{MESH[0]} x {MESH[1]}"), ""]
+    for name, surf in surfaces.items():
+        waves = ", ".join(f"{lam:g} mm (m2 = {m:.2f})"
+                          for lam, m in zip(surf.wavelengths, surf.rms_slopes(), strict=True))
+        mine = [r for r in rows if r["cell"] == name]
+        ok = [r for r in mine if r["solver"] == "steady"]
+        cpu = np.array([r["cpu_s"] for r in ok]) if ok else np.array([np.nan])
+        lines += [render("steep_cells", "cell", name=name, waves=waves, period=surf.period,
+                         points=len(mine), steady=len(ok),
+                         fallback=sum(r["solver"].startswith("transient") for r in mine),
+                         failed=sum(r["solver"] == "failed" for r in mine),
+                         median=f"{np.median(cpu):.1f}", worst=f"{np.max(cpu):.1f}"), "",
+                  "| p̄ [MPa] | " + " | ".join(f"{v:g} mm/s" for v in VELOCITIES) + " |",
+                  "|---|" + "---|" * len(VELOCITIES)]
+        for p in PRESSURES:
+            cells_ = []
+            for v in VELOCITIES:
+                r = next((r for r in mine if r["pressure"] == p and r["velocity"] == v), None)
+                if r is None:
+                    cells_.append("–")
+                elif r["solver"] == "steady":
+                    cells_.append(f"μ {r['friction']:.3f}, A {r['contact_fraction']:.3f}, "
+                                  f"{r['cpu_s']:.0f} s")
+                else:
+                    cells_.append(f"{r['solver']}: {r['status'][:80]}")
+            lines.append(f"| {p:g} | " + " | ".join(cells_) + " |")
+        lines.append("")
+    lines.append(render("steep_cells", "footer"))
+    return "\n".join(lines) + "\n"
+
+
+def main(argv: list[str] | None = None) -> int:
+    ap = argparse.ArgumentParser(description=DESCRIPTION)
+    ap.add_argument("--rows", type=Path, default=ROWS)
+    ap.add_argument("--report", type=Path, default=REPORT)
+    ap.add_argument("--report-only", action="store_true")
+    args = ap.parse_args(argv)
+    surfaces = cells()
+    done = {(r["cell"], r["pressure"], r["velocity"]) for r in read_rows(args.rows)}
+    if not args.report_only:
+        for name, surf in surfaces.items():
+            for v in VELOCITIES:
+                for p in PRESSURES:
+                    if (name, p, v) in done:
+                        continue
+                    row = run_point(name, surf, p, v)
+                    append_row(args.rows, row)
+    return publish(report(read_rows(args.rows), surfaces), args.report)
