@@ -90,7 +90,7 @@ def full_case(rows: list, transient: bool) -> None:
         rows.append(_row(f"full 240x45x8 50mm/s {p}MPa", st, cpu))
         if transient:
             creep = 5 * float(mat.retardation_times().max())
-            tr, cpu = _timed(lambda p=p: rc.fem.sliding_test(
+            tr, cpu = _timed(lambda p=p, creep=creep: rc.fem.sliding_test(
                 surf, mat, p, 50.0, **FULL, solver="transient", steps_per_period=240,
                 min_sliding_time=creep, periods=100))
             rows.append(_row(f"full 240x45x8 50mm/s {p}MPa", tr, cpu))
