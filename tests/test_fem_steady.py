@@ -278,3 +278,48 @@ def test_speed_sweep_by_continuation_follows_the_loss_peak():
     assert mu[k] == pytest.approx(fresh.friction, rel=0.02)
     with pytest.raises(InputError, match="equal length"):
         rc.fem.steady_sweep(surf, mat, [1.0, 2.0], [1.0, 2.0, 3.0])
+
+
+def _settled_transient(surface, mat, p, v, mesh, grading, offset, retardation_times):
+    """The transient test at one column per step from the press, slid ``retardation_times``
+    of the SBR's longest retardation time, started at the steady solution's offset."""
+    t_min = retardation_times * float(mat.retardation_times().max())
+    with warnings.catch_warnings():
+        warnings.simplefilter("ignore", RuntimeWarning)
+        return rc.fem.sliding_test(surface, mat, p, v, mesh=mesh, grading=grading,
+                                   solver="transient", min_sliding_time=t_min, periods=500,
+                                   steady_tol=1e-12, surface_offset=offset)
+
+
+def _agree(st, tr, n):
+    h = tr.history
+    slide = h["phase"] == 2
+    for key, value in (("friction", st.friction), ("contact_fraction", st.contact_fraction),
+                       ("mean_separation", st.mean_separation)):
+        series = h[key][slide]
+        last, before = series[-n:].mean(), series[-2 * n:-n].mean()
+        drift = max(abs(last - before), np.ptp(series[-n:])) / abs(last)
+        assert value == pytest.approx(last, rel=max(1e-3, 10 * drift)), key
+
+
+@pytest.mark.slow
+@pytest.mark.parametrize("v", [10.0, 50.0])
+def test_paper_size_law_cell_steady_equals_settled_transient(v):
+    # The validation's law cell (120 x 23 graded x8) at 1 MPa: the transient slides 8
+    # retardation times (130 ms: 21 periods at 10 mm/s, 104 at 50 mm/s); agreement to the
+    # transient's remaining drift, at least 0.1 %.
+    surf, mat = rc.roughness.high_slope_wave(), rc.materials.sbr()
+    st = rc.fem.steady_sliding(surf, mat, 1.0, v, mesh=(120, 23), grading=8.0)
+    tr = _settled_transient(surf, mat, 1.0, v, (120, 23), 8.0, st.stats.surface_offset, 8)
+    _agree(st, tr, 120)
+
+
+@pytest.mark.slow
+def test_paper_size_section3_cell_steady_equals_settled_transient():
+    # One section 3 realization on the validation's full-FEM mesh (240 x 45 graded x8) at
+    # 0.35 MPa, 10 mm/s: the transient slides 6 retardation times (98 ms, 4 periods).
+    surf = rc.roughness.section3().realizations(1, seed=2021)[0]
+    mat = rc.materials.sbr()
+    st = rc.fem.steady_sliding(surf, mat, 0.35, 10.0, mesh=(240, 45), grading=8.0)
+    tr = _settled_transient(surf, mat, 0.35, 10.0, (240, 45), 8.0, st.stats.surface_offset, 6)
+    _agree(st, tr, 240)
