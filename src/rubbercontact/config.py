@@ -12,67 +12,25 @@ import tomllib
 from pathlib import Path
 from typing import Annotated, Any, Literal
 
-from pydantic import BaseModel, ConfigDict, Field, ValidationError, model_validator
+import numpy as np
+from pydantic import BaseModel, Field, ValidationError, field_validator, model_validator
 
 from .errors import InputError
+from .inputs import (
+    MaterialSpec,
+    PositiveFloat,
+    ProfileInput,  # noqa: F401  (re-exported: config.ProfileInput)
+    SurfaceSpec,
+)
+from .inputs import Strict as _Strict
 
-PositiveFloat = Annotated[float, Field(gt=0)]
-
-
-class _Strict(BaseModel):
-    model_config = ConfigDict(extra="forbid", frozen=True)
-
-
-class ProfileInput(_Strict):
-    """Measured profiles to fit a sine series to (paper §2.2)."""
-
-    files: list[Path] = Field(min_length=1, description="profile files (relative to the config)")
-    format: Literal["auto", "text", "captif", "topography"] = "auto"
-    unit: Literal["mm", "um", "m"] = Field(
-        "mm", description="unit of heights and distances in the files")
-    dx: PositiveFloat | None = Field(
-        None, description="sampling interval [mm] if the file has no x column")
-    waves: int | None = Field(None, ge=1, le=40, description="number of sine waves M (octaves)")
-    lower_cutoff: PositiveFloat | None = Field(None, description="shortest wavelength [mm]")
-    upper_cutoff: PositiveFloat | None = Field(None, description="longest wavelength [mm]")
-    method: Literal["wellconditioned", "paper"] = "wellconditioned"
-    window: PositiveFloat | None = Field(None, description="NaN-free window length [mm]")
-    despike: bool = False
-
-
-class SurfaceConfig(_Strict):
-    """Rough rigid surface: a preset, an explicit sine table, or measured profiles."""
-
-    preset: Literal["section3", "asphalt_ac8", "high_slope_wave"] | None = None
-    wavelengths: list[PositiveFloat] | None = Field(None, description="[mm]")
-    amplitudes: list[Annotated[float, Field(ge=0)]] | None = Field(None, description="[mm]")
-    profiles: ProfileInput | None = None
-    m2_threshold: PositiveFloat = Field(
-        1.0, description="rms slope above which a wave is high-slope [-]")
-
-    @model_validator(mode="after")
-    def _one_source(self) -> SurfaceConfig:
-        table = self.wavelengths is not None or self.amplitudes is not None
-        given = [self.preset is not None, table, self.profiles is not None]
-        if sum(given) != 1:
-            raise ValueError("give exactly one of 'preset', 'wavelengths'+'amplitudes', 'profiles'")
-        if (self.wavelengths is None) != (self.amplitudes is None):
-            raise ValueError("'wavelengths' and 'amplitudes' go together")
-        if self.wavelengths is not None and len(self.wavelengths) != len(self.amplitudes):
-            raise ValueError(f"'wavelengths' ({len(self.wavelengths)}) and 'amplitudes' "
-                             f"({len(self.amplitudes)}) differ in length")
-        return self
-
-
-class MaterialConfig(_Strict):
-    """Generalized Maxwell material: preset, Prony table file, or inline values (MPa, s)."""
-
-    preset: Literal["sbr"] | None = "sbr"
-    file: Path | None = None
-    equilibrium_modulus: PositiveFloat | None = Field(None, description="[MPa]")
-    moduli: list[PositiveFloat] = Field(default_factory=list, description="[MPa]")
-    relaxation_times: list[PositiveFloat] = Field(default_factory=list, description="[s]")
-    nu: float = Field(0.5, ge=0.0, le=0.5, description="Poisson's ratio of the half-space [-]")
+#: The ``[surface]`` and ``[material]`` tables (:mod:`rubbercontact.inputs`, shared with the CLI).
+SurfaceConfig = SurfaceSpec
+MaterialConfig = MaterialSpec
+#: Models a run can compare (:mod:`rubbercontact.pipeline`).
+MODELS = ("vhs", "hybrid", "hybrid-windowed", "fem", "meanfield", "meanfield-hybrid")
+#: Most speeds of a ``velocities`` range.
+MAX_SPEED_POINTS = 400
 
 
 class LoadConfig(_Strict):
@@ -206,8 +164,70 @@ class LawConfig(_Strict):
     """Effective interface law of the high-slope scale (paper eqs. 1–3)."""
 
     pressures: list[PositiveFloat] | None = Field(
-        None, description="FEM pressure grid [MPa]; default spans the low-slope local pressures")
+        None, min_length=2, description="FEM pressure grid [MPa] (at least 2); default spans "
+                                        "the low-slope local pressures")
     file: Path | None = Field(None, description="reuse a saved law (NetCDF) instead of running FEM")
+    speed_path: Literal["auto", "points", "continuation"] = Field(
+        "auto", description="FEM law points: 'points' one task per (speed, pressure); "
+                            "'continuation' one task per pressure following the speeds "
+                            "(steady solver); 'auto': continuation from 3 speeds on")
+
+
+class MeanFieldConfig(_Strict):
+    """The mean-field (Persson) models ``meanfield`` and ``meanfield-hybrid``
+    (:class:`rubbercontact.meanfield.MeanFieldOptions`)."""
+
+    correction: Literal["none", "persson"] = Field(
+        "none", description="S(q): none (S = 1) or persson (S = gamma + (1 - gamma) A^2)")
+    gamma: float = Field(0.5, gt=0, le=1, description="Persson's gamma [-]")
+    weighting: Literal["auto", "after", "cell"] = Field(
+        "auto", description="contact fraction weighing a wave's friction: after the wave, "
+                            "or the cell mean (auto: after for sine series)")
+    interface: Literal["law", "rigid"] = Field(
+        "law", description="meanfield-hybrid: the law's compliance in series with the "
+                           "half-space, or a rigid low-slope contact")
+    spectrum: Literal["sines", "profiles"] = Field(
+        "sines", description="the spectrum the theory reads: the sine series of the surface, "
+                             "or the periodogram of the measured profiles (meanfield only)")
+    nodes_per_decade: int | None = Field(
+        None, ge=2, le=1000, description="spectrum = 'profiles': log cells per decade of the "
+                                         "periodogram (default 32)")
+
+    @model_validator(mode="after")
+    def _profiles_only(self) -> MeanFieldConfig:
+        if self.nodes_per_decade is not None and self.spectrum != "profiles":
+            raise ValueError("'nodes_per_decade' applies to spectrum = 'profiles' only")
+        return self
+
+
+class AdhesionConfig(_Strict):
+    """Adhesive friction ``μ_adh = τ_f(v) A_c/σ0`` (paper §2.1 after eq. 8), a model whose
+    parameters the user supplies: ``τ_f`` constant, or a Gaussian in ``log10 v``,
+    ``τ_f = τ_0 exp(−(log10(v/v_0))²/(2c²))``, evaluated at the reduced speed ``a_T v``."""
+
+    law: Literal["constant", "gaussian"] = Field(
+        "constant", description="constant tau_0, or gaussian in log10 v")
+    shear_strength: PositiveFloat = Field(description="tau_0, interfacial shear strength [MPa]")
+    peak_velocity: PositiveFloat | None = Field(
+        None, description="v_0, speed of the gaussian's peak at the reference temperature "
+                          "[mm/s]")
+    width: PositiveFloat | None = Field(
+        None, description="c, standard deviation of the gaussian in decades of speed [-]")
+
+    @model_validator(mode="after")
+    def _parameters(self) -> AdhesionConfig:
+        shape = [k for k in ("peak_velocity", "width") if getattr(self, k) is not None]
+        if self.law == "gaussian" and len(shape) != 2:
+            raise ValueError("law = 'gaussian' needs peak_velocity [mm/s] and width [decades]")
+        if self.law == "constant" and shape:
+            raise ValueError(f"{', '.join(shape)} apply to law = 'gaussian' only")
+        return self
+
+
+class FrictionConfig(_Strict):
+    """Contributions to friction beyond the hysteresis the models compute."""
+
+    adhesion: AdhesionConfig | None = None
 
 
 class ExecutionConfig(_Strict):
@@ -224,6 +244,30 @@ class OutputConfig(_Strict):
     overwrite: bool = False
 
 
+def _speed_range(value):
+    """``{from, to, points}`` [mm/s] → log-spaced speeds (endpoints exact); lists pass."""
+    if not isinstance(value, dict):
+        return value
+    keys = ("from", "to", "points")
+    unknown = [k for k in value if k not in keys]
+    if unknown:
+        guess = difflib.get_close_matches(str(unknown[0]), keys, n=1)
+        raise ValueError(f"unknown key '{unknown[0]}' in the range"
+                         + (f"; did you mean '{guess[0]}'?" if guess else "")
+                         + "; give from, to [mm/s] and points")
+    missing = [k for k in keys if k not in value]
+    if missing:
+        raise ValueError(f"a range needs from, to [mm/s] and points; missing {missing}")
+    lo, hi, n = value["from"], value["to"], value["points"]
+    if not all(isinstance(x, int | float) and not isinstance(x, bool) for x in (lo, hi)):
+        raise ValueError(f"from and to must be numbers [mm/s], got {lo!r}, {hi!r}")
+    if not 0 < lo < hi or not np.isfinite(hi):
+        raise ValueError(f"a log range needs 0 < from < to [mm/s], got from = {lo}, to = {hi}")
+    if isinstance(n, bool) or not isinstance(n, int) or not 2 <= n <= MAX_SPEED_POINTS:
+        raise ValueError(f"points must be an integer in [2, {MAX_SPEED_POINTS}], got {n!r}")
+    return [float(x) for x in np.geomspace(float(lo), float(hi), n)]
+
+
 class RunConfig(_Strict):
     """The whole run (see ``examples/*.toml``)."""
 
@@ -231,16 +275,28 @@ class RunConfig(_Strict):
     material: MaterialConfig = MaterialConfig()
     loads: LoadConfig
     velocities: list[Annotated[float, Field(ge=0)]] = Field(
-        min_length=1, description="sliding speeds [mm/s]")
+        min_length=1, description="sliding speeds [mm/s]: a list, or a log range "
+                                  "{from, to, points}")
+    temperatures: list[Annotated[float, Field(gt=-273.15)]] | None = Field(
+        None, min_length=1, description="temperatures [°C] (default: isothermal at the "
+                                        "material's reference temperature); needs a shift "
+                                        "law")
     realizations: int = Field(1, ge=1, le=10_000)
     seed: int = Field(0, ge=0)
-    models: list[Literal["vhs", "hybrid", "hybrid-windowed", "fem"]] = Field(
+    models: list[Literal[MODELS]] = Field(
         default_factory=lambda: ["vhs", "hybrid", "fem"], min_length=1)
     halfspace: HalfSpaceConfig = HalfSpaceConfig()
     fem: FemConfig = FemConfig()
     law: LawConfig = LawConfig()
+    meanfield: MeanFieldConfig = MeanFieldConfig()
+    friction: FrictionConfig = FrictionConfig()
     execution: ExecutionConfig = ExecutionConfig()
     output: OutputConfig = OutputConfig()
+
+    @field_validator("velocities", mode="before")
+    @classmethod
+    def _velocity_range(cls, value):
+        return _speed_range(value)
 
     @model_validator(mode="after")
     def _fem_subset(self) -> RunConfig:
@@ -253,6 +309,17 @@ class RunConfig(_Strict):
             raise ValueError("fem.realizations below realizations needs the 'vhs' model: the "
                              "VHS on every realization is the control variate that carries "
                              "the FEM on a subset to the phase average")
+        return self
+
+    @model_validator(mode="after")
+    def _meanfield_spectrum(self) -> RunConfig:
+        if self.meanfield.spectrum == "profiles":
+            if self.surface.profiles is None:
+                raise ValueError("meanfield.spectrum = 'profiles' needs [surface.profiles]")
+            if "meanfield-hybrid" in self.models:
+                raise ValueError("meanfield-hybrid reads the sine series (its law belongs to "
+                                 "the fit's high-slope waves): use meanfield.spectrum = "
+                                 "'sines', or the model meanfield")
         return self
 
 
@@ -315,10 +382,13 @@ def _resolve_paths(cfg: RunConfig, base: Path) -> RunConfig:
         if missing:
             raise InputError(f"surface.profiles.files: file(s) not found: {', '.join(missing)}")
         upd["surface"] = cfg.surface.model_copy(update={"profiles": prof})
-    if cfg.material.file is not None:
-        if not fix(cfg.material.file).is_file():
-            raise InputError(f"material.file: not found: {fix(cfg.material.file)}")
-        upd["material"] = cfg.material.model_copy(update={"file": fix(cfg.material.file)})
+    for key in ("file", "dma"):
+        path = getattr(cfg.material, key)
+        if path is not None:
+            if not fix(path).is_file():
+                raise InputError(f"material.{key}: not found: {fix(path)}")
+            upd["material"] = upd.get("material", cfg.material).model_copy(
+                update={key: fix(path)})
     if cfg.law.file is not None:
         if not fix(cfg.law.file).is_file():
             raise InputError(f"law.file: not found: {fix(cfg.law.file)}")

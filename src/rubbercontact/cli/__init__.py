@@ -36,6 +36,7 @@ _GROUPS = [
     ("material", "material", "Read DMA data, fit Prony series, shift to temperatures."),
     ("run", "run", "Run the hybrid multiscale pipeline from a TOML config (paper §2.1)."),
     ("plot", "plot", "Redraw figures from a results NetCDF file."),
+    ("summary", "summary", "Print the summary of a results NetCDF file (curves and peaks)."),
     ("cache", "cache", "Inspect or clear the result cache."),
 ]
 

@@ -1,9 +1,10 @@
 """``rubbercontact fem``: one FEM micromechanical sliding test (paper §2.4, Fig. 4).
 
-Options or a TOML file (``--config``) with the keys ``surface`` (a preset name
-``"high_slope_wave"`` or a table ``{wavelengths, amplitudes, phases}``), ``material``
-(``"sbr"``, a Prony file path, or a table ``{equilibrium_modulus, moduli,
-relaxation_times}``), ``mean_pressure``, ``velocity``, ``mesh = [nx, ny]``,
+Options or a TOML file (``--config``) with the keys ``surface`` (a preset name,
+default ``"high_slope_wave"``, or a table ``{wavelengths, amplitudes, phases}``),
+``material`` (``"sbr"``, a Prony file path, or a ``[material]`` table as in a run config;
+both parsed by :mod:`rubbercontact.inputs`), ``mean_pressure``, ``velocity``,
+``mesh = [nx, ny]``,
 ``solver``, ``height_ratio``, ``grading``, ``contact_points``, ``history_order``, and for
 the transient solver ``periods``, ``steps_per_period``, ``viscous_model``.
 Command-line options override
@@ -27,41 +28,15 @@ _KEYS = {"surface", "material", "mean_pressure", "velocity", "mesh", "solver", "
 
 
 def _surface(spec):
-    from .. import roughness
+    from ..inputs import surface_from_value
 
-    if spec is None or spec in ("high_slope_wave", "high-slope"):
-        return roughness.high_slope_wave()
-    if isinstance(spec, str):
-        presets = {"section3": roughness.section3, "asphalt_ac8": roughness.asphalt_ac8}
-        if spec not in presets:
-            raise InputError(f"surface: unknown preset {spec!r} (high_slope_wave, section3, "
-                             f"asphalt_ac8, or a table of wavelengths/amplitudes)")
-        return presets[spec]()
-    if isinstance(spec, dict):
-        unknown = set(spec) - {"wavelengths", "amplitudes", "phases"}
-        if unknown:
-            raise InputError(f"surface: unknown key(s) {sorted(unknown)}")
-        if "wavelengths" not in spec or "amplitudes" not in spec:
-            raise InputError("surface: needs 'wavelengths' and 'amplitudes' (mm)")
-        return roughness.SineSeries(spec["wavelengths"], spec["amplitudes"], spec.get("phases"))
-    raise InputError(f"surface: expected a preset name or a table, got {spec!r}")
+    return surface_from_value(spec, default="high_slope_wave")
 
 
 def _material(spec):
-    from .. import materials
+    from ..inputs import material_from_value
 
-    if spec is None or spec == "sbr":
-        return materials.sbr()
-    if isinstance(spec, str):
-        return materials.GeneralizedMaxwell.from_file(spec)
-    if isinstance(spec, dict):
-        try:
-            return materials.GeneralizedMaxwell(spec["equilibrium_modulus"],
-                                                spec.get("moduli", []),
-                                                spec.get("relaxation_times", []))
-        except KeyError:
-            raise InputError("material: table needs 'equilibrium_modulus' (MPa)") from None
-    raise InputError(f"material: expected 'sbr', a file path or a table, got {spec!r}")
+    return material_from_value(spec)
 
 
 def _mesh(text):
@@ -87,8 +62,8 @@ def command(
                                                   "wavelength (mm), repeatable."),
     amplitude: list[float] | None = typer.Option(None, "--amplitude", help="Sine amplitude "
                                                  "(mm), one per --wavelength."),
-    material: str | None = typer.Option(None, "--material", help="'sbr' (Table 1) or a "
-                                        "Prony TOML/CSV file."),
+    material: str | None = typer.Option(None, "--material", help="'sbr' (Table 1, default) "
+                                        "or a Prony TOML/CSV file."),
     mesh: str | None = typer.Option(None, "--mesh", help="Elements NXxNY [120x90]."),
     solver: str | None = typer.Option(None, "--solver", help="steady (the steady state "
                                       "directly) or transient (time-stepped) [steady]."),

@@ -4,10 +4,10 @@ Options or a TOML file (options override the file). TOML keys::
 
     surface = "section3"            # preset: asphalt_ac8, section3, high_slope_wave
     # or: [surface] wavelengths = [...], amplitudes = [...], phases = [...]
-    material = "sbr"                # or "elastic" with modulus = 10.0 (MPa)
+    material = "sbr"                # or "elastic" with modulus = 10.0 (MPa), or a Prony file
     velocity = 10.0                 # mm/s (or velocities = [1, 10, 100] to sweep)
     pressure = 0.3                  # MPa
-    law = "lj"                      # "lj" (default Lennard-Jones wall) or "hardwall"
+    law = "lennard-jones"           # (default) or "hard-wall", as halfspace.law in a run
     n = 4096
     nu = 0.5
     period = 0.25                   # mm, optional
@@ -22,8 +22,11 @@ from pathlib import Path
 import typer
 
 from ..errors import InputError
+from ..inputs import SURFACE_PRESETS
 
-_PRESETS = ("asphalt_ac8", "section3", "high_slope_wave")
+#: The wall laws, by their config names (halfspace.law), and the older spellings.
+_LAWS = {"lennard-jones": "lennard-jones", "lj": "lennard-jones", "hard-wall": "hard-wall",
+         "hardwall": "hard-wall", "none": "hard-wall"}
 
 
 def _floats(name: str, text: str | None) -> list[float] | None:
@@ -57,47 +60,27 @@ def _load_toml(path: Path) -> dict:
 
 
 def _surface(spec, wavelengths, amplitudes, phases):
-    from ..roughness import presets
-    from ..roughness.sines import SineSeries
+    from ..inputs import surface_from_value
 
     if wavelengths is not None or amplitudes is not None:
         if wavelengths is None or amplitudes is None:
             raise InputError("surface: give both --wavelengths and --amplitudes")
-        return SineSeries(wavelengths, amplitudes, phases)
-    if isinstance(spec, dict):
-        try:
-            return SineSeries(spec["wavelengths"], spec["amplitudes"], spec.get("phases", phases))
-        except KeyError as exc:
-            raise InputError(f"surface: table needs wavelengths and amplitudes (missing {exc})"
-                             ) from None
-    name = spec or "section3"
-    if name not in _PRESETS:
-        raise InputError(f"surface: unknown preset {name!r}; choose one of {_PRESETS} or give "
-                         "--wavelengths/--amplitudes")
-    surf = getattr(presets, name)()
-    return surf.with_phases(phases) if phases is not None else surf
+        spec = {"wavelengths": wavelengths, "amplitudes": amplitudes}
+    return surface_from_value(spec, default="section3", phases=phases)
 
 
-def _material(name: str, modulus: float | None):
-    from ..materials import GeneralizedMaxwell, sbr
+def _material(name, modulus: float | None, base_dir=None):
+    from ..inputs import material_from_value
 
-    if name == "sbr":
-        return sbr()
-    if name == "elastic":
-        if modulus is None:
-            raise InputError("modulus: an elastic material needs --modulus E (MPa)")
-        return GeneralizedMaxwell.elastic(modulus)
-    raise InputError(f"material: expected 'sbr' or 'elastic', got {name!r}")
+    return material_from_value(name, modulus=modulus, base_dir=base_dir)
 
 
 def _law(name: str):
     from ..halfspace import LennardJonesRepulsion
 
-    if name in ("hardwall", "hard-wall", "none"):
-        return None
-    if name in ("lj", "lennard-jones"):
-        return LennardJonesRepulsion()
-    raise InputError(f"law: expected 'lj' or 'hardwall', got {name!r}")
+    if name not in _LAWS:
+        raise InputError(f"law: expected 'lennard-jones' or 'hard-wall', got {name!r}")
+    return LennardJonesRepulsion() if _LAWS[name] == "lennard-jones" else None
 
 
 def _summary(res) -> dict:
@@ -156,7 +139,7 @@ def _plot_sweep(rows: list[dict], path: Path) -> None:
 def command(
     config: Path | None = typer.Option(None, "--config", help="TOML file with the case."),
     surface: str | None = typer.Option(None, "--surface",
-                                       help=f"Preset surface: {', '.join(_PRESETS)}."),
+                                       help=f"Preset surface: {', '.join(SURFACE_PRESETS)}."),
     wavelengths: str | None = typer.Option(None, "--wavelengths",
                                            help="Comma-separated wavelengths [mm]."),
     amplitudes: str | None = typer.Option(None, "--amplitudes",
@@ -164,14 +147,16 @@ def command(
     phases: str | None = typer.Option(None, "--phases", help="Comma-separated phases [rad]."),
     period: float | None = typer.Option(None, "--period",
                                         help="Periodic length [mm] (default: longest λ)."),
-    material: str | None = typer.Option(None, "--material", help="sbr (Table 1) or elastic."),
+    material: str | None = typer.Option(None, "--material", help="sbr (Table 1), elastic "
+                                        "(with --modulus), or a Prony TOML/CSV file."),
     modulus: float | None = typer.Option(None, "--modulus", help="Young's modulus E [MPa] "
                                          "of an elastic material."),
     velocity: float | None = typer.Option(None, "--velocity", help="Sliding speed [mm/s]."),
     velocities: str | None = typer.Option(None, "--velocities",
                                           help="Sweep: comma-separated speeds [mm/s]."),
     pressure: float | None = typer.Option(None, "--pressure", help="Mean pressure σ0 [MPa]."),
-    law: str | None = typer.Option(None, "--law", help="lj (default) or hardwall."),
+    law: str | None = typer.Option(None, "--law", help="lennard-jones (default) or "
+                                   "hard-wall."),
     n: int | None = typer.Option(None, "--n", help="Grid points (default 4096)."),
     nu: float | None = typer.Option(None, "--nu", help="Poisson's ratio (default 0.5)."),
     as_json: bool = typer.Option(False, "--json", help="Machine-readable output."),
@@ -186,8 +171,9 @@ def command(
     surf = _surface(surface or cfg.get("surface"), _floats("wavelengths", wavelengths),
                     _floats("amplitudes", amplitudes), ph)
     mat = _material(material or cfg.get("material", "sbr"),
-                    modulus if modulus is not None else cfg.get("modulus"))
-    the_law = _law(law or cfg.get("law", "lj"))
+                    modulus if modulus is not None else cfg.get("modulus"),
+                    base_dir=config.parent if config is not None else None)
+    the_law = _law(law or cfg.get("law", "lennard-jones"))
     p0 = pressure if pressure is not None else cfg.get("pressure")
     if p0 is None:
         raise InputError("pressure: give --pressure σ0 [MPa] (or 'pressure' in the config)")

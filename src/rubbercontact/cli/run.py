@@ -26,15 +26,21 @@ def command(
                                help="Result cache directory."),
     figures: bool = typer.Option(True, "--figures/--no-figures", help="Write the figures."),
     quiet: bool = typer.Option(False, "--quiet", "-q", help="No progress output."),
+    check: bool = typer.Option(False, "--check", help="Resolve and check the config "
+                               "(surface, material, speeds, FEM meshes), print the plan, "
+                               "run nothing."),
 ) -> None:
-    """Run the hybrid multiscale pipeline (and VHS/FEM reference models) from a config."""
+    """Run the hybrid multiscale pipeline (and VHS/FEM/mean-field models) from a config."""
     from ..config import default_config, load_config
-    from ..hybrid import run
-    from ..hybrid.pipeline import failed_solves
     from ..io.results import write_law, write_results
+    from ..pipeline import run
+    from ..pipeline.assemble import failed_solves
     from ..plotting.figures import plot_all, summary_table
 
     cfg = load_config(config) if config is not None else default_config()
+    if check:
+        typer.echo(describe_plan(cfg))
+        return
     upd_exec = {k: v for k, v in {"workers": workers, "threads_per_worker": threads_per_worker,
                                   "scheduler": scheduler, "cache": cache}.items()
                 if v is not None}
@@ -79,3 +85,35 @@ def command(
         typer.echo(f"error: {int(mask.sum())} solve(s) failed, e.g. "
                    f"{[str(ds['status'].values[tuple(b)]) for b in bad[:3]]}", err=True)
         raise typer.Exit(1)
+
+
+def describe_plan(cfg) -> str:
+    """What a run of ``cfg`` will compute (after :func:`rubbercontact.pipeline.resolve`)."""
+    from ..pipeline import resolve
+    from ..pipeline.lawstage import uses_continuation
+
+    setup = resolve(cfg)
+    sp = setup.speeds
+    lines = [f"config ok: models {', '.join(setup.models)}",
+             f"surface: {setup.surface.info.get('source')}, {setup.base.size} waves, "
+             f"{int(setup.hs0.size)} high-slope; {len(setup.realizations)} realizations",
+             f"material: {setup.material.name}"
+             + ("" if sp.reference_temperature is None
+                else f" (T_ref = {sp.reference_temperature:g} °C)"),
+             f"speeds: {sp.velocities.size} from {sp.velocities.min():g} to "
+             f"{sp.velocities.max():g} mm/s"]
+    if not sp.isothermal:
+        lines.append(f"temperatures: {', '.join(f'{t:g}' for t in sp.temperatures)} °C; "
+                     f"{sp.computed.size} distinct reduced speeds computed at T_ref")
+    loads = cfg.loads
+    lines.append(f"loads: {len(loads.pressures)} pressures" if loads.pressures is not None
+                 else f"loads: {len(loads.contact_areas)} target contact areas")
+    if setup.needs_law:
+        if cfg.law.file is not None:
+            lines.append(f"law: reused from {cfg.law.file}")
+        else:
+            n_p = len(cfg.law.pressures) if cfg.law.pressures is not None else 8
+            how = ("by continuation in speed, one task per pressure"
+                   if uses_continuation(cfg, sp.computed.size) else "one task per point")
+            lines.append(f"law: {n_p} pressures x {sp.computed.size} speeds of FEM, {how}")
+    return "\n".join(lines)

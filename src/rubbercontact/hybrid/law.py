@@ -261,7 +261,10 @@ def law_from_results(ds: xr.Dataset, source: str = "results") -> xr.Dataset:
     if "law_attrs" not in ds.attrs:
         raise InputError(f"{source}: its law has no provenance (written before "
                          f"rubbercontact stored it); rerun the law or use a law.nc")
-    law = xr.Dataset({k: ds[f"law_{k}"].rename(law_pressure="pressure")
+    # a run with temperatures keeps its law on the reduced speeds, dim law_velocity
+    names = {"law_pressure": "pressure", "law_velocity": "velocity"}
+    law = xr.Dataset({k: ds[f"law_{k}"].rename({d: names[d] for d in ds[f"law_{k}"].dims
+                                                if d in names})
                       for k in LAW_VARIABLES if f"law_{k}" in ds})
     law.attrs.update(json.loads(ds.attrs["law_attrs"]))
     return law

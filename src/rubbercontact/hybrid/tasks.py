@@ -186,3 +186,85 @@ def fem_task(surface: dict, material: dict, velocity: float, mean_pressure: floa
     ds["x_fem"] = ("x_fem", np.asarray(prof.x), {"units": "mm"})
     ds["pressure_profile"] = ("x_fem", np.asarray(prof.pressure), {"units": "MPa"})
     return ds
+
+
+def fem_speed_path_task(surface: dict, material: dict, velocities: list, mean_pressure: float,
+                        options: dict | None = None) -> xr.Dataset:
+    """FEM sliding tests at one load along a path of speeds, each started from the last.
+
+    The steady solver's continuation (:func:`rubbercontact.fem.steady_sliding` with
+    ``start``) in speed: the first speed is solved from the press, each further one from
+    its predecessor's steady state. A point that fails is recorded as failed (its
+    ``status``) and the next starts afresh, so one bad point does not sink the path.
+
+    Parameters
+    ----------
+    surface, material, mean_pressure, options
+        As for :func:`fem_task` (``options`` must select the steady solver).
+    velocities
+        Speeds [mm/s], followed in the order given (ascending, for close neighbours).
+
+    Returns
+    -------
+    xarray.Dataset
+        The scalars of :func:`fem_task` (without the pressure profile) on a ``velocity``
+        dimension, and ``status`` per speed (``"ok"`` or the failure).
+    """
+    from .. import fem
+    from ..errors import ConvergenceError
+
+    opts = fem.FemOptions.from_dict(options or {})
+    if opts.solver != "steady":
+        raise InputError("fem_speed_path_task: continuation in speed needs solver = 'steady'")
+    surf, mat = _surface(surface), _material(material)
+    rows, status, state = [], [], None
+    for v in velocities:
+        t0 = time.perf_counter()
+        try:
+            out = fem.steady_sliding(surf, mat, mean_pressure, float(v), options=opts,
+                                     start=state)
+        except (ConvergenceError, InputError, FloatingPointError, np.linalg.LinAlgError) as exc:
+            rows.append(None)
+            status.append(f"{type(exc).__name__}: {exc}")
+            state = None
+            continue
+        state = out.state
+        rows.append(_fem_scalars(out, surf, float(v), mean_pressure, time.perf_counter() - t0))
+        status.append("ok")
+    names = [k for k in next((r for r in rows if r is not None), {"friction": 0.0})
+             if k != "velocity"]             # the speed is the coordinate
+    data = {k: ("velocity", [np.nan if r is None else r[k] for r in rows],
+                {"units": _FEM_UNITS.get(k, _UNITS.get(k, "1"))}) for k in names}
+    ds = xr.Dataset(data, coords={"velocity": ("velocity", np.asarray(velocities, float),
+                                               {"units": "mm/s"})},
+                    attrs={"model": "fem", "solver": "steady", "path": "continuation in speed"})
+    ds["status"] = ("velocity", np.array(status, dtype=str))
+    return ds
+
+
+_FEM_UNITS = {"sliding_time": "s", "max_penetration": "mm", "max_segment_penetration": "mm",
+              "surface_offset": "mm"}
+
+
+def _fem_scalars(out, surf: SineSeries, velocity: float, mean_pressure: float,
+                 wall: float) -> dict:
+    """The scalars :func:`fem_task` reports, of one steady result."""
+    st = out.stats
+    sliding_time = (np.inf if st.solver == "steady"
+                    else st.periods * surf.period / velocity if velocity > 0 else 0.0)
+    return {
+        "friction": out.friction, "shear_stress": out.shear_stress,
+        "contact_fraction": out.contact_fraction, "mean_separation": out.mean_separation,
+        "mean_pressure": mean_pressure, "velocity": velocity, "wall_time": wall,
+        "steps": st.steps, "newton_iterations": st.newton_iterations, "cutbacks": st.cutbacks,
+        "krylov_iterations": st.krylov_iterations, "max_penetration": st.max_penetration,
+        "steady": int(st.steady), "period_change": st.period_change,
+        "period_area_change": st.period_area_change,
+        "max_segment_penetration": st.max_segment_penetration,
+        "bulk_shear": st.bulk_shear, "surface_offset": st.surface_offset,
+        "sliding_time": sliding_time,
+    }
+
+
+#: Own version of the speed-path task (its answers, read by the sweep cache key).
+fem_speed_path_task.cache_version = "1"

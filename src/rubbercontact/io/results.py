@@ -1,4 +1,13 @@
-"""Results files: NetCDF with provenance, written atomically, never silently overwritten."""
+"""Results files: NetCDF with provenance, written atomically, never silently overwritten.
+
+A results file (:func:`rubbercontact.pipeline.run`) keeps each statistic over the
+random-phase realizations as its own variable: ``k_mean`` and ``k_std`` (over the
+realizations), and with the FEM on a subset of them ``k_phase_mean``/``k_phase_se`` (the
+phase averages, the FEM's by control variate). The ``ds.rc`` accessor
+(:class:`ResultsAccessor`, registered on import of this module) reads them by what they
+are: ``ds.rc.mean("friction")``, ``ds.rc.spread("friction")``, ``ds.rc.stderr(...)``.
+Files of the first layout (no ``results_format`` attribute) read the same way.
+"""
 
 from __future__ import annotations
 
@@ -8,9 +17,77 @@ import sys
 from datetime import UTC, datetime
 from pathlib import Path
 
+import numpy as np
 import xarray as xr
 
 from .atomic import write_netcdf_atomic
+
+
+def mean_of(ds: xr.Dataset, k: str) -> xr.DataArray:
+    """``k_phase_mean`` when the run estimated phase averages, else ``k_mean``."""
+    return ds[f"{k}_phase_mean"] if f"{k}_phase_mean" in ds else ds[f"{k}_mean"]
+
+
+@xr.register_dataset_accessor("rc")
+class ResultsAccessor:
+    """Statistics of a results dataset by what they are, not by their variable names.
+
+    Examples
+    --------
+    >>> ds.rc.mean("friction").sel(model="hybrid")     # doctest: +SKIP
+    >>> ds.rc.curve("friction", model="vhs", pressure=0.2)   # μ over the speeds
+    """
+
+    def __init__(self, ds: xr.Dataset) -> None:
+        self._ds = ds
+
+    @property
+    def format(self) -> int:
+        """Layout version of the file (1: before the attribute existed)."""
+        return int(self._ds.attrs.get("results_format", 1))
+
+    @property
+    def temperatures(self) -> np.ndarray | None:
+        """The run's temperatures [°C], or None for an isothermal run."""
+        ds = self._ds
+        return ds["temperature"].values if "temperature" in ds.dims else None
+
+    def has(self, k: str) -> bool:
+        """Whether the results carry the statistics of ``k``."""
+        return f"{k}_mean" in self._ds or f"{k}_phase_mean" in self._ds
+
+    def mean(self, k: str) -> xr.DataArray:
+        """The phase average of ``k``: ``k_phase_mean`` (the FEM's by control variate) when
+        the run estimated it, else the mean over the realizations."""
+        return mean_of(self._ds, k)
+
+    def spread(self, k: str) -> xr.DataArray:
+        """Standard deviation of ``k`` over the realizations (the phase-to-phase scatter)."""
+        ds = self._ds
+        if f"{k}_std" in ds:
+            return ds[f"{k}_std"]
+        return ds[k].std("realization")
+
+    def stderr(self, k: str) -> xr.DataArray:
+        """Standard error of :meth:`mean`: ``k_phase_se`` for the FEM on a subset, else the
+        spread over ``sqrt(n)`` realizations that ran (NaN with fewer than two)."""
+        ds = self._ds
+        n = ds[k].notnull().sum("realization")
+        se = (ds[k].std("realization", ddof=1) / np.sqrt(n)).where(n > 1)
+        if f"{k}_phase_se" in ds and "fem" in ds["model"].values:
+            fem = ds[f"{k}_phase_se"].expand_dims(model=["fem"])
+            se = xr.where(se["model"] == "fem", fem.reindex_like(se), se)
+        return se
+
+    def curve(self, k: str, *, model: str, pressure: float | None = None,
+              temperature: float | None = None, **at) -> xr.DataArray:
+        """:meth:`mean` of ``k`` over the speeds at one model, load (and temperature)."""
+        sel = {"model": model, **at}
+        if pressure is not None:
+            sel["pressure"] = pressure
+        if temperature is not None:
+            sel["temperature"] = temperature
+        return self.mean(k).sel(sel)
 
 
 def provenance() -> dict[str, str]:

@@ -1,4 +1,9 @@
-"""Figures of a results dataset, after the paper's Figs. 2, 5, 7, 8 and 9."""
+"""Figures of a results dataset, after the paper's Figs. 2, 5, 7, 8 and 9.
+
+The per-speed figures draw at most :data:`MAX_PANELS` speeds (spread over the range); in a
+run with temperatures they show the temperature nearest the reference one (the speed and
+temperature curves are :mod:`.speed`'s).
+"""
 
 from __future__ import annotations
 
@@ -7,12 +12,49 @@ from pathlib import Path
 import numpy as np
 import xarray as xr
 
-from ..hybrid.pipeline import mean_of
+from ..io.results import mean_of
+from .summary import _error_basis, summary_table
+
+__all__ = ["plot_all", "summary_table", "plot_law", "plot_friction_vs_area",
+           "plot_friction_vs_pressure", "plot_high_slope_friction", "plot_pressure_profiles"]
 
 _COLORS = {"vhs": "tab:red", "hybrid": "tab:blue", "hybrid-windowed": "tab:green",
-           "fem": "black"}
+           "fem": "black", "meanfield": "tab:purple", "meanfield-hybrid": "tab:orange"}
 _LABELS = {"vhs": "VHS (half-space only)", "hybrid": "hybrid multiscale",
-           "hybrid-windowed": "hybrid, law at λ_hs-averaged pressure", "fem": "FEM (full)"}
+           "hybrid-windowed": "hybrid, law at λ_hs-averaged pressure", "fem": "FEM (full)",
+           "meanfield": "mean-field (Persson)", "meanfield-hybrid": "mean-field + FEM law"}
+#: Most speeds a per-speed figure draws.
+MAX_PANELS = 4
+
+
+def panel_indices(n: int, most: int = MAX_PANELS) -> list[int]:
+    """At most ``most`` indices of ``range(n)``, spread evenly, first and last included."""
+    if n <= most:
+        return list(range(n))
+    return sorted({int(round(x)) for x in np.linspace(0, n - 1, most)})
+
+
+def law_speeds(ds: xr.Dataset) -> tuple[str, np.ndarray]:
+    """The dimension of the law's speeds (``law_velocity`` in a run with temperatures) and
+    the speeds to draw (at most :data:`MAX_PANELS`)."""
+    dim = "law_velocity" if "law_velocity" in ds.dims else "velocity"
+    v = ds[dim].values
+    return dim, v[panel_indices(v.size)]
+
+
+def isothermal_view(ds: xr.Dataset) -> xr.Dataset:
+    """``ds`` at the temperature nearest the reference one (a scalar ``temperature``
+    coordinate remains), or ``ds`` itself for an isothermal run."""
+    if "temperature" not in ds.dims:
+        return ds
+    t = ds["temperature"].values
+    ref = ds.attrs.get("reference_temperature_C")
+    k = int(np.argmin(np.abs(t - float(ref)))) if ref is not None else 0
+    return ds.isel(temperature=k)
+
+
+def _at_temperature(ds: xr.Dataset) -> str:
+    return f", T = {float(ds['temperature']):g} °C" if "temperature" in ds.coords else ""
 
 
 def _plt():
@@ -37,14 +79,16 @@ def plot_law(ds: xr.Dataset, path: Path) -> Path | None:
         return None
     plt = _plt()
     fig, axes = plt.subplots(1, 3, figsize=(12, 3.8))
-    for v in ds["velocity"].values:
-        u = ds["law_mean_separation"].sel(velocity=v).values * 1e3
+    dim, speeds = law_speeds(ds)
+    for v in speeds:
+        at = {dim: v}
+        u = ds["law_mean_separation"].sel(at).values * 1e3
         p = ds["law_pressure"].values
-        ok = (ds["law_status"].sel(velocity=v).values == "ok" if "law_status" in ds
+        ok = (ds["law_status"].sel(at).values == "ok" if "law_status" in ds
               else np.ones(p.size, bool))
-        lbl = f"v = {v:g} mm/s"
-        for ax, y in zip(axes, (p, ds["law_contact_fraction"].sel(velocity=v).values,
-                                ds["law_shear_stress"].sel(velocity=v).values), strict=True):
+        lbl = f"v = {v:g} mm/s" + (" (T_ref)" if dim == "law_velocity" else "")
+        for ax, y in zip(axes, (p, ds["law_contact_fraction"].sel(at).values,
+                                ds["law_shear_stress"].sel(at).values), strict=True):
             line, = ax.plot(u[ok], y[ok], "o-", label=lbl)
             # failed or excluded (non-monotone) FEM points: shown, not connected
             ax.plot(u[~ok], y[~ok], "x", color=line.get_color(), ms=8,
@@ -74,11 +118,12 @@ def _friction_panels(ds: xr.Dataset, path: Path, x_of, xlabel: str, xlog: bool) 
     estimates of its phase average (``*_phase_mean``), the error bars its own spread.
     """
     plt = _plt()
-    nv = ds.sizes["velocity"]
-    fig, axes = plt.subplots(1, nv, figsize=(5.2 * nv, 4), squeeze=False)
+    ds = isothermal_view(ds)
+    shown = panel_indices(ds.sizes["velocity"])
+    fig, axes = plt.subplots(1, len(shown), figsize=(5.2 * len(shown), 4), squeeze=False)
     mu = mean_of(ds, "friction")
-    for iv, v in enumerate(ds["velocity"].values):
-        ax = axes[0, iv]
+    for ax, iv in zip(axes[0], shown, strict=True):
+        v = ds["velocity"].values[iv]
         for m in ds["model"].values:
             sel = ds.sel(model=m, velocity=v)
             ax.errorbar(x_of(ds, m, v), mu.sel(model=m, velocity=v).values,
@@ -88,7 +133,7 @@ def _friction_panels(ds: xr.Dataset, path: Path, x_of, xlabel: str, xlog: bool) 
             ax.set_xscale("log")
         ax.set_xlabel(xlabel)
         ax.set_ylabel("friction coefficient μ [-]")
-        title = f"v = {v:g} mm/s"
+        title = f"v = {v:g} mm/s{_at_temperature(ds)}"
         if "error_vs_fem" in ds:
             parts = [f"e({m}) = {100 * float(ds['error_vs_fem'].sel(compared_model=m)[iv]):.1f} %"
                      for m in ds["compared_model"].values]
@@ -101,16 +146,9 @@ def _friction_panels(ds: xr.Dataset, path: Path, x_of, xlabel: str, xlog: bool) 
 
 def plot_friction_vs_area(ds: xr.Dataset, path: Path) -> Path:
     """Fig. 5: friction vs normalized contact area, all models, one panel per speed."""
-    area = mean_of(ds, "contact_fraction")
+    area = mean_of(isothermal_view(ds), "contact_fraction")
     return _friction_panels(ds, path, lambda ds, m, v: area.sel(model=m, velocity=v).values,
                             "normalized contact area A_c/A_0 [-]", xlog=False)
-
-
-def _error_basis(ds: xr.Dataset) -> str:
-    """``" at equal σ0"`` / ``" at equal A_c"``: what ``error_vs_fem`` compares over
-    (empty for files written before the attribute existed)."""
-    over = ds["error_vs_fem"].attrs.get("compared_over")
-    return {"pressure": " at equal σ0", "contact_area": " at equal A_c"}.get(over, "")
 
 
 def plot_friction_vs_pressure(ds: xr.Dataset, path: Path) -> Path:
@@ -124,14 +162,13 @@ def plot_high_slope_friction(ds: xr.Dataset, path: Path) -> Path | None:
     if "law_friction" not in ds:
         return None
     plt = _plt()
-    nv = ds.sizes["velocity"]
-    fig, axes = plt.subplots(1, nv, figsize=(5.2 * nv, 4), squeeze=False)
-    for iv, v in enumerate(ds["velocity"].values):
-        ax = axes[0, iv]
+    dim, speeds = law_speeds(ds)
+    fig, axes = plt.subplots(1, len(speeds), figsize=(5.2 * len(speeds), 4), squeeze=False)
+    for ax, v in zip(axes[0], speeds, strict=True):
         p = ds["law_pressure"].values
-        ax.plot(p, ds["law_friction"].sel(velocity=v), "o-", color="black", label="FEM")
+        ax.plot(p, ds["law_friction"].sel({dim: v}), "o-", color="black", label="FEM")
         if "law_vhs_friction" in ds:
-            ax.plot(p, ds["law_vhs_friction"].sel(velocity=v), "s--", color="tab:red",
+            ax.plot(p, ds["law_vhs_friction"].sel({dim: v}), "s--", color="tab:red",
                     label="VHS")
         ax.set_xscale("log")
         ax.set_xlabel("mean pressure p̄ [MPa]")
@@ -148,20 +185,22 @@ def plot_pressure_profiles(ds: xr.Dataset, path: Path) -> Path | None:
     if not keys:
         return None
     plt = _plt()
-    nv = ds.sizes["velocity"]
-    fig, axes = plt.subplots(nv, 1, figsize=(9, 3.2 * nv), squeeze=False)
+    ds = isothermal_view(ds)
+    shown = panel_indices(ds.sizes["velocity"])
+    fig, axes = plt.subplots(len(shown), 1, figsize=(9, 3.2 * len(shown)), squeeze=False)
     x = ds["x"].values
     period = x[-1] + (x[1] - x[0])
     ip = ds.sizes["pressure"] // 2
-    for iv, v in enumerate(ds["velocity"].values):
-        ax = axes[iv, 0]
+    for ax, iv in zip(axes[:, 0], shown, strict=True):
+        v = ds["velocity"].values[iv]
         for k in keys:
             m = k.rsplit("_", 1)[-1]
             ax.plot(x / period, ds[k].isel(velocity=iv, pressure=ip), color=_COLORS.get(m),
                     lw=0.8, label=_LABELS.get(m, m))
         ax.set_xlabel("x / L0 [-]")
         ax.set_ylabel("contact pressure [MPa]")
-        ax.set_title(f"v = {v:g} mm/s, σ0 = {float(ds['pressure'][ip]):.3g} MPa")
+        ax.set_title(f"v = {v:g} mm/s, σ0 = {float(ds['pressure'][ip]):.3g} MPa"
+                     f"{_at_temperature(ds)}")
         ax.grid(alpha=0.3)
         ax.legend(fontsize=8)
         if "heights" in ds:
@@ -175,48 +214,16 @@ def plot_all(ds: xr.Dataset, directory: str | Path) -> list[Path]:
     """Write every figure that the dataset supports into ``directory``; return their paths."""
     directory = Path(directory)
     directory.mkdir(parents=True, exist_ok=True)
+    from .speed import plot_contact_vs_speed, plot_friction_vs_speed, plot_friction_vs_temperature
+
     out = [
         plot_law(ds, directory / "fig2_law.png"),
         plot_friction_vs_area(ds, directory / "fig5_friction_vs_area.png"),
         plot_high_slope_friction(ds, directory / "fig7_high_slope_friction.png"),
         plot_pressure_profiles(ds, directory / "fig8_pressure_profiles.png"),
         plot_friction_vs_pressure(ds, directory / "fig9_friction_vs_pressure.png"),
+        plot_friction_vs_speed(ds, directory / "friction_vs_speed.png"),
+        plot_contact_vs_speed(ds, directory / "contact_vs_speed.png"),
+        plot_friction_vs_temperature(ds, directory / "friction_vs_temperature.png"),
     ]
     return [p for p in out if p is not None]
-
-
-def summary_table(ds: xr.Dataset) -> str:
-    """Plain-text summary: mean friction and area per model, speed and load; eq. 28 errors."""
-    lines = []
-    has_area = "friction_at_area_mean" in ds
-    mu, area = mean_of(ds, "friction"), mean_of(ds, "contact_fraction")
-    if "fem_realizations" in ds.attrs:
-        lines.append(f"fem ran on {ds.attrs['fem_realizations']} of {ds.sizes['realization']} "
-                     "realizations: its mu and A are phase averages estimated with the VHS "
-                     "as control variate, mean_N(vhs) + mean_R(fem - vhs)")
-    for v in ds["velocity"].values:
-        lines.append(f"v = {v:g} mm/s")
-        wid = {m: max(10, len(m) + 3) for m in ds["model"].values}
-        lines.append(f"  {'sigma0 [MPa]':>12} " + " ".join(
-            f"{m + ' mu':>{wid[m]}} {m + ' A':>{wid[m] - 1}}" for m in ds["model"].values))
-        for p in ds["pressure"].values:
-            row = [f"  {p:12.4g}"]
-            for m in ds["model"].values:
-                at = {"model": m, "velocity": v, "pressure": p}
-                row.append(f"{float(mu.sel(at)):{wid[m]}.4f} "
-                           f"{float(area.sel(at)):{wid[m] - 1}.4f}")
-            lines.append(" ".join(row))
-        if has_area:
-            lines.append(f"  {'A_c/A_0':>12} " + " ".join(f"{m + ' mu':>{wid[m]}}"
-                                                          for m in ds["model"].values))
-            mu_at = mean_of(ds, "friction_at_area")
-            for a in ds["contact_area"].values:
-                vals = [(m, float(mu_at.sel(model=m, velocity=v, contact_area=a)))
-                        for m in ds["model"].values]
-                lines.append(f"  {a:12.3g} " + " ".join(f"{x:{wid[m]}.4f}" for m, x in vals))
-        if "error_vs_fem" in ds:
-            for m in ds["compared_model"].values:
-                e = float(ds["error_vs_fem"].sel(compared_model=m, velocity=v))
-                lines.append(f"  eq. 28 error of {m} vs FEM{_error_basis(ds)}: "
-                             f"{'n/a' if np.isnan(e) else f'{100 * e:.1f} %'}")
-    return "\n".join(lines)

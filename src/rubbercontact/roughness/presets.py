@@ -32,3 +32,21 @@ def section3(phases=None) -> SineSeries:
 def high_slope_wave() -> SineSeries:
     """The single high-slope wave of the paper: λ = 0.0625 mm, Δ = 0.01867 mm (m2 ≈ 1.33)."""
     return SineSeries(TABLE2[:1, 0], TABLE2[:1, 1])
+
+
+#: The surface presets by name: the one list the config, the pipeline and the CLI read.
+PRESETS = {
+    "section3": section3,
+    "asphalt_ac8": asphalt_ac8,
+    "high_slope_wave": high_slope_wave,
+}
+
+
+def preset(name: str) -> SineSeries:
+    """The preset surface ``name`` (a key of :data:`PRESETS`), with zero phases."""
+    from ..errors import InputError
+
+    if name not in PRESETS:
+        raise InputError(f"surface: unknown preset {name!r}; choose one of "
+                         f"{', '.join(PRESETS)} or give wavelengths and amplitudes")
+    return PRESETS[name]()

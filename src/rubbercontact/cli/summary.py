@@ -1,0 +1,17 @@
+"""``rubbercontact summary RESULTS.nc``: the summary table of a results file."""
+
+from __future__ import annotations
+
+from pathlib import Path
+
+import typer
+
+
+def command(
+    results: Path = typer.Argument(..., help="Results NetCDF written by 'rubbercontact run'."),
+) -> None:
+    """Print each model's friction and contact area; for speed sweeps the curves and peaks."""
+    from ..io.results import read_results
+    from ..plotting.summary import summary_table
+
+    typer.echo(summary_table(read_results(results)))

@@ -1,0 +1,181 @@
+"""``run(config)``: the models of a config, from set-up to the results dataset.
+
+Steps (each in its module): resolve and check the set-up (:mod:`.setup`, :mod:`.speeds`),
+the loads (:mod:`.loads`), the high-slope law (:mod:`.lawstage`), one task per model, speed,
+realization and load (:mod:`.plan`), their results stacked (:mod:`.assemble`), the
+adhesive part (:mod:`.adhesion`), statistics and eq. 28 (:mod:`.statistics`), and the
+spread over temperatures (:mod:`.temperature`).
+"""
+
+from __future__ import annotations
+
+import json
+import time
+from collections.abc import Callable
+from pathlib import Path
+
+import numpy as np
+import xarray as xr
+
+from ..config import RunConfig
+from ..hybrid.law import check_coverage
+from ..materials import GeneralizedMaxwell
+from .adhesion import AdhesionLaw, add_adhesion
+from .assemble import add_law, add_profiles, assemble, model_times
+from .lawstage import add_vhs, build_law
+from .loads import at_areas, pressure_grid_for_areas
+from .plan import model_tasks
+from .setup import LAW_MODELS, RunSetup, pressure_array, resolve, task_material
+from .statistics import add_errors, add_phase_means, add_realization_statistics
+from .temperature import spread_over_temperatures
+
+#: Executes a list of sweep tasks; returns per task an ``xr.Dataset`` or a failure record.
+Runner = Callable[[list], list]
+
+#: Version of the results file layout: 2 adds the optional ``temperature`` dimension, the
+#: mean-field models and the adhesive friction; files without the attribute are version 1,
+#: read alike.
+RESULTS_FORMAT = 2
+
+
+def make_runner(cfg: RunConfig, progress: bool | str = "auto",
+                retry_failed: bool = False) -> Runner:
+    """A runner backed by the sweep executor and result cache of the config."""
+    from ..sweep import ExecutorConfig, ResultCache, run_sweep
+
+    ex = cfg.execution
+    cache = ResultCache(ex.cache) if ex.cache is not None else ResultCache.default()
+    executor = ExecutorConfig(workers=ex.workers, threads_per_worker=ex.threads_per_worker,
+                              scheduler=ex.scheduler)
+
+    def runner(tasks: list, description: str = "sweep") -> list:
+        return run_sweep(tasks, cache=cache, executor=executor, progress=progress,
+                         retry_failed=retry_failed, description=description).results
+
+    return runner
+
+
+def run(config: RunConfig | dict | str | Path, *, runner: Runner | None = None,
+        law: xr.Dataset | None = None, progress: bool | str = "auto",
+        retry_failed: bool = False) -> xr.Dataset:
+    """Run the models of a configuration and return the results dataset.
+
+    Parameters
+    ----------
+    config
+        A validated :class:`~rubbercontact.config.RunConfig`, a plain mapping with the
+        same keys, or the path of a TOML file.
+    runner
+        Executes lists of sweep tasks; default: Dask executor + result cache from
+        ``config.execution``.
+    law
+        A precomputed law table, or the results of a run that built one (skips the FEM on
+        the high-slope scale); it must match the run's high-slope scale, rubber and speeds
+        (the reduced speeds of a run with temperatures).
+    progress
+        Progress display of the sweeps (``"auto"``, True, False).
+    retry_failed
+        Recompute tasks whose failure is recorded in the cache.
+
+    Returns
+    -------
+    xarray.Dataset
+        Dims ``model, velocity, realization, pressure`` (``model, temperature, velocity,
+        ...`` with ``temperatures``; ``contact_area`` when loads are target areas); the law
+        table (``law_*``), the surface's waves, and provenance in ``attrs``.
+    """
+    cfg = as_config(config)
+    t_start = time.perf_counter()
+    timings: dict[str, float] = {}
+    setup = resolve(cfg)                       # every config-level check, before any task
+    runner = runner or make_runner(cfg, progress, retry_failed)
+    material = GeneralizedMaxwell(**task_material(setup.material))   # the series at T_ref
+    speeds = setup.speeds.computed
+    if cfg.loads.pressures is not None:
+        pressures = pressure_array(cfg.loads.pressures)
+    else:
+        pressures = pressure_grid_for_areas(cfg, setup.realizations, material, speeds)
+
+    stage = None
+    if setup.needs_law:
+        stage = build_law(cfg, setup.hs0, material, pressures, runner, law, velocities=speeds)
+        if stage.fem_time is not None:
+            timings["law"] = stage.fem_time
+        stage_law = add_vhs(stage.law, setup.hs0, material, cfg, runner)
+    tables = stage.tables if stage is not None else {}
+
+    slots, tasks = model_tasks(setup, material, pressures, tables)
+    t0 = time.perf_counter()
+    results = runner(tasks)
+    timings["models"] = time.perf_counter() - t0
+
+    ds = assemble(setup.models, speeds, len(setup.realizations), pressures, slots, results,
+                  material, setup.n_fem)
+    ds = add_profiles(ds, slots, results)
+    per_model_time = model_times(slots, results)
+    if stage is not None:
+        if setup.speeds.isothermal:
+            ds = add_law(ds, stage_law)
+        per_model_time["law (FEM, counted once)"] = float(np.nansum(stage.law["wall_time"]))
+        _check_coverage(ds, stage.law, setup.models)
+    if cfg.friction.adhesion is not None:
+        ds = add_adhesion(ds, AdhesionLaw.from_config(cfg.friction.adhesion))
+    ds = add_realization_statistics(ds)
+    if cfg.loads.contact_areas is not None:
+        ds = at_areas(ds, np.asarray(cfg.loads.contact_areas, float), stacklevel=3)
+    if "fem" in setup.models and setup.n_fem < len(setup.realizations):
+        ds = add_phase_means(ds, setup.n_fem)
+    ds = add_errors(ds)
+    ds = spread_over_temperatures(ds, setup.speeds)
+    if stage is not None and not setup.speeds.isothermal:
+        ds = add_law(ds, stage_law, on="law_velocity")
+    timings["total"] = time.perf_counter() - t_start
+    return _describe(ds, setup, timings, per_model_time)
+
+
+def _check_coverage(ds: xr.Dataset, law: xr.Dataset, models: list[str]) -> None:
+    """Warn where a law model's local pressures went past the law's FEM points."""
+    half_space = [m for m in models if m in LAW_MODELS and m != "meanfield-hybrid"]
+    # the same low-slope solve for both half-space variants: check once
+    for m in half_space[:1] + [m for m in models if m == "meanfield-hybrid"]:
+        for v in ds["velocity"].values:
+            top = float(ds["max_local_pressure"].sel(model=m, velocity=v).max())
+            if np.isfinite(top):
+                check_coverage(law, float(v), top)
+
+
+def _describe(ds: xr.Dataset, setup: RunSetup, timings: dict, per_model_time: dict
+              ) -> xr.Dataset:
+    """The surface's waves and realizations, and the run's provenance."""
+    from .. import __version__
+
+    cfg, base = setup.config, setup.base
+    ds["wavelength"] = ("wave", base.wavelengths, {"units": "mm"})
+    ds["amplitude"] = ("wave", base.amplitudes, {"units": "mm"})
+    ds["m2"] = ("wave", base.rms_slopes(), {"units": "1", "long_name": "rms slope per wave"})
+    ds["phase"] = (("realization", "wave"), np.array([r.phases for r in setup.realizations]),
+                   {"units": "rad"})
+    ds["high_slope"] = ("wave", (base.rms_slopes() > cfg.surface.m2_threshold).astype(int))
+    ds.attrs.update({
+        "title": "rubbercontact hybrid multiscale results",
+        "rubbercontact_version": __version__,
+        "config": cfg.model_dump_json(),
+        "surface": json.dumps(setup.surface.info, default=str),
+        "material": json.dumps(setup.material.as_dict()),
+        "period_mm": setup.period,
+        "timings_s": json.dumps(timings),
+        "model_cpu_time_s": json.dumps(per_model_time),
+        "results_format": RESULTS_FORMAT,
+    })
+    return ds
+
+
+def as_config(config) -> RunConfig:
+    """A :class:`RunConfig` from a config, a mapping or a TOML path."""
+    from ..config import load_config, parse_config
+
+    if isinstance(config, RunConfig):
+        return config
+    if isinstance(config, dict):
+        return parse_config(config)
+    return load_config(config)

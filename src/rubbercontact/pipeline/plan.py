@@ -1,0 +1,166 @@
+"""The sweep tasks of a run's models, one per (model, speed, realization, load).
+
+The half-space models (``vhs``, ``hybrid``, ``hybrid-windowed``) and the full FEM run per
+realization; the mean-field models see only the spectrum, so they run once per speed and
+load and their answer stands for every realization. Speeds are the *computed* speeds of
+the :class:`~.speeds.SpeedPlan` (the reduced speeds of a run with temperatures).
+"""
+
+from __future__ import annotations
+
+from typing import TYPE_CHECKING, NamedTuple
+
+import numpy as np
+
+from ..config import RunConfig
+from ..materials import GeneralizedMaxwell
+from ..roughness import SineSeries
+from .setup import (
+    HYBRID_MODELS,
+    MEANFIELD_MODELS,
+    RunSetup,
+    static_series,
+    task_material,
+    translated_to_zero_phase,
+)
+
+if TYPE_CHECKING:
+    from ..sweep import Task
+
+HALFSPACE_TASK = "rubbercontact.hybrid.tasks:halfspace_task"
+MEANFIELD_TASK = "rubbercontact.meanfield.tasks:meanfield_task"
+
+
+class Slot(NamedTuple):
+    """Where a task's result goes: model, speed index, realization (None: every one), load."""
+
+    model: str
+    iv: int
+    ir: int | None
+    ip: int
+
+
+def model_tasks(setup: RunSetup, material: GeneralizedMaxwell, pressures: np.ndarray,
+                tables: dict) -> tuple[list[Slot], list[Task]]:
+    """Every model task of a run and the slot of each.
+
+    Parameters
+    ----------
+    setup
+        The resolved run.
+    material
+        The rubber as the tasks see it (:func:`~.setup.task_material`).
+    pressures
+        Mean pressures σ0 [MPa].
+    tables
+        ``{speed: law table or None}`` at each computed speed.
+    """
+    from ..sweep import Task
+
+    cfg = setup.config
+    slots, tasks = [], []
+    spectrum = meanfield_surfaces(setup) if MEANFIELD_MODELS & set(setup.models) else {}
+    for m in setup.models:
+        for iv, v in enumerate(setup.speeds.computed):
+            table = tables.get(float(v))
+            for ip, p in enumerate(pressures):
+                if m in MEANFIELD_MODELS:
+                    fn, kw = meanfield_call(cfg, m, spectrum[m], material, float(v), float(p),
+                                            table, setup.period)
+                    tasks.append(Task(function=fn, kwargs=kw, label=f"{m} v={v:g} p={p:.4g}"))
+                    slots.append(Slot(m, iv, None, ip))
+                    continue
+                for ir, (real, parts) in enumerate(zip(setup.realizations, setup.parts,
+                                                       strict=True)):
+                    if m == "fem" and ir >= setup.n_fem:
+                        continue
+                    if m == "fem":
+                        task = full_fem_task(cfg, real, material, float(v), float(p))
+                        fn, kw = task.function, task.kwargs
+                    else:
+                        fn, kw = HALFSPACE_TASK, halfspace_kwargs(
+                            cfg, m, real, parts.low, parts.high.size > 0, setup, material,
+                            float(v), float(p), table, keep=ir == 0)
+                    tasks.append(Task(function=fn, kwargs=kw,
+                                      label=f"{m} v={v:g} r={ir} p={p:.4g}"))
+                    slots.append(Slot(m, iv, ir, ip))
+    return slots, tasks
+
+
+def halfspace_kwargs(cfg: RunConfig, model: str, real: SineSeries, low: SineSeries,
+                     has_high: bool, setup: RunSetup, material: GeneralizedMaxwell,
+                     v: float, p: float, table, keep: bool) -> dict:
+    """Keyword arguments of one half-space task (VHS, or the hybrid's low-slope solve)."""
+    hsc = cfg.halfspace
+    surf = real if (model == "vhs" or not has_high) else low
+    kw = {"surface": surf.as_dict(), "period": setup.period, "material": task_material(material),
+          "velocity": v, "mean_pressure": p, "n": hsc.n, "nu": cfg.material.nu,
+          "law": hsc.law, "interface_law": table if model in HYBRID_MODELS else None,
+          "keep_profile": keep}
+    if model == "hybrid-windowed" and has_high:
+        kw["hs_window"] = float(setup.hs0.period)
+    return kw
+
+
+def meanfield_surfaces(setup: RunSetup) -> dict:
+    """The surface each mean-field model reads, as plain data.
+
+    ``meanfield``: the whole spectrum (the sine series, or the measured profiles'
+    periodogram with ``meanfield.spectrum = "profiles"``); ``meanfield-hybrid``: the
+    low-slope waves (the high-slope law carries the rest), or the whole series when it has
+    no high-slope wave.
+    """
+    cfg = setup.config
+    series = static_series(setup.base)
+    out = {}
+    if cfg.meanfield.spectrum == "profiles":
+        from ..meanfield import PSD
+        from ..meanfield.psd import NODES_PER_DECADE
+
+        psd = PSD.from_profiles(setup.surface.profiles,
+                                nodes_per_decade=cfg.meanfield.nodes_per_decade
+                                or NODES_PER_DECADE)
+        out["meanfield"] = psd.as_dict()
+    else:
+        out["meanfield"] = series.as_dict()
+    high, low = series.partition(cfg.surface.m2_threshold)
+    out["meanfield-hybrid"] = (low if high.size else series).as_dict()
+    return out
+
+
+def meanfield_call(cfg: RunConfig, model: str, surface: dict, material: GeneralizedMaxwell,
+                   v: float, p: float, table, period: float) -> tuple[str, dict]:
+    """Function and keyword arguments of one mean-field task.
+
+    ``meanfield-hybrid`` on a surface whose waves are all high-slope has no low-slope
+    spectrum: the interface is flat and the exact answer is the law itself, which the
+    half-space task's flat-interface solve gives (as for the hybrid).
+    """
+    law = table if model == "meanfield-hybrid" else None
+    if law is not None and not surface["wavelengths"]:
+        return HALFSPACE_TASK, {"surface": surface, "period": period,
+                                "material": task_material(material), "velocity": v,
+                                "mean_pressure": p, "n": cfg.halfspace.n,
+                                "nu": cfg.material.nu, "law": cfg.halfspace.law,
+                                "interface_law": law}
+    mf = cfg.meanfield
+    return MEANFIELD_TASK, {"surface": surface, "material": task_material(material),
+                            "velocity": v, "mean_pressure": p, "nu": cfg.material.nu,
+                            "interface_law": law, "correction": mf.correction,
+                            "gamma": mf.gamma, "weighting": mf.weighting,
+                            "interface": mf.interface}
+
+
+def full_fem_task(cfg: RunConfig, surface: SineSeries, material: GeneralizedMaxwell,
+                  velocity: float, mean_pressure: float) -> Task:
+    """The sweep task of one full-FEM sliding test (model ``fem``) with the config's options
+    (``cfg.fem.options(material, full=True)``); the surface is translated to zero phase, so
+    that on an all-high-slope surface it is the law's cell and shares its cache entries."""
+    from ..sweep import Task
+
+    kw = {"surface": translated_to_zero_phase(surface).as_dict(),
+          "material": task_material(material), "velocity": float(velocity),
+          "mean_pressure": float(mean_pressure),
+          "options": cfg.fem.options(material, full=True).to_dict()}
+    return Task(function="rubbercontact.hybrid.tasks:fem_task", kwargs=kw,
+                label=f"fem v={velocity:g} p={mean_pressure:.4g}")

@@ -1,0 +1,118 @@
+"""Plain-text summary of a results dataset (``rubbercontact run``, ``plot``, ``summary``).
+
+A run with a handful of speeds prints, per speed, each model's mean friction and contact
+area at every load and the eq. 28 errors. A speed sweep (:data:`CURVE_SPEEDS` speeds or
+more) or a run with temperatures prints, per temperature and load, the friction curve
+against speed and where each model's curve peaks (:func:`rubbercontact.pipeline.friction_peak`).
+"""
+
+from __future__ import annotations
+
+import numpy as np
+import xarray as xr
+
+from ..io.results import mean_of
+
+#: From this many speeds on, the summary prints curves against speed.
+CURVE_SPEEDS = 3
+
+
+def _error_basis(ds: xr.Dataset) -> str:
+    """``" at equal σ0"`` / ``" at equal A_c"``: what ``error_vs_fem`` compares over
+    (empty for files written before the attribute existed)."""
+    over = ds["error_vs_fem"].attrs.get("compared_over")
+    return {"pressure": " at equal σ0", "contact_area": " at equal A_c"}.get(over, "")
+
+
+def summary_table(ds: xr.Dataset) -> str:
+    """Plain-text summary: friction and area per model, speed and load; eq. 28 errors;
+    for speed sweeps the curves and their peaks (module docstring)."""
+    lines = []
+    if "fem_realizations" in ds.attrs:
+        lines.append(f"fem ran on {ds.attrs['fem_realizations']} of {ds.sizes['realization']} "
+                     "realizations: its mu and A are phase averages estimated with the VHS "
+                     "as control variate, mean_N(vhs) + mean_R(fem - vhs)")
+    if "adhesion" in ds.attrs:
+        import json
+
+        lines.append("adhesion: mu_adh = tau_f A_c/sigma0 with "
+                     + json.loads(ds.attrs["adhesion"])["formula"]
+                     + "; 'mu+adh' is the hysteretic mu plus mu_adh")
+    if "temperature" in ds.dims or ds.sizes["velocity"] >= CURVE_SPEEDS:
+        lines += _curves(ds)
+    else:
+        for v in ds["velocity"].values:
+            lines += _per_speed(ds, v)
+    return "\n".join(lines)
+
+
+def _columns(ds: xr.Dataset) -> list[tuple[str, str, xr.DataArray, int]]:
+    """(model, heading, mean, width) of each printed column."""
+    mu, area = mean_of(ds, "friction"), mean_of(ds, "contact_fraction")
+    total = mean_of(ds, "friction_total") if "friction_total_mean" in ds else None
+    cols = []
+    for m in ds["model"].values:
+        w = max(10, len(m) + 3)
+        cols += [(m, f"{m} mu", mu, w), (m, f"{m} A", area, w - 1)]
+        if total is not None:
+            cols.append((m, f"{m} mu+adh", total, max(w, len(m) + 7)))
+    return cols
+
+
+def _per_speed(ds: xr.Dataset, v: float) -> list[str]:
+    lines = [f"v = {v:g} mm/s"]
+    cols = _columns(ds)
+    wid = {m: max(10, len(m) + 3) for m in ds["model"].values}
+    lines.append(f"  {'sigma0 [MPa]':>12} " + " ".join(f"{h:>{w}}" for _, h, _, w in cols))
+    for p in ds["pressure"].values:
+        row = [f"  {p:12.4g}"]
+        for m, _, arr, w in cols:
+            row.append(f"{float(arr.sel(model=m, velocity=v, pressure=p)):{w}.4f}")
+        lines.append(" ".join(row))
+    if "friction_at_area_mean" in ds:
+        lines.append(f"  {'A_c/A_0':>12} " + " ".join(f"{m + ' mu':>{wid[m]}}"
+                                                      for m in ds["model"].values))
+        mu_at = mean_of(ds, "friction_at_area")
+        for a in ds["contact_area"].values:
+            vals = [(m, float(mu_at.sel(model=m, velocity=v, contact_area=a)))
+                    for m in ds["model"].values]
+            lines.append(f"  {a:12.3g} " + " ".join(f"{x:{wid[m]}.4f}" for m, x in vals))
+    if "error_vs_fem" in ds:
+        for m in ds["compared_model"].values:
+            e = float(ds["error_vs_fem"].sel(compared_model=m, velocity=v))
+            lines.append(f"  eq. 28 error of {m} vs FEM{_error_basis(ds)}: "
+                         f"{'n/a' if np.isnan(e) else f'{100 * e:.1f} %'}")
+    return lines
+
+
+def _curves(ds: xr.Dataset) -> list[str]:
+    """Per temperature and load: μ (and A) against speed, and each model's peak."""
+    from ..pipeline.statistics import friction_peak
+
+    temps = ds["temperature"].values if "temperature" in ds.dims else [None]
+    lines = []
+    for t in temps:
+        at_t = ds if t is None else ds.sel(temperature=t)
+        heading = "" if t is None else f"T = {t:g} °C"
+        if t is not None and "shift_factor" in at_t.coords:
+            heading += f" (a_T = {float(at_t['shift_factor']):.4g})"
+        cols = _columns(at_t)
+        for p in at_t["pressure"].values:
+            lines.append(", ".join(x for x in (heading, f"sigma0 = {p:g} MPa") if x))
+            lines.append(f"  {'v [mm/s]':>12} " + " ".join(f"{h:>{w}}" for _, h, _, w in cols))
+            for v in at_t["velocity"].values:
+                lines.append(f"  {v:12.4g} " + " ".join(
+                    f"{float(a.sel(model=m, velocity=v, pressure=p)):{w}.4f}"
+                    for m, _, a, w in cols))
+            mu = mean_of(at_t, "friction")
+            for m in at_t["model"].values:
+                peak = friction_peak(at_t["velocity"].values,
+                                     mu.sel(model=m, pressure=p).values)
+                if peak is None:
+                    lines.append(f"  peak of {m}: n/a (fewer than two finite points)")
+                    continue
+                where = "" if peak.interior else " (at the end of the range: the peak may " \
+                                                 "lie beyond)"
+                lines.append(f"  peak of {m}: mu = {peak.friction:.4f} at v = "
+                             f"{peak.velocity:.4g} mm/s{where}")
+    return lines
