@@ -3,9 +3,8 @@
 The FEM law points are independent sweep tasks, one per (speed, pressure), cached and
 resumed point by point; or, with the steady solver and several speeds, one task per
 pressure that follows the speeds by continuation (``law.speed_path``): each steady state
-starts the next (:func:`rubbercontact.fem.steady_sliding`'s ``start``), which on the
-high-slope wave (40 × 30, 1 MPa, 15 speeds over 1e-3 … 1e4 mm/s) took 5.7 s against 29.6 s
-for the 15 fresh points, the friction agreeing to 1e-8 (the Newton tolerance).
+starts the next (:func:`rubbercontact.fem.steady_sliding`'s ``start``); its cost against
+fresh points is in BENCHMARKS.md ("Steady FEM").
 """
 
 from __future__ import annotations
