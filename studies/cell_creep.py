@@ -29,7 +29,7 @@ from pathlib import Path
 import numpy as np
 
 import rubbercontact as rc
-from rubbercontact.hybrid.pipeline import _translated_to_zero_phase
+from rubbercontact.pipeline.setup import translated_to_zero_phase
 
 from ._rows import append_row, publish, read_rows
 from ._templates import render
@@ -51,7 +51,7 @@ SEED = 2021
 def run_case(p: float, ratio: float, periods: int, realization: int = 0) -> dict:
     """One coarse sliding test of section 3 (seed 2021), per-period averages."""
     mat = rc.materials.sbr()
-    surf = _translated_to_zero_phase(
+    surf = translated_to_zero_phase(
         rc.roughness.section3().realizations(realization + 1, seed=SEED)[realization])
     rows, grading = CELLS[ratio]
     t0 = time.perf_counter()

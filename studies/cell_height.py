@@ -39,7 +39,9 @@ import numpy as np
 import xarray as xr
 
 import rubbercontact as rc
-from rubbercontact.hybrid.pipeline import build_material, full_fem_task, make_runner
+from rubbercontact.inputs import build_material
+from rubbercontact.pipeline import make_runner
+from rubbercontact.pipeline.plan import full_fem_task
 
 from . import validate
 from ._rows import publish
@@ -75,7 +77,7 @@ FIELDS = ("friction", "contact_fraction", "period_change", "period_area_change",
 def solve(cfgs: dict, loads, realizations) -> dict:
     """``{(cell, v, p, r): {field: value}}`` for every cell of ``cfgs`` (NaN on failure)."""
     first = next(iter(cfgs.values()))
-    mat = build_material(first)
+    mat = build_material(first.material)
     reals = rc.roughness.section3().realizations(max(realizations) + 1, seed=first.seed)
     tasks, index = [], []
     for v, p in loads:          # load by load, so a partial run has whole comparisons

@@ -52,14 +52,11 @@ import xarray as xr
 import rubbercontact as rc
 from rubbercontact.hybrid.law import linear_law, tabulated_law_from_dict
 from rubbercontact.hybrid.metrics import mean_relative_error
-from rubbercontact.hybrid.pipeline import (
-    _translated_to_zero_phase,
-    build_material,
-    build_surface,
-    full_fem_task,
-)
 from rubbercontact.hybrid.tasks import halfspace_task
 from rubbercontact.hybrid.windowing import law_in_pressure, window_average
+from rubbercontact.inputs import build_material, build_surface
+from rubbercontact.pipeline.plan import full_fem_task
+from rubbercontact.pipeline.setup import translated_to_zero_phase
 from rubbercontact.roughness import SineSeries
 from rubbercontact.sweep import ResultCache
 
@@ -131,7 +128,7 @@ def readings(real: SineSeries, period: float, table: dict, material, velocity: f
     """``{name: (μ, A, A with the curvature factor)}`` of every reading of ``table`` on one
     realization and load (``"VHS"`` too when ``with_vhs``; ``"law at FEM crest loads"``
     when the full FEM's face pressure ``(x, p)`` is given, in the zero-phase frame of
-    :func:`~rubbercontact.hybrid.pipeline.full_fem_task`)."""
+    :func:`~rubbercontact.pipeline.plan.full_fem_task`)."""
     hs, ls = real.partition(m2_threshold)
     lam = float(np.min(hs.wavelengths))
     sig, alpha, tau = law_in_pressure(table)
@@ -160,7 +157,7 @@ def readings(real: SineSeries, period: float, table: dict, material, velocity: f
                                              np.full(loads.size, 1.0 / loads.size))
         out["VHS"] = (vhs.friction, vhs.contact_fraction, vhs.contact_fraction)
     if fem_profile is not None:
-        hs_t, ls_t = _translated_to_zero_phase(real).partition(m2_threshold)
+        hs_t, ls_t = translated_to_zero_phase(real).partition(m2_threshold)
         x_f, p_f = fem_profile
         # Nodal face pressure (force per deformed face length) times the node's projected
         # share of the cell is its vertical force: deposit that on the grid.
@@ -322,8 +319,8 @@ def main(argv=None) -> int:
     validate.seed_cache(validate.REFERENCE_CACHE, args.cache)
     cfg = sampling_study.study_config(args.velocities, args.realizations, (240, 45), 8.0, 1,
                                       args.cache, Path("/tmp/crest_curvature"))
-    material = build_material(cfg)
-    base, _ = build_surface(cfg)
+    material = build_material(cfg.material)
+    base = build_surface(cfg.surface).series
     reals = base.realizations(args.realizations, seed=cfg.seed)
     with warnings.catch_warnings():
         warnings.simplefilter("ignore")

@@ -28,14 +28,11 @@ import numpy as np
 import xarray as xr
 
 from rubbercontact.hybrid.metrics import mean_relative_error
-from rubbercontact.hybrid.pipeline import (
-    _translated_to_zero_phase,
-    build_law,
-    build_material,
-    build_surface,
-    make_runner,
-)
 from rubbercontact.hybrid.windowing import law_in_pressure
+from rubbercontact.inputs import build_material, build_surface
+from rubbercontact.pipeline import make_runner
+from rubbercontact.pipeline.lawstage import build_law
+from rubbercontact.pipeline.setup import translated_to_zero_phase
 
 from . import _compare as compare
 from . import validate
@@ -48,12 +45,12 @@ ROOT = Path(__file__).resolve().parents[1]
 
 def law_tables(cfg) -> dict:
     """Per velocity, the law table the pipeline's hybrid reads (from the cached FEM)."""
-    base, _ = build_surface(cfg)
-    hs0 = _translated_to_zero_phase(base.realizations(1, seed=cfg.seed)[0]
+    base = build_surface(cfg.surface).series
+    hs0 = translated_to_zero_phase(base.realizations(1, seed=cfg.seed)[0]
                                     .partition(cfg.surface.m2_threshold)[0])
     pressures = np.asarray(cfg.loads.pressures, float)
-    return build_law(cfg, hs0, build_material(cfg), pressures,
-                     make_runner(cfg, False, False))[1]
+    return build_law(cfg, hs0, build_material(cfg.material), pressures,
+                     make_runner(cfg, False, False)).tables
 
 
 def material_model_part(cache: Path) -> list[str]:
@@ -83,8 +80,8 @@ def material_model_part(cache: Path) -> list[str]:
                                                       Path("/tmp/crest_section3_mm"), 1, 512,
                                                       pressures, ["fem"]), progress=False)
                     if model != "simo" else None)
-        material = build_material(cfg)
-        base, _ = build_surface(cfg)
+        material = build_material(cfg.material)
+        base = build_surface(cfg.surface).series
         hs, ls = base.realizations(1, seed=cfg.seed)[0].partition(cfg.surface.m2_threshold)
         for v in cfg.velocities:
             sig, _, tau = law_in_pressure(tables[float(v)])
@@ -121,8 +118,8 @@ def main(argv=None) -> int:
     with warnings.catch_warnings():
         warnings.simplefilter("ignore")
         tables = law_tables(cfg)
-    material = build_material(cfg)
-    base, _ = build_surface(cfg)
+    material = build_material(cfg.material)
+    base = build_surface(cfg.surface).series
     parts = [r.partition(cfg.surface.m2_threshold)
              for r in base.realizations(n_real, seed=cfg.seed)]
     if not np.allclose(ds["phase"].values,

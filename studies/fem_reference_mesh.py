@@ -38,12 +38,10 @@ import xarray as xr
 
 import rubbercontact as rc
 from rubbercontact.hybrid.law import effective_law
-from rubbercontact.hybrid.pipeline import (
-    _translated_to_zero_phase,
-    build_material,
-    full_fem_task,
-    make_runner,
-)
+from rubbercontact.inputs import build_material
+from rubbercontact.pipeline import make_runner
+from rubbercontact.pipeline.plan import full_fem_task
+from rubbercontact.pipeline.setup import translated_to_zero_phase
 
 from . import _compare as compare
 from . import _validation_report as vreport
@@ -71,7 +69,7 @@ def _solve(cfg, loads, progress="log", realizations=None) -> dict:
     """``{(v, p): [(μ, A, compute time [s]) per realization]}`` of the config's full FEM
     (cached; the time is that of the original solve); all realizations unless a subset of
     indices is given."""
-    mat = build_material(cfg)
+    mat = build_material(cfg.material)
     reals = rc.roughness.section3().realizations(cfg.realizations, seed=cfg.seed)
     chosen = range(len(reals)) if realizations is None else realizations
     tasks, index = [], []
@@ -94,8 +92,8 @@ def _law_points(cfg, mesh, pressures, velocity, grading: float = 1.0,
                 periods: int = 3) -> xr.Dataset:
     """The config's law FEM (high-slope wave alone) at ``pressures`` on ``mesh`` (cached)."""
     reals = rc.roughness.section3().realizations(cfg.realizations, seed=cfg.seed)
-    hs0 = _translated_to_zero_phase(reals[0].partition(cfg.surface.m2_threshold)[0])
-    return effective_law(hs0, build_material(cfg), pressures, [velocity], mesh=mesh,
+    hs0 = translated_to_zero_phase(reals[0].partition(cfg.surface.m2_threshold)[0])
+    return effective_law(hs0, build_material(cfg.material), pressures, [velocity], mesh=mesh,
                          height_ratio=cfg.fem.height_ratio, periods=periods,
                          steps_per_period=cfg.fem.steps_per_period,
                          contact_points=cfg.fem.contact_points,

@@ -33,7 +33,7 @@ from pathlib import Path
 import numpy as np
 
 import rubbercontact as rc
-from rubbercontact.hybrid.pipeline import _translated_to_zero_phase
+from rubbercontact.pipeline.setup import translated_to_zero_phase
 
 from ._rows import append_row, publish, read_rows
 from ._templates import render
@@ -73,7 +73,7 @@ def run_case(case: dict, periods: int) -> dict:
     t0 = time.perf_counter()
     with warnings.catch_warnings():
         warnings.simplefilter("ignore")      # unsteadiness is what is measured here
-        out = rc.fem.sliding_test(_translated_to_zero_phase(surface), rc.materials.sbr(),
+        out = rc.fem.sliding_test(translated_to_zero_phase(surface), rc.materials.sbr(),
                                   case["pressure"], case["velocity"], mesh=(nx, ny),
                                   grading=case["grading"], periods=periods,
                                   min_periods=periods,

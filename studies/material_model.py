@@ -148,7 +148,7 @@ def main(argv=None) -> int:
         for model in MODELS:
             cfg = _section3_config(model, args.cache, args.output, args.workers)
             print(f"== section 3 with {model}", flush=True)
-            runs[model] = rc.hybrid.run(cfg, progress="log")
+            runs[model] = rc.pipeline.run(cfg, progress="log")
         hyb = ("hybrid", "hybrid-windowed", "vhs")
         lines += ["", "## Section 3 surface, realization seed 2021, law 30 x 23 (240 steps "
                   "per period), full FEM 64 x 48 (256 steps per period)", "",
@@ -162,7 +162,7 @@ def main(argv=None) -> int:
                         f"{float(s['friction_mean'].sel(model=m)):.3f} "
                         f"({float(s['contact_fraction_mean'].sel(model=m)):.4f})"
                         for m in ("vhs", "hybrid", "hybrid-windowed", "fem")) + " |")
-        fine = rc.hybrid.run(_section3_config("reese-govindjee", args.cache, args.output,
+        fine = rc.pipeline.run(_section3_config("reese-govindjee", args.cache, args.output,
                                               args.workers, 512, S3_PRESSURES[:2], ["fem"]),
                              progress="log")
         lines += ["", "RG full FEM in dt (first order): μ at 256 / 512 steps per period → "
@@ -223,7 +223,7 @@ def main(argv=None) -> int:
                   "| v [mm/s] | σ0 [MPa] | VHS μ | " + " | ".join(
                       f"{m} hybrid μ | {m} windowed μ" for m in MODELS) + " |",
                   "|---|---|---|" + "---|---|" * len(MODELS)]
-        asph = {m: rc.hybrid.run(_asphalt_config(m, args.cache, args.workers), progress="log")
+        asph = {m: rc.pipeline.run(_asphalt_config(m, args.cache, args.workers), progress="log")
                 for m in MODELS}
         ref = asph[MODELS[0]]
         for v in ref["velocity"].values:

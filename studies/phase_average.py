@@ -54,7 +54,7 @@ from types import SimpleNamespace
 import numpy as np
 
 import rubbercontact as rc
-from rubbercontact.hybrid.pipeline import make_runner
+from rubbercontact.pipeline import make_runner
 
 from . import _compare as compare
 from . import _validation_report as vreport
@@ -79,7 +79,7 @@ def run(velocities, n: int, workers: int, cache: Path, law: Path | None = None):
     if law is not None:
         data["law"] = {"file": str(law)}
     cfg = rc.config.parse_config(data, source="section3 (quick)")
-    ds = rc.hybrid.run(cfg, runner=make_runner(cfg, progress="log"))
+    ds = rc.pipeline.run(cfg, runner=make_runner(cfg, progress="log"))
     return ds, compare.phase_average_data(ds, cfg, n), cfg
 
 

@@ -238,7 +238,7 @@ def creep_settled_law(args, mesh, grading) -> Path:
     cfg = study_config(args.velocities, 1, mesh, grading, args.workers, args.cache,
                        args.outdir / "law", args.law_min_creep_times)
     cfg = cfg.model_copy(update={"models": ["hybrid-windowed"]})
-    ds = rc.hybrid.run(cfg, progress="log")
+    ds = rc.pipeline.run(cfg, progress="log")
     return write_law(law_from_results(ds), args.outdir / "law.nc")
 
 

@@ -52,7 +52,7 @@ from types import SimpleNamespace
 import numpy as np
 
 import rubbercontact as rc
-from rubbercontact.hybrid.pipeline import make_runner
+from rubbercontact.pipeline import make_runner
 
 from . import _compare as compare
 from . import _validation_report as vreport

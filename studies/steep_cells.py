@@ -23,7 +23,8 @@ import numpy as np
 
 import rubbercontact as rc
 from rubbercontact.config import load_config
-from rubbercontact.hybrid.pipeline import _translated_to_zero_phase, build_surface
+from rubbercontact.inputs import build_surface
+from rubbercontact.pipeline.setup import translated_to_zero_phase
 
 from ._rows import append_row, publish, read_rows
 from ._templates import render
@@ -47,9 +48,9 @@ def cells() -> dict[str, rc.roughness.SineSeries]:
         if files is not None:
             prof = data["surface"]["profiles"]
             prof["files"] = [prof["files"][i] for i in files]
-        surf, _ = build_surface(rc.config.parse_config(data))
+        surf = build_surface(rc.config.parse_config(data).surface).series
         hs, _ = surf.partition(data["surface"]["m2_threshold"])
-        out[name] = _translated_to_zero_phase(hs)
+        out[name] = translated_to_zero_phase(hs)
     return out
 
 

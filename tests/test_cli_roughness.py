@@ -6,7 +6,8 @@ import numpy as np
 import pytest
 
 from rubbercontact.cli import main
-from rubbercontact.roughness import TABLE2, analyse_default, asphalt_ac8, synthetic_line_scans
+from rubbercontact.cli.roughness import analyse_default
+from rubbercontact.roughness import TABLE2, asphalt_ac8, synthetic_line_scans
 
 
 @pytest.fixture(scope="module")

@@ -11,7 +11,7 @@ import pytest
 
 from rubbercontact.config import load_config
 from rubbercontact.hybrid.law import as_law
-from rubbercontact.hybrid.pipeline import build_material
+from rubbercontact.inputs import build_material
 from rubbercontact.io.profiles import read_profiles
 from rubbercontact.io.results import read_results
 
@@ -52,7 +52,7 @@ def test_example_input_files_exist_and_parse(path):
         assert profiles.profiles, f"{path.name}: no NaN-free window in {prof.files}"
         for z in profiles.profiles:
             assert np.all(np.isfinite(z)) and z.size * profiles.dx >= (prof.window or 16.0) * 0.99
-    assert build_material(cfg).equilibrium_modulus > 0     # reads material.file if given
+    assert build_material(cfg.material).equilibrium_modulus > 0     # reads material.file if given
     if cfg.law.file is not None:
         as_law(read_results(cfg.law.file), f"law.file {cfg.law.file}")   # checks the law
 

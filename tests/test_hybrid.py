@@ -28,7 +28,7 @@ def _config(tmp_path, **over):
 def test_empty_high_slope_set_hybrid_equals_vhs(tmp_path):
     # Both waves have m2 < 1: the hybrid has no law and must reproduce the VHS exactly;
     # so must the windowed hybrid (no law to read).
-    ds = rc.hybrid.run(_config(tmp_path, models=["vhs", "hybrid", "hybrid-windowed"]),
+    ds = rc.pipeline.run(_config(tmp_path, models=["vhs", "hybrid", "hybrid-windowed"]),
                        progress=False)
     assert "law_mean_separation" not in ds
     for m in ("hybrid", "hybrid-windowed"):
@@ -137,7 +137,7 @@ def test_elastic_high_slope_law_gives_zero_mu_hs(tmp_path):
                   material={"preset": None, "equilibrium_modulus": 4.17},
                   realizations=1, fem={"mesh": [16, 12]},
                   law={"pressures": [0.1, 0.3, 1.0]})
-    ds = rc.hybrid.run(cfg, progress=False)
+    ds = rc.pipeline.run(cfg, progress=False)
     assert np.all(ds["status"].values == "ok")
     assert np.nanmax(np.abs(ds["law_shear_stress"].values)) < 1e-8
     for m in ("hybrid", "hybrid-windowed"):
@@ -163,7 +163,7 @@ def test_small_slope_hybrid_agrees_with_vhs(tmp_path):
                   loads={"pressures": [0.1, 0.2, 0.4]}, realizations=1,
                   halfspace={"n": 2048}, fem={"mesh": [32, 24]},
                   law={"pressures": [0.02, 0.05, 0.1, 0.2, 0.4, 0.8]})
-    ds = rc.hybrid.run(cfg, progress=False)
+    ds = rc.pipeline.run(cfg, progress=False)
     vhs, hyb = ds.sel(model="vhs"), ds.sel(model="hybrid")
     np.testing.assert_allclose(hyb["friction"], vhs["friction"], rtol=0.08)
     np.testing.assert_allclose(hyb["contact_fraction"], vhs["contact_fraction"], rtol=0.05)
@@ -183,7 +183,7 @@ def _first_sweep(cfg) -> list:
         raise Stop
 
     with pytest.raises(Stop):
-        rc.hybrid.run(cfg, runner=runner, progress=False)
+        rc.pipeline.run(cfg, runner=runner, progress=False)
     return seen
 
 
@@ -299,7 +299,7 @@ def test_unsteady_full_fem_tests_are_flagged_in_the_results(tmp_path):
     cfg = rc.config.parse_config(_config(tmp_path, models=["vhs", "fem"], realizations=1))
     with pytest.warns(RuntimeWarning, match=r"1 of 2 full-FEM tests did not reach steady "
                                             r"sliding.*v=10 σ0=1 r=0 \(μ 3.4 %, A 5.0 %\)"):
-        ds = rc.hybrid.run(cfg, runner=runner, progress=False)
+        ds = rc.pipeline.run(cfg, runner=runner, progress=False)
     np.testing.assert_array_equal(ds["fem_steady"].sel(velocity=10.0, realization=0), [1, 0])
     assert float(ds["fem_period_change"].sel(velocity=10.0, realization=0, pressure=1.0)) \
         == pytest.approx(0.034)
@@ -314,7 +314,7 @@ def test_target_areas_are_bracketed_at_every_speed(tmp_path):
     # along a sweep of 8 points: within 15 %).
     cfg = _config(tmp_path, velocities=[1.0, 1000.0], realizations=1, models=["vhs"],
                   loads={"contact_areas": [0.05, 0.2], "sweep_points": 8})
-    ds = rc.hybrid.run(cfg, progress=False)
+    ds = rc.pipeline.run(cfg, progress=False)
     mu = ds["friction_at_area"].sel(model="vhs").values
     assert np.all(np.isfinite(mu)), mu
     from rubbercontact.hybrid.metrics import interpolate_at_areas
@@ -440,7 +440,7 @@ def test_cells_in_bulk_shear_are_named_in_the_law_and_the_results(tmp_path):
     cfg = rc.config.parse_config(_config(tmp_path, models=["vhs", "fem"], realizations=1))
     with pytest.warns(RuntimeWarning, match=r"full FEM: 1 of 2 FEM tests sheared as a whole "
                                             r"by more than 1 .*v=10 σ0=1 r=0 \(1.40\)"):
-        ds = rc.hybrid.run(cfg, runner=runner, progress=False)
+        ds = rc.pipeline.run(cfg, runner=runner, progress=False)
     np.testing.assert_allclose(ds["fem_bulk_shear"].sel(velocity=10.0, realization=0),
                                [0.3, 1.4])
     assert set(ds["status"].values.ravel()) == {"ok"}      # kept, not failed
@@ -478,7 +478,7 @@ def test_friction_at_area_uses_only_loads_whose_area_grows(tmp_path):
         loads={"contact_areas": [0.05, 0.15, 0.3], "sweep_points": 8}))
     with pytest.warns(RuntimeWarning, match=r"friction at contact area: 1 load sweep has .*"
                                             r"left out.*fem v=10 r=0: σ0="):
-        ds = rc.hybrid.run(cfg, runner=runner, progress=False)
+        ds = rc.pipeline.run(cfg, runner=runner, progress=False)
     mu = ds["friction_at_area"].sel(model="fem", realization=0).values
     np.testing.assert_array_equal(mu[:, :2], 0.5)
     assert np.all(np.isnan(mu[:, 2]))
@@ -511,7 +511,7 @@ def _law_run_config(tmp_path, name, **over):
 
 
 def _recording_runner(cfg, seen):
-    from rubbercontact.hybrid.pipeline import make_runner
+    from rubbercontact.pipeline import make_runner
 
     inner = make_runner(rc.config.parse_config(cfg), progress=False)
 
@@ -525,7 +525,7 @@ def test_saved_law_is_reused_without_fem_on_a_surface_sharing_its_high_slope_wav
     from rubbercontact.hybrid.law import law_from_results
     from rubbercontact.io.results import read_law, write_law, write_results
 
-    built = rc.hybrid.run(_law_run_config(tmp_path, "built"), progress=False)
+    built = rc.pipeline.run(_law_run_config(tmp_path, "built"), progress=False)
     law_nc = write_law(law_from_results(built), tmp_path / "law.nc")
     results_nc = write_results(built, tmp_path / "results.nc")
     # The file round trip keeps the table and its provenance.
@@ -538,7 +538,7 @@ def test_saved_law_is_reused_without_fem_on_a_surface_sharing_its_high_slope_wav
     for name, path in (("law", law_nc), ("results", results_nc)):
         cfg = _law_run_config(tmp_path, name, law={"file": str(path)})
         seen = []
-        ds = rc.hybrid.run(cfg, runner=_recording_runner(cfg, seen), progress=False)
+        ds = rc.pipeline.run(cfg, runner=_recording_runner(cfg, seen), progress=False)
         assert seen and not [t for t in seen if t.function.endswith(":fem_task")]
         for k in ("friction", "contact_fraction", "mean_separation"):
             np.testing.assert_array_equal(ds[k].values, built[k].values)
@@ -548,7 +548,7 @@ def test_saved_law_is_reused_without_fem_on_a_surface_sharing_its_high_slope_wav
     cfg = _law_run_config(tmp_path, "s3", surface={"preset": "section3"},
                           models=["hybrid", "hybrid-windowed"], law={"file": str(law_nc)})
     seen = []
-    ds = rc.hybrid.run(cfg, runner=_recording_runner(cfg, seen), progress=False)
+    ds = rc.pipeline.run(cfg, runner=_recording_runner(cfg, seen), progress=False)
     assert not [t for t in seen if t.function.endswith(":fem_task")]
     assert np.all(ds["status"].values == "ok")
 
@@ -562,19 +562,19 @@ def test_reused_law_built_for_another_wave_rubber_or_speed_is_rejected(tmp_path,
     from rubbercontact.hybrid.law import law_from_results
     from rubbercontact.io.results import write_law
 
-    built = rc.hybrid.run(_law_run_config(tmp_path, "built"), progress=False)
+    built = rc.pipeline.run(_law_run_config(tmp_path, "built"), progress=False)
     law_nc = write_law(law_from_results(built), tmp_path / "law.nc")
     seen = []
     cfg = _law_run_config(tmp_path, "other", law={"file": str(law_nc)}, **over)
     with pytest.raises(InputError, match=message):
-        rc.hybrid.run(cfg, runner=_recording_runner(cfg, seen), progress=False)
+        rc.pipeline.run(cfg, runner=_recording_runner(cfg, seen), progress=False)
     assert not seen     # rejected before any solve
 
 
 def test_a_file_without_a_law_is_rejected_with_what_it_lacks(tmp_path):
     from rubbercontact.io.results import read_law, write_results
 
-    vhs = rc.hybrid.run(_law_run_config(tmp_path, "vhs", models=["vhs"]), progress=False)
+    vhs = rc.pipeline.run(_law_run_config(tmp_path, "vhs", models=["vhs"]), progress=False)
     write_results(vhs, tmp_path / "vhs.nc")
     with pytest.raises(InputError, match="carries no law"):
         read_law(tmp_path / "vhs.nc")

@@ -70,7 +70,7 @@ def _offset_fem_runner(fail=None):
 
 def test_fem_runs_on_the_first_r_realizations_only(tmp_path):
     runner, seen = _offset_fem_runner()
-    ds = rc.hybrid.run(_config(tmp_path), runner=runner, progress=False)
+    ds = rc.pipeline.run(_config(tmp_path), runner=runner, progress=False)
     fem_labels = [t.label for t in seen if t.function.endswith(":fem_task")]
     assert sorted(int(LABEL.match(x).group(3)) for x in fem_labels) == [0, 0, 1, 1]
     vhs_tasks = [t for t in seen if t.label.startswith("vhs ")]
@@ -85,7 +85,7 @@ def test_fem_runs_on_the_first_r_realizations_only(tmp_path):
 
 def test_phase_mean_of_an_offset_fem_is_its_mean_over_all_realizations(tmp_path):
     runner, _ = _offset_fem_runner()
-    ds = rc.hybrid.run(_config(tmp_path), runner=runner, progress=False)
+    ds = rc.pipeline.run(_config(tmp_path), runner=runner, progress=False)
     for k, off in OFFSET.items():
         vhs = ds[k].sel(model="vhs")
         # what the stand-in would give on all 6 realizations, had it run there
@@ -106,7 +106,7 @@ def test_phase_mean_of_an_offset_fem_is_its_mean_over_all_realizations(tmp_path)
 
 def test_eq28_compares_against_the_phase_mean(tmp_path):
     runner, _ = _offset_fem_runner()
-    ds = rc.hybrid.run(_config(tmp_path), runner=runner, progress=False)
+    ds = rc.pipeline.run(_config(tmp_path), runner=runner, progress=False)
     vhs = ds["friction"].sel(model="vhs").mean("realization").values.ravel()
     want = mean_relative_error(vhs + OFFSET["friction"], vhs)
     got = float(ds["error_vs_fem"].sel(compared_model="vhs", velocity=10.0))
@@ -122,7 +122,7 @@ def test_eq28_compares_against_the_phase_mean(tmp_path):
 def test_target_areas_use_the_phase_mean_too(tmp_path):
     runner, _ = _offset_fem_runner()
     cfg = _config(tmp_path, loads={"contact_areas": [0.03, 0.05]})
-    ds = rc.hybrid.run(cfg, runner=runner, progress=False)
+    ds = rc.pipeline.run(cfg, runner=runner, progress=False)
     assert "friction_at_area_phase_mean" in ds
     fem = ds["friction_at_area_phase_mean"].sel(model="fem")
     assert np.isfinite(fem).all()
@@ -132,7 +132,7 @@ def test_target_areas_use_the_phase_mean_too(tmp_path):
 def test_a_failed_fem_test_is_left_out_at_its_load_only(tmp_path):
     runner, _ = _offset_fem_runner(fail=(0, 1.0))
     with pytest.warns(RuntimeWarning, match="1 of 16 solves failed"):
-        ds = rc.hybrid.run(_config(tmp_path), runner=runner, progress=False)
+        ds = rc.pipeline.run(_config(tmp_path), runner=runner, progress=False)
     vhs = ds["friction"].sel(model="vhs")
     # still exact: realization 1 alone carries the offset at 1 MPa
     np.testing.assert_allclose(ds["friction_phase_mean"].sel(model="fem"),
@@ -143,7 +143,7 @@ def test_a_failed_fem_test_is_left_out_at_its_load_only(tmp_path):
 
 def test_all_realizations_keep_the_plain_comparison(tmp_path):
     runner, seen = _offset_fem_runner()
-    ds = rc.hybrid.run(_config(tmp_path, realizations=2), runner=runner, progress=False)
+    ds = rc.pipeline.run(_config(tmp_path, realizations=2), runner=runner, progress=False)
     assert "friction_phase_mean" not in ds and "fem_realizations" not in ds.attrs
     assert ds["error_vs_fem"].attrs["fem_reference"] == "mean over the realizations"
 

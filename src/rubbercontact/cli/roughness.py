@@ -104,3 +104,20 @@ def fit(
         typer.echo(format_table(result, m2_threshold, source=source))
         if plot is not None:
             typer.echo(f"wrote {plot}")
+
+
+def analyse_default(output_dir: Path, *, echo=typer.echo):
+    """The roughness part of the built-in default run: :func:`~rubbercontact.roughness.
+    analysis.fit_default`, its table (with Table 2's amplitudes beside) through ``echo``,
+    and ``roughness_fit.png`` (Fig. 6 style) + ``roughness_fit.json`` in ``output_dir``.
+    Returns the fitted sine series."""
+    from ..plotting.roughness import write_fit_outputs
+    from ..roughness.analysis import DEFAULT_DATASET, default_source, fit_default, format_table
+    from ..roughness.presets import TABLE2
+
+    fit = fit_default()
+    echo(format_table(fit, reference=TABLE2[:, 1], source=default_source()))
+    files = write_fit_outputs(fit, output_dir, extra={"dataset": dict(DEFAULT_DATASET),
+                                                      "reference": "paper Table 2"})
+    echo(f"wrote {files['figure']} and {files['json']}")
+    return fit.series

@@ -56,7 +56,7 @@ def command(
 
     if config is None:
         # The built-in default also shows the roughness analysis of paper §2.2/§4.1.
-        from ..roughness.analysis import analyse_default
+        from .roughness import analyse_default
 
         analyse_default(outdir, echo=typer.echo)
 

@@ -2,6 +2,7 @@
 
 from __future__ import annotations
 
+import json
 from pathlib import Path
 
 import numpy as np
@@ -66,3 +67,19 @@ def plot_hdc(fit: HDCFit, path: str | Path | None = None, *, title: str | None =
         path.parent.mkdir(parents=True, exist_ok=True)
         fig.savefig(path, dpi=dpi)
     return fig
+
+
+def write_fit_outputs(fit: HDCFit, output_dir: str | Path, *, stem: str = "roughness_fit",
+                      m2_threshold: float = 1.0, extra: dict | None = None) -> dict[str, Path]:
+    """Write ``<stem>.png`` (the HDC figure) and ``<stem>.json`` (the fit's record, its
+    series and ``extra``) into ``output_dir``; returns ``{"figure": ..., "json": ...}``."""
+    out = Path(output_dir)
+    out.mkdir(parents=True, exist_ok=True)
+    png, js = out / f"{stem}.png", out / f"{stem}.json"
+    fig = plot_hdc(fit, png, m2_threshold=m2_threshold)
+    _pyplot().close(fig)
+    record = fit.as_dict(m2_threshold)
+    record["series"] = fit.series.as_dict()
+    record.update(extra or {})
+    js.write_text(json.dumps(record, indent=2))
+    return {"figure": png, "json": js}

@@ -1,6 +1,6 @@
 """Roughness: sine-series surfaces, statistics of measured profiles, HDC fitting."""
 
-from .analysis import analyse_default, format_table
+from .analysis import fit_default, format_table
 from .fit import (
     HDCFit,
     RoughnessWarning,
@@ -21,4 +21,4 @@ __all__ = ["SineSeries", "TABLE2", "asphalt_ac8", "section3", "high_slope_wave",
            "hdc", "psd", "rms_height", "rms_slope", "detrend", "log_lags",
            "fit_hdc", "fit_hdc_details", "fit_hdc_curve", "HDCFit", "RoughnessWarning",
            "octave_wavelengths", "default_wavelengths", "check_resolution", "wave_hdc",
-           "synthetic_line_scans", "analyse_default", "format_table"]
+           "synthetic_line_scans", "fit_default", "format_table"]

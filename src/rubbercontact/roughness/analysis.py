@@ -1,20 +1,17 @@
-"""Roughness analysis as a job: fit, Table-2-like table, HDC figure, JSON record.
+"""Roughness analysis: the Table-2-like table of a fit, and the built-in default fit.
 
-:func:`analyse_default` is the built-in default job (``make run`` until the hybrid
-pipeline exists): the paper's Table 2 surface sampled as 30 noisy line scans of
-16 mm, fitted back with the well-conditioned method.
+:func:`fit_default` is the roughness part of the built-in default run (``make run``): the
+paper's Table 2 surface sampled as 30 noisy line scans of 16 mm, fitted back with the
+well-conditioned method. Figures and records are written by :mod:`rubbercontact.plotting`
+(this package does not import it).
 """
 
 from __future__ import annotations
 
-import json
-from pathlib import Path
-
 import numpy as np
 
 from .fit import HDCFit, fit_hdc_details, octave_wavelengths
-from .presets import TABLE2, asphalt_ac8
-from .sines import SineSeries
+from .presets import asphalt_ac8
 from .synthetic import DEFAULT_NOISE, synthetic_line_scans
 
 #: The default data set: Table 2, 30 scans of 16 mm at 0.005 mm, seed 0.
@@ -59,44 +56,18 @@ def format_table(fit: HDCFit, m2_threshold: float = 1.0, *,
     return "\n".join(lines)
 
 
-def write_outputs(fit: HDCFit, output_dir: str | Path, *, stem: str = "roughness_fit",
-                  m2_threshold: float = 1.0, extra: dict | None = None) -> dict[str, Path]:
-    """Write ``<stem>.png`` (HDC figure) and ``<stem>.json`` into ``output_dir``."""
-    from ..plotting.roughness import plot_hdc
-
-    out = Path(output_dir)
-    out.mkdir(parents=True, exist_ok=True)
-    png, js = out / f"{stem}.png", out / f"{stem}.json"
-    fig = plot_hdc(fit, png, m2_threshold=m2_threshold)
-    import matplotlib.pyplot as plt
-
-    plt.close(fig)
-    record = fit.as_dict(m2_threshold)
-    record["series"] = fit.series.as_dict()
-    record.update(extra or {})
-    js.write_text(json.dumps(record, indent=2))
-    return {"figure": png, "json": js}
-
-
-def analyse_default(output_dir: str | Path, *, echo=print,
-                    method: str = "wellconditioned") -> SineSeries:
-    """The built-in default roughness job; returns the fitted :class:`SineSeries`.
-
-    Generates Table 2's surface as :data:`DEFAULT_DATASET` (random phases per scan, white
-    noise), fits the 8 octaves 0.0625 … 8 mm to the scans' mean HDC, prints the table
-    (with Table 2's amplitudes beside) through ``echo`` and writes ``roughness_fit.png``
-    (Fig. 6 style) and ``roughness_fit.json`` into ``output_dir``.
-    """
+def fit_default(method: str = "wellconditioned") -> HDCFit:
+    """The built-in default roughness fit: Table 2's surface sampled as
+    :data:`DEFAULT_DATASET` (random phases per scan, white noise), fitted with the 8 octaves
+    0.0625 … 8 mm to the scans' mean HDC (the figure and the record are written by
+    :func:`rubbercontact.plotting.roughness.write_fit_outputs`)."""
     scans = synthetic_line_scans(asphalt_ac8(), **DEFAULT_DATASET)
-    wavelengths = octave_wavelengths(0.0625, 8.0)
-    fit = fit_hdc_details(scans, DEFAULT_DATASET["dx"], wavelengths, method)
+    return fit_hdc_details(scans, DEFAULT_DATASET["dx"], octave_wavelengths(0.0625, 8.0), method)
+
+
+def default_source() -> str:
+    """One line saying what :func:`fit_default` fitted."""
     d = DEFAULT_DATASET
-    echo(format_table(
-        fit, reference=TABLE2[:, 1],
-        source=(f"Built-in data set: Table 2 surface, {d['n_scans']} line scans of "
-                f"{d['length']:g} mm at dx = {d['dx']:g} mm, random phases, noise "
-                f"{d['noise'] * 1e3:g} um (seed {d['seed']})")))
-    files = write_outputs(fit, output_dir, extra={"dataset": dict(DEFAULT_DATASET),
-                                                  "reference": "paper Table 2"})
-    echo(f"wrote {files['figure']} and {files['json']}")
-    return fit.series
+    return (f"Built-in data set: Table 2 surface, {d['n_scans']} line scans of "
+            f"{d['length']:g} mm at dx = {d['dx']:g} mm, random phases, noise "
+            f"{d['noise'] * 1e3:g} um (seed {d['seed']})")
