@@ -8,14 +8,15 @@ export OPENBLAS_NUM_THREADS ?= 1
 export MKL_NUM_THREADS ?= 1
 export MPLBACKEND ?= Agg
 
-.PHONY: run test validate bench lint clean
+.PHONY: run test validate bench lint docs clean
 
 $(BIN)/activate:
 	$(PYTHON) -m venv $(VENV)
 	$(BIN)/python -m pip install --quiet --upgrade pip
 
+# The docs extra is part of the test install: tests/test_docs_build.py builds the docs.
 $(VENV)/.installed: $(BIN)/activate pyproject.toml
-	$(BIN)/python -m pip install --quiet -e ".[test,topography]"
+	$(BIN)/python -m pip install --quiet -e ".[test,topography,docs]"
 	touch $@
 
 $(VENV)/.installed-bench: $(VENV)/.installed
@@ -35,6 +36,12 @@ validate: $(VENV)/.installed
 bench: $(VENV)/.installed-bench
 	$(BIN)/python benchmarks/run_all.py
 	$(BIN)/python benchmarks/collect.py
+
+# The documentation site (Sphinx; examples/plot_*.py run on their reduced settings for the
+# gallery) with warnings as errors -> docs/_build/html.
+docs: $(VENV)/.installed
+	$(BIN)/python -m pip install --quiet -e ".[docs]"
+	$(BIN)/sphinx-build -W --keep-going -b html docs docs/_build/html
 
 lint: $(VENV)/.installed
 	$(BIN)/ruff check src tests benchmarks studies
