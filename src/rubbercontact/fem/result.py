@@ -77,8 +77,8 @@ class PressureProfile:
 class SolverStats:
     """Work done and quality indicators of one test.
 
-    Attributes shared by both solvers
-    ---------------------------------
+    Attributes
+    ----------
     solver
         ``"steady"``, ``"transient"``, or ``"transient (fallback)"``.
     status
@@ -89,8 +89,11 @@ class SolverStats:
     bulk_shear
         ``|mean face x-displacement − plate| / H`` at the end.
 
-    Steady solver: ``krylov_iterations``, ``continuation_steps``, ``tried`` (one line per
-    stage), ``surface_offset`` (the surface's shift under the cell, mod one column [mm]).
+    Notes
+    -----
+    The attributes above are shared by both solvers. Steady solver:
+    ``krylov_iterations``, ``continuation_steps``, ``tried`` (one line per stage),
+    ``surface_offset`` (the surface's shift under the cell, mod one column [mm]).
     Transient: ``steps``, ``cutbacks``, ``line_search_cuts``, ``periods``,
     ``period_change`` / ``period_area_change`` (relative change of μ / A over the last
     period), ``bulk_shear_change`` (over the last period).
