@@ -17,7 +17,10 @@ Cases (issue 26's performance list), each run by both solvers in one process:
 Each steady row gives the per-iteration split (assembly / factorization / Krylov). Run
 single-threaded::
 
-    OMP_NUM_THREADS=1 .venv/bin/python benchmarks/bench_steady.py --json /tmp/steady.json
+    OMP_NUM_THREADS=1 .venv/bin/python benchmarks/bench_steady.py --output benchmarks/steady.md
+
+Times are CPU seconds of this process (``time.process_time``), so a loaded machine changes
+them little; the markdown table (``--output``) goes into BENCHMARKS.md (``collect.py``).
 """
 
 from __future__ import annotations
@@ -116,6 +119,7 @@ def main() -> None:
     ap.add_argument("--cases", default="law,default,full,sweep")
     ap.add_argument("--transient-full", action="store_true")
     ap.add_argument("--json", default=None)
+    ap.add_argument("--output", default=None, help="markdown table for BENCHMARKS.md")
     args = ap.parse_args()
     commit = subprocess.run(["git", "rev-parse", "--short", "HEAD"], capture_output=True,
                             text=True, check=False).stdout.strip() or "?"
@@ -131,6 +135,49 @@ def main() -> None:
         if args.json:
             with open(args.json, "w") as f:
                 json.dump(report, f, indent=1)
+        if args.output:
+            with open(args.output, "w") as f:
+                f.write(markdown(report))
+
+
+def _fmt(x, spec: str) -> str:
+    return "–" if x is None else format(x, spec)
+
+
+def markdown(report: dict) -> str:
+    """The steady-vs-transient section of BENCHMARKS.md: one row per solve, in run order."""
+    lines = ["# Steady FEM against the time-stepped test (`benchmarks/bench_steady.py`)", "",
+             f"{report['date']}, commit {report['commit']}, {report['machine']}, one thread; "
+             "CPU seconds of the process. Steady and transient rows of a case ran one after "
+             "the other in this run. The transient law rows slide 5 retardation times "
+             "(creep-settled); the default transient row uses `rubbercontact fem`'s defaults.",
+             "", "| case | solver | CPU [s] | μ | A | ū [mm] | Newton | factorizations | "
+             "assembly [s, wall] | linear solves [s, wall] |",
+             "|---|---|---:|---:|---:|---:|---:|---:|---:|---:|"]
+    for r in report["rows"]:
+        if isinstance(r.get("friction"), list):
+            continue
+        lines.append(f"| {r['case']} | {r['solver']} | {r['cpu_s']:.1f} | {r['friction']:.5f} | "
+                     f"{r['contact_fraction']:.5f} | {r['mean_separation_mm']:.6f} | "
+                     f"{r['newton']} | {_fmt(r.get('factorizations'), 'd')} | "
+                     f"{_fmt(r.get('assembly_s'), '.2f')} | {_fmt(r.get('solve_s'), '.2f')} |")
+    by_case: dict = {}
+    for r in report["rows"]:
+        if not isinstance(r.get("friction"), list):
+            by_case.setdefault(r["case"].split(",")[0], []).append(r)
+    ratios = []
+    for rows in by_case.values():
+        st = [r for r in rows if r["solver"] == "steady"]
+        for r in rows:
+            if st and r["solver"] != "steady":
+                ratios.append(f"- {r['case']}: transient / steady CPU = "
+                              f"{r['cpu_s'] / st[0]['cpu_s']:.0f}×, μ differs by "
+                              f"{abs(r['friction'] / st[0]['friction'] - 1):.1e} (relative)")
+    sweeps = [r for r in report["rows"] if isinstance(r.get("friction"), list)]
+    for r in sweeps:
+        ratios.append(f"- {r['case']}: {r['cpu_s']:.1f} s, {r['ratio_to_one_point']:.2f}× one "
+                      f"point; solvers {sorted(set(r['solver']))}")
+    return "\n".join([*lines, "", *ratios, ""]) + "\n"
 
 
 if __name__ == "__main__":

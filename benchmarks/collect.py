@@ -5,8 +5,13 @@ from __future__ import annotations
 from pathlib import Path
 
 HERE = Path(__file__).resolve().parent
-PARTS = [("halfspace.md", "Half-space (BEM) solver"), ("fem.md", "FEM sliding test"),
-         ("sweep.md", "Sweeps: Dask executor and result cache")]
+PARTS = [("halfspace.md", "Half-space (BEM) solver"),
+         ("steady.md", "Steady FEM against the time-stepped test"),
+         ("fem.md", "FEM sliding test (time-stepped)"),
+         ("sweep.md", "Sweeps: Dask executor and result cache"),
+         ("speed_sweep.md", "Speed sweeps: friction against speed from an empty cache"),
+         ("make_run.md", "make run from an empty cache"),
+         ("meanfield.md", "Mean-field model")]
 
 
 def main() -> None:

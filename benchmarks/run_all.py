@@ -1,4 +1,6 @@
-"""``make bench``: run every benchmark script that exists (half-space, FEM)."""
+"""``make bench``: run every benchmark script that exists (half-space, steady and
+transient FEM, mean-field); ``bench_speed_sweep.py`` and ``bench_make_run.py`` take
+minutes and run on their own."""
 
 from __future__ import annotations
 
@@ -14,7 +16,9 @@ def main() -> int:
     env = dict(os.environ, OMP_NUM_THREADS="1", OPENBLAS_NUM_THREADS="1", MKL_NUM_THREADS="1")
     status = 0
     for script, args in (("bench_halfspace.py", ["--output", str(HERE / "halfspace.md")]),
-                         ("bench_fem.py", [])):
+                         ("bench_steady.py", ["--output", str(HERE / "steady.md")]),
+                         ("bench_fem.py", []),
+                         ("bench_meanfield.py", ["--output", str(HERE / "meanfield.md")])):
         path = HERE / script
         if not path.exists():
             print(f"skip {script} (not present)")

@@ -204,3 +204,14 @@ def test_cli_check_prints_the_plan_and_runs_nothing(tmp_path, capsys):
     assert main(["run", str(toml), "--check"]) == 0
     assert "15 distinct reduced speeds" in capsys.readouterr().out
     assert not (tmp_path / "cache").exists()
+
+
+def test_speed_and_temperature_figures_are_drawn(tmp_path):
+    ds = rc.pipeline.run(_config(tmp_path, velocities={"from": 0.1, "to": 100.0, "points": 4},
+                                 temperatures=[0.0, 20.0]), progress=False)
+    from rubbercontact.plotting.figures import plot_all
+
+    written = {p.name for p in plot_all(ds, tmp_path / "fig") if p}
+    assert {"friction_vs_speed.png", "contact_vs_speed.png",
+            "friction_vs_temperature.png"} <= written
+    assert all((tmp_path / "fig" / n).stat().st_size > 10_000 for n in written)

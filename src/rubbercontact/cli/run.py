@@ -106,7 +106,8 @@ def describe_plan(cfg) -> str:
         lines.append(f"temperatures: {', '.join(f'{t:g}' for t in sp.temperatures)} °C; "
                      f"{sp.computed.size} distinct reduced speeds computed at T_ref")
     loads = cfg.loads
-    lines.append(f"loads: {len(loads.pressures)} pressures" if loads.pressures is not None
+    lines.append(f"loads: pressures {', '.join(f'{p:g}' for p in loads.pressures)} MPa"
+                 if loads.pressures is not None
                  else f"loads: {len(loads.contact_areas)} target contact areas")
     if setup.needs_law:
         if cfg.law.file is not None:
