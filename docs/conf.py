@@ -33,7 +33,7 @@ extensions = [
     "sphinx_gallery.gen_gallery",
     "configref",
     "clireference",
-    "gallery_headers",
+    "gallery_support",
     "rootpaths",
 ]
 
@@ -84,6 +84,9 @@ sphinx_gallery_conf = {
     "within_subsection_order": "FileNameSortKey",
     "matplotlib_animations": False,
     "show_memory": False,
+    # gallery_support.example_file gives each example its __file__ (its data lie beside it)
+    "reset_modules": ("matplotlib", "gallery_support.example_file"),
+    "reset_modules_order": "both",
 }
 
 # -- HTML ---------------------------------------------------------------------------------
