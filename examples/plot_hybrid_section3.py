@@ -58,7 +58,7 @@ print(law[["mean_separation", "contact_fraction", "friction"]].to_dataframe().ro
 # %%
 # The models on one realization
 # -----------------------------
-# ``rc.hybrid.run`` takes the configuration as a mapping (or a TOML file, see
+# ``rc.pipeline.run`` takes the configuration as a mapping (or a TOML file, see
 # ``examples/section3.toml``) and the law just computed, so that it runs no law FEM.
 config = {
     "surface": {"preset": "section3"},
@@ -72,7 +72,7 @@ config = {
     "halfspace": {"n": 2048},
     "execution": {"workers": 1},
 }
-ds = rc.hybrid.run(config, law=law, progress=False)
+ds = rc.pipeline.run(config, law=law, progress=False)
 point = ds.isel(velocity=0, realization=0, pressure=0)
 for m in point["model"].values:
     print(f"{m:>16}: μ = {float(point['friction'].sel(model=m)):.3f}, "

@@ -74,9 +74,9 @@ def material_model_part(cache: Path) -> list[str]:
         cfg = mm._section3_config(model, cache, Path("/tmp/crest_section3_mm"), 1)
         with warnings.catch_warnings():
             warnings.simplefilter("ignore")
-            ds = rc.hybrid.run(cfg, progress=False)
+            ds = rc.pipeline.run(cfg, progress=False)
             tables = law_tables(cfg)
-            fine = (rc.hybrid.run(mm._section3_config(model, cache,
+            fine = (rc.pipeline.run(mm._section3_config(model, cache,
                                                       Path("/tmp/crest_section3_mm"), 1, 512,
                                                       pressures, ["fem"]), progress=False)
                     if model != "simo" else None)

@@ -191,7 +191,7 @@ def eq28_data(law: Path | None, workers: int, cache: Path, n: int, factors: dict
     if law is not None:
         data["law"] = {"file": str(law)}
     cfg = rc.config.parse_config(data, source="section3 at 50 mm/s, loads 0.1-2 MPa")
-    ds = rc.hybrid.run(cfg, runner=make_runner(cfg, progress="log"))
+    ds = rc.pipeline.run(cfg, runner=make_runner(cfg, progress="log"))
     missing = [(r, p) for r in range(EQ28_REALIZATIONS) for p in EQ28_LOADS
                if (r, p) not in factors]
     if missing:
