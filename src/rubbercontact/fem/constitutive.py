@@ -30,9 +30,9 @@ accurate for any ``ξ`` and never ill-conditioned. The consistent tangent is
 The piecewise-linear input is second order for branches with ``ξ ≲ 1`` but only first
 order for the fast ones (``τ_i ≪ Δt``, e.g. the SBR's τ ≤ 1.3e-5 s against the 5e-5 s
 steps of a sliding test): there ``Q_i ≈ β_i τ_i (S^{n+1} − S^n)/Δt`` is the rate half a
-step late, and the lag adds ``O(ω Δt)`` to the storage modulus (+3.5 % at 40 steps per
-cycle; the loss modulus is second order with either update, −0.29 % linear and +0.32 %
-quadratic there). ``history_order = 2`` (the default of the sliding test) interpolates ``S_iso``
+step late, and the lag adds ``O(ω Δt)`` to the storage modulus (the loss modulus is
+second order with either update; measured in docs/validation/fem_convergence.md).
+``history_order = 2`` (the default of the sliding test) interpolates ``S_iso``
 quadratically through ``t_{n−1}, t_n, t_{n+1}`` (steps ``h₀``, ``h``), again integrated
 exactly::
 
