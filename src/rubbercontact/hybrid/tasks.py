@@ -195,7 +195,8 @@ def fem_speed_path_task(surface: dict, material: dict, velocities: list, mean_pr
     The steady solver's continuation (:func:`rubbercontact.fem.steady_sliding` with
     ``start``) in speed: the first speed is solved from the press, each further one from
     its predecessor's steady state. A point that fails is recorded as failed (its
-    ``status``) and the next starts afresh, so one bad point does not sink the path.
+    ``status``) and the next starts from the last converged state (or afresh when the
+    continuation from it fails), so one bad point does not sink the path.
 
     Parameters
     ----------
@@ -224,9 +225,10 @@ def fem_speed_path_task(surface: dict, material: dict, velocities: list, mean_pr
             out = fem.steady_sliding(surf, mat, mean_pressure, float(v), options=opts,
                                      start=state)
         except (ConvergenceError, InputError, FloatingPointError, np.linalg.LinAlgError) as exc:
+            # the last converged state stays the start: a neighbour two speeds back is still
+            # closer than a fresh press (which the solver tries when continuation fails)
             rows.append(None)
             status.append(f"{type(exc).__name__}: {exc}")
-            state = None
             continue
         state = out.state
         rows.append(_fem_scalars(out, surf, float(v), mean_pressure, time.perf_counter() - t0))
@@ -267,4 +269,4 @@ def _fem_scalars(out, surf: SineSeries, velocity: float, mean_pressure: float,
 
 
 #: Own version of the speed-path task (its answers, read by the sweep cache key).
-fem_speed_path_task.cache_version = "1"
+fem_speed_path_task.cache_version = "2"
