@@ -271,13 +271,29 @@ def test_speed_sweep_by_continuation_follows_the_loss_peak():
     sweep = rc.fem.steady_sweep(surf, mat, 1.0, v, mesh=(24, 12))
     mu = np.array([r.friction for r in sweep])
     assert all(r.stats.solver == "steady" for r in sweep)
-    assert all("neighbour" in r.stats.tried[0] for r in sweep[1:])
+    # the middle point is pressed, the others continue outwards from their neighbour
+    middle = v.size // 2
+    assert "neighbour" not in sweep[middle].stats.tried[0]
+    assert all("neighbour" in r.stats.tried[0] for i, r in enumerate(sweep) if i != middle)
     k = int(np.argmax(mu))
     assert 0 < k < v.size - 1 and mu[0] < 0.05 * mu[k] and mu[-1] < 0.5 * mu[k]
     fresh = rc.fem.steady_sliding(surf, mat, 1.0, float(v[k]), mesh=(24, 12))
     assert mu[k] == pytest.approx(fresh.friction, rel=0.02)
     with pytest.raises(InputError, match="equal length"):
         rc.fem.steady_sweep(surf, mat, [1.0, 2.0], [1.0, 2.0, 3.0])
+
+
+def test_continuation_order_visits_each_point_once_after_its_neighbour():
+    for n in range(1, 9):
+        order = rc.fem.continuation_order(n)
+        assert sorted(i for i, _ in order) == list(range(n))
+        seen = set()
+        for i, j in order:
+            assert (j is None and not seen) or (j in seen and abs(i - j) == 1)
+            seen.add(i)
+    assert rc.fem.continuation_order(5, first=0) == [(0, None), (1, 0), (2, 1), (3, 2), (4, 3)]
+    with pytest.raises(InputError, match="index"):
+        rc.fem.continuation_order(3, first=3)
 
 
 def _settled_transient(surface, mat, p, v, mesh, grading, offset, retardation_times):

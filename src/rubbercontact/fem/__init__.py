@@ -21,9 +21,9 @@ from .options import SOLVERS, FemOptions, SteadyOptions, TransientOptions
 from .result import PressureProfile, SlidingTestResult, SolverStats
 from .sliding import make_options, sliding_test, steady_sliding
 from .steady_solver import SteadyState
-from .sweep import steady_sweep
+from .sweep import continuation_order, steady_sweep
 
 __all__ = ["DEFAULT_BULK_MODULUS", "SOLVERS", "FemOptions", "MaterialParameters",
            "PressureProfile", "SlidingTestResult", "SolverStats", "SteadyOptions",
            "SteadyState", "TransientOptions", "make_options", "sliding_test",
-           "steady_sliding", "steady_sweep"]
+           "steady_sliding", "steady_sweep", "continuation_order"]

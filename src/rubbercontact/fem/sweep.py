@@ -1,11 +1,14 @@
 """Sweeps of steady sliding tests by continuation: each solution starts the next.
 
 A friction-versus-speed curve over decades, or a load sweep at one speed, is a path
-through neighbouring steady problems: the first point is solved from the press, every
-further one by a homotopy from its predecessor's solution on the same mesh
+through neighbouring steady problems: one point is solved from the press, every further
+one by a homotopy from its neighbour's solution on the same mesh
 (:func:`~rubbercontact.fem.steady_sliding`'s ``start``), which costs a fraction of a
-fresh solve. A point whose continuation fails is solved afresh (and, failing that, by
-the transient fallback), so a sweep never stops at one bad point.
+fresh solve. The press runs at the middle of the path and the continuation goes outwards
+both ways (:func:`continuation_order`): the press is the dear part, and at the ends of a
+speed range over decades (rubbery or glassy) it costs several times what it costs in the
+middle (BENCHMARKS.md, "Steady FEM"). A point whose continuation fails is solved afresh
+(and, failing that, by the transient fallback), so a sweep never stops at one bad point.
 """
 
 from __future__ import annotations
@@ -21,9 +24,26 @@ from .result import SlidingTestResult
 from .sliding import make_options, steady_sliding
 
 
+def continuation_order(n: int, first: int | None = None) -> list[tuple[int, int | None]]:
+    """The order in which a path of ``n`` points is solved: ``(point, neighbour)`` pairs,
+    the neighbour being the point whose solution starts it (None: from the press).
+
+    ``first`` (default the middle, ``n // 2``) is solved from the press; then the points
+    after it in turn, each from its predecessor; then those before it, each from its
+    successor.
+    """
+    if n <= 0:
+        return []
+    k = n // 2 if first is None else int(first)
+    if not 0 <= k < n:
+        raise InputError(f"first: expected an index in [0, {n}), got {first}")
+    return ([(k, None)] + [(i, i - 1) for i in range(k + 1, n)]
+            + [(i, i + 1) for i in range(k - 1, -1, -1)])
+
+
 def steady_sweep(surface, material, mean_pressures: Sequence[float] | float,
-                 velocities: Sequence[float] | float, *, options: FemOptions | None = None,
-                 **changes) -> list[SlidingTestResult]:
+                 velocities: Sequence[float] | float, *, first: int | None = None,
+                 options: FemOptions | None = None, **changes) -> list[SlidingTestResult]:
     """Steady tests along a path of loads and speeds, each started from the last.
 
     Parameters
@@ -32,8 +52,11 @@ def steady_sweep(surface, material, mean_pressures: Sequence[float] | float,
         As for :func:`~rubbercontact.fem.steady_sliding`.
     mean_pressures, velocities
         ``p̄`` [MPa] and ``v`` [mm/s]: one value and a sequence (a speed or a load sweep),
-        or two sequences of equal length (the path itself). The path is followed in the
-        order given; sort it (e.g. by speed) so that neighbours are close.
+        or two sequences of equal length (the path itself). Neighbours in the sequence
+        start each other; sort it (e.g. by speed) so that they are close.
+    first
+        Index of the point solved from the press (default: the middle of the path; see
+        :func:`continuation_order`).
     options, **changes
         The FEM options (``solver`` must be ``"steady"``).
 
@@ -57,11 +80,9 @@ def steady_sweep(surface, material, mean_pressures: Sequence[float] | float,
     if p.size != v.size:
         raise InputError(f"mean_pressures ({p.size}) and velocities ({v.size}): give one "
                          f"value and a sequence, or two sequences of equal length")
-    out: list[SlidingTestResult] = []
-    state = None
-    for pi, vi in zip(p, v, strict=True):
-        res = steady_sliding(surface, material, float(pi), float(vi), options=opts,
-                             start=state)
-        out.append(res)
-        state = res.state        # None after a transient fallback: the next starts afresh
+    out: list[SlidingTestResult | None] = [None] * p.size
+    for i, j in continuation_order(p.size, first):
+        start = None if j is None else out[j].state   # None after a transient fallback
+        out[i] = steady_sliding(surface, material, float(p[i]), float(v[i]), options=opts,
+                                start=start)
     return out

@@ -193,17 +193,18 @@ def fem_speed_path_task(surface: dict, material: dict, velocities: list, mean_pr
     """FEM sliding tests at one load along a path of speeds, each started from the last.
 
     The steady solver's continuation (:func:`rubbercontact.fem.steady_sliding` with
-    ``start``) in speed: the first speed is solved from the press, each further one from
-    its predecessor's steady state. A point that fails is recorded as failed (its
-    ``status``) and the next starts from the last converged state (or afresh when the
-    continuation from it fails), so one bad point does not sink the path.
+    ``start``) in speed, in the order of :func:`rubbercontact.fem.sweep.continuation_order`:
+    the middle speed from the press, the others outwards from their neighbour's steady
+    state. A point that fails is recorded as failed (its ``status``) and passes the last
+    converged state on (the solver presses afresh when the continuation from it fails),
+    so one bad point does not sink the path.
 
     Parameters
     ----------
     surface, material, mean_pressure, options
         As for :func:`fem_task` (``options`` must select the steady solver).
     velocities
-        Speeds [mm/s], followed in the order given (ascending, for close neighbours).
+        Speeds [mm/s], neighbours in the sequence start each other (give them ascending).
 
     Returns
     -------
@@ -218,21 +219,24 @@ def fem_speed_path_task(surface: dict, material: dict, velocities: list, mean_pr
     if opts.solver != "steady":
         raise InputError("fem_speed_path_task: continuation in speed needs solver = 'steady'")
     surf, mat = _surface(surface), _material(material)
-    rows, status, state = [], [], None
-    for v in velocities:
+    n = len(velocities)
+    rows: list = [None] * n
+    status = ["not run"] * n
+    states: list = [None] * n     # a failed point passes its neighbour's state on
+    for i, j in fem.continuation_order(n):
         t0 = time.perf_counter()
+        start = None if j is None else states[j]
         try:
-            out = fem.steady_sliding(surf, mat, mean_pressure, float(v), options=opts,
-                                     start=state)
+            out = fem.steady_sliding(surf, mat, mean_pressure, float(velocities[i]),
+                                     options=opts, start=start)
         except (ConvergenceError, InputError, FloatingPointError, np.linalg.LinAlgError) as exc:
-            # the last converged state stays the start: a neighbour two speeds back is still
-            # closer than a fresh press (which the solver tries when continuation fails)
-            rows.append(None)
-            status.append(f"{type(exc).__name__}: {exc}")
+            status[i] = f"{type(exc).__name__}: {exc}"
+            states[i] = start
             continue
-        state = out.state
-        rows.append(_fem_scalars(out, surf, float(v), mean_pressure, time.perf_counter() - t0))
-        status.append("ok")
+        states[i] = out.state
+        rows[i] = _fem_scalars(out, surf, float(velocities[i]), mean_pressure,
+                               time.perf_counter() - t0)
+        status[i] = "ok"
     names = [k for k in next((r for r in rows if r is not None), {"friction": 0.0})
              if k != "velocity"]             # the speed is the coordinate
     data = {k: ("velocity", [np.nan if r is None else r[k] for r in rows],
@@ -269,4 +273,4 @@ def _fem_scalars(out, surf: SineSeries, velocity: float, mean_pressure: float,
 
 
 #: Own version of the speed-path task (its answers, read by the sweep cache key).
-fem_speed_path_task.cache_version = "2"
+fem_speed_path_task.cache_version = "3"
