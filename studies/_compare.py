@@ -342,23 +342,26 @@ def merge_phase_data(a: dict, b: dict) -> dict:
             "all": every}
 
 
-def extended_phase_data(cfg, phase_data: dict, used_keys: set[str] | None = None) -> dict:
-    """Section 3's phase data with the loads of :data:`EXTENDED_LOADS` added, per velocity.
+def extended_phase_data(cfg, phase_data: dict, used_keys: set[str] | None = None,
+                        loads: dict | None = None) -> dict:
+    """Section 3's phase data with the loads of ``loads`` (default :data:`EXTENDED_LOADS`:
+    ``{velocity: {load: realizations}}``) added, per velocity.
 
     Runs every model at the added loads on the realizations given there (the full FEM is
     the dear part; the reference cache holds it), then the cheap models on the same N as
     ``phase_data``, and merges.
     """
+    extra = EXTENDED_LOADS if loads is None else loads
     out = {}
     for v, data in phase_data.items():
-        if v not in EXTENDED_LOADS:
+        if v not in extra:
             continue
         n = data["all"]["vhs"][0].shape[0]
         merged = data
-        for r in sorted(set(EXTENDED_LOADS[v].values())):
-            loads = [p for p, k in EXTENDED_LOADS[v].items() if k == r]
+        for r in sorted(set(extra[v].values())):
+            added = [p for p, k in extra[v].items() if k == r]
             base = cfg.model_dump(mode="json", exclude_none=True)
-            base.update(velocities=[v], realizations=r, loads={"pressures": loads})
+            base.update(velocities=[v], realizations=r, loads={"pressures": added})
             ext_cfg = rc.config.parse_config(base, source=f"section3 extended ({v:g} mm/s)")
             runner = make_runner(ext_cfg, progress="log")
 

@@ -37,6 +37,7 @@ from ._validation_report import (
     cost_lines,
     interval_text,
     joined,
+    not_steady,
     percent_off,
     repo_path,
     warning_lines,
@@ -53,13 +54,8 @@ def _mesh(m) -> str:
     return f"{m[0]} x {m[1]}"
 
 
-#: Eq. 28 against the creep-settled full FEM, written by ``studies/settled_loads.py
-#: --eq28`` (its FEM is the validation's, scaled by a coarse cell's settling factors; an hour
-#: of coarse FEM on 2 cores, so it is read here rather than rerun).
-SETTLED_EQ28 = ROOT / "docs" / "validation" / "settled_loads.json"
-
-
-STEADINESS_ROWS = ROOT / "docs" / "validation" / "fem_steadiness.jsonl"
+#: The steady solver's time-step study (studies/steady_time_step.py), once it is written.
+TIME_STEP_STUDY = ROOT / "docs" / "validation" / "steady_time_step.md"
 
 
 def _s3(block: str, **fields) -> str:
@@ -67,81 +63,110 @@ def _s3(block: str, **fields) -> str:
 
 
 def _reduced_sentence(ds) -> str:
-    """The quick level's reductions, with the meshes, time step and sliding of this run."""
+    """The quick level's reductions, with the meshes and the steady solver's time step."""
     cfg = json.loads(ds.attrs["config"])["fem"]
     period = float(ds.attrs["period_mm"])
     hs = ds["high_slope"].values.astype(bool)
     lam = float(ds["wavelength"].values[hs].min())
     law_cell = float(ds["wavelength"].values[hs].max())
     full_mesh = cfg.get("full_mesh") or cfg["mesh"]
-    full_steps = cfg.get("full_steps_per_period") or cfg["steps_per_period"]
-    full_periods = cfg.get("full_periods") or cfg["periods"]
-    v_min = float(ds["velocity"].min())
+    v_min, v_max = float(ds["velocity"].min()), float(ds["velocity"].max())
+    h_full, h_law = period / full_mesh[0], law_cell / cfg["mesh"][0]
+    time_step = _s3("time_step_study" if TIME_STEP_STUDY.exists() else "time_step_measured")
     return _s3("reduced", realizations=ds.sizes["realization"], loads=ds.sizes["pressure"],
                full_mesh=_mesh(full_mesh),
                full_grading=f"{cfg.get('full_grading') or cfg['grading']:g}",
                full_columns_per_wave=f"{full_mesh[0] * lam / period:g}", wavelength=f"{lam:g}",
                law_mesh=_mesh(cfg["mesh"]), law_grading=f"{cfg['grading']:g}",
                law_columns_per_wave=f"{cfg['mesh'][0] * lam / law_cell:g}",
-               dt=_sci(period / v_min / full_steps), v_min=f"{v_min:g}", full_steps=full_steps,
-               law_steps=cfg["steps_per_period"], distance=f"{full_periods * period:g}",
-               full_periods=full_periods, law_periods=cfg["periods"])
+               full_column=f"{1e3 * h_full:.3g}", law_column=f"{1e3 * h_law:.3g}",
+               dt_full=_sci(h_full / v_min), dt_full_fast=_sci(h_full / v_max),
+               dt_law=_sci(h_law / v_min), dt_law_fast=_sci(h_law / v_max),
+               v_min=f"{v_min:g}", v_max=f"{v_max:g}", time_step=time_step)
 
 
-def _steadiness_rows_sentence(rows: list[dict], law_periods: int) -> str:
-    from .fem_steadiness import _mesh_label
-
-    cells = []
-    for r in rows:
-        mu, area = np.array(r["friction"]), np.array(r["contact_fraction"])
-        cells.append(_s3("steady_row", kind=r["kind"], mesh=_mesh_label(r),
-                         velocity=f"{r['velocity']:g}", pressure=f"{r['pressure']:g}",
-                         mu_mean=f"{100 * (mu[2] / mu[2:].mean() - 1):+.1f}",
-                         area_mean=f"{100 * (area[2] / area[2:].mean() - 1):+.1f}",
-                         mu_last=f"{100 * (mu[2] / mu[-1] - 1):+.1f}",
-                         area_last=f"{100 * (area[2] / area[-1] - 1):+.1f}"))
-    return _s3("steady_rows", periods="/".join(sorted({str(r["periods"]) for r in rows})),
-               cells="; ".join(cells), law_periods=law_periods,
-               full_cell_periods=f"{law_periods / 4:g}")
+def _fem_costs(ds) -> tuple[float, float]:
+    """Median full-FEM test and mean law point [s] of this run (the original solves)."""
+    t = ds["wall_time"].sel(model="fem").values
+    cost = json.loads(ds.attrs["model_cpu_time_s"])
+    n_law = ds.sizes["law_pressure"] * ds.sizes["velocity"]
+    return float(np.median(t[np.isfinite(t)])), cost.get("law (FEM, counted once)", 0) / n_law
 
 
-def _creep_sentence(ds, cfg: dict) -> str:
-    mat = rc.materials.GeneralizedMaxwell(**json.loads(ds.attrs["material"]))
-    v_max = float(ds["velocity"].max())
-    distance = (cfg.get("full_periods") or cfg["periods"]) * float(ds.attrs["period_mm"])
-    creep = 100 * float(mat.creep_compliance(distance / v_max)) * mat.equilibrium_modulus
-    return _s3("steady_creep", retardation=f"{1e3 * mat.retardation_times().max():.1f}",
-               relaxation=f"{1e3 * mat.relaxation_times.max():.1f}", distance=f"{distance:g}",
-               v_max=f"{v_max:g}", creep=f"{creep:.0f}")
-
-
-def steadiness_sentence(ds) -> str:
-    """Which FEM tests ended unsteady, and what running longer showed (measured)."""
-    from ._rows import read_rows
-
-    cfg = json.loads(ds.attrs["config"])["fem"]
-    parts = []
-    if "fem_steady" in ds:
-        st = ds["fem_steady"]
-        bad = st.where(st == 0).count(("realization",))
-        loads = [_s3("steady_load", count=int(bad.sel(velocity=v, pressure=p)),
-                     velocity=f"{v:g}", pressure=f"{p:g}")
-                 for v in ds["velocity"].values for p in ds["pressure"].values
-                 if int(bad.sel(velocity=v, pressure=p))]
-        parts.append(_s3("steady_full", unsteady=int((st == 0).sum()),
-                         tests=int(st.notnull().sum()), loads=", ".join(loads) or "none",
-                         periods=cfg.get("full_periods") or cfg["periods"]))
-    if "law_steady" in ds:
-        lst = ds["law_steady"]
-        parts.append(_s3("steady_law", unsteady=int((lst == 0).sum()),
-                         points=int(lst.notnull().sum()), periods=cfg["periods"]))
-    if not parts:
+def versus_transient_text(pairs: list[dict]) -> str:
+    """The steady full FEM against the time-stepped test of the same problem (measured)."""
+    if not pairs:
         return ""
-    text = _s3("steady", parts=" and ".join(parts))
-    rows = read_rows(STEADINESS_ROWS)
-    if rows:
-        text += " " + _steadiness_rows_sentence(rows, cfg["periods"])
-    return text + " " + _creep_sentence(ds, cfg) + " " + _s3("creep_settled")
+    parts = []
+    for v in sorted({p["velocity"] for p in pairs}):
+        sel = [p for p in pairs if p["velocity"] == v]
+        mu = 100 * np.array([p["steady"][0] / p["transient"][0] - 1 for p in sel])
+        a = 100 * np.array([p["steady"][1] / p["transient"][1] - 1 for p in sel])
+        parts.append(_s3("versus_transient_velocity", velocity=f"{v:g}", n=len(sel),
+                         mu_low=f"{mu.min():+.1f}", mu_high=f"{mu.max():+.1f}",
+                         mu_median=f"{np.median(np.abs(mu)):.1f}", a_low=f"{a.min():+.1f}",
+                         a_high=f"{a.max():+.1f}", a_median=f"{np.median(np.abs(a)):.1f}"))
+    ratio = np.array([p["steady"][2] / p["transient"][2] for p in pairs])
+    text = _s3("versus_transient", n=len(pairs), parts="; ".join(parts),
+               cost=_s3("versus_transient_cost", ratio=f"{np.median(ratio):.2f}",
+                        low=f"{ratio.min():.2f}", high=f"{ratio.max():.2f}"))
+    worst = sorted(pairs, key=lambda p: -abs(p["steady"][0] / p["transient"][0] - 1))[:3]
+    text += " " + _s3("versus_transient_creep", largest=", ".join(
+        f"{p['label']} ({100 * (p['steady'][0] / p['transient'][0] - 1):+.1f} % in μ, "
+        f"{100 * (p['steady'][1] / p['transient'][1] - 1):+.1f} % in A)" for p in worst))
+    return text
+
+
+def why240_sentence(ds) -> str:
+    fem, law = _fem_costs(ds)
+    return _s3("why240", law_cost=f"{law:.0f}", fem_cost=f"{fem:.0f}",
+               law_share=f"{law / fem:.2f}")
+
+
+def _rise_text(ds) -> str:
+    """Where the law cell's ū rises with the load (the face lifting off), per speed."""
+    parts = []
+    p = ds["law_pressure"].values
+    for v in ds["velocity"].values:
+        u = ds["law_mean_separation"].sel(velocity=v).values
+        up = np.flatnonzero(np.diff(u) >= 0)
+        if up.size:
+            k = int(up[0])
+            sel = slice(max(k - 1, 0), None)
+            parts.append(_s3("steady_rise", pressure=f"{p[k + 1]:g}", velocity=f"{v:g}",
+                             separations=joined(1e3 * u[sel], ".1f"),
+                             pressures=joined(p[sel], "g")))
+    return "; ".join(parts) if parts else _s3("steady_rise_none")
+
+
+def steady_sentence(ds, solves: list[dict] | None) -> str:
+    """How the FEM of this run was solved: steady, fallen back, its settled bulk shear."""
+    text = _s3("steady", solves="", shear="").rstrip()
+    if solves:
+        full = [s for s in solves if s["kind"] == "full"]
+        law = [s for s in solves if s["kind"] == "law"]
+        bad = not_steady(solves)
+        newton = [s["newton_iterations"] for s in full if s["solver"] == "steady"]
+        cases = "; ".join(f"{s['label']} ({s['solver']}: {s['status']})" for s in bad)
+        text += " " + _s3(
+            "steady_solves", n_full=len(full), n_law=len(law),
+            full_steady=sum(s["solver"] == "steady" for s in full),
+            law_steady=sum(s["solver"] == "steady" for s in law),
+            full_newton=f"{np.median(newton):.0f}" if newton else "-",
+            fallbacks=_s3("steady_fallbacks", count=len(bad), cases=cases) if bad
+            else _s3("steady_no_fallback"))
+    if "fem_bulk_shear" in ds and "law_bulk_shear" in ds:
+        shear = ds["fem_bulk_shear"].values
+        shear = shear[np.isfinite(shear)]
+        law = ds["law_bulk_shear"]
+        top = law["law_pressure"].values >= 4.0
+        v = float(ds["velocity"].values[0])
+        text += " " + _s3(
+            "steady_shear", full_shear=f"{shear.min():.2f}-{shear.max():.2f}",
+            law_shear=joined(law.sel(velocity=v).values[top], ".2f"),
+            law_pressures=joined(law["law_pressure"].values[top], "g"),
+            law_velocity=f"{v:g}", rise=_rise_text(ds))
+    return text
 
 
 def sampling_sentence(ds, target: float = 0.02) -> str:
@@ -257,7 +282,63 @@ def sheared_fem_text(extended: dict, relaxed_shear_modulus: float) -> str:
     if not parts:
         return ""
     text = "; ".join(parts)
-    return " " + text[0].upper() + text[1:] + ". " + _s3("extended_fem_caveat")
+    return (" " + text[0].upper() + text[1:] + ". " + _s3("extended_fem_caveat")
+            + settled_estimate_text(extended))
+
+
+#: The loads [MPa] at 50 mm/s of the time-stepped validation's settled estimate
+#: (docs/validation/settled_loads.md), quoted in ``settled_estimate``.
+SETTLED_ESTIMATE_LOADS = (0.8, 2.0)
+
+
+def settled_estimate_text(extended: dict, velocity: float = 50.0) -> str:
+    """The steady FEM's phase averages where the transient validation estimated them."""
+    if velocity not in extended:
+        return ""
+    data = extended[velocity]
+    curves = phase_mean_curves(data)["phase"]
+    p = np.asarray(data["pressures"])
+    ks = [np.flatnonzero(np.isclose(p, q)) for q in SETTLED_ESTIMATE_LOADS]
+    if any(k.size == 0 for k in ks):
+        return ""
+    (low,), (high,) = ks
+    area, mu = curves["fem"]
+    return " " + _s3("settled_estimate", mu_low=f"{mu[low]:.3f}", mu_high=f"{mu[high]:.3f}",
+                     area_high=f"{area[high]:.3f}")
+
+
+def reach_sentence(ds, extended: dict, target: float = 0.1) -> str:
+    """Whether the steady FEM's area reaches ``target`` at each speed: its phase average
+    over the extended loads where there are some, else its realization mean."""
+    parts, verdicts = [], []
+    for v in ds["velocity"].values:
+        v = float(v)
+        if v in extended:
+            area = phase_mean_curves(extended[v])["phase"]["fem"][0]
+            p = np.asarray(extended[v]["pressures"])
+        else:
+            area = ds["contact_fraction_mean"].sel(model="fem", velocity=v).values
+            p = ds["pressure"].values
+        ok = np.isfinite(area)
+        a, pk = area[ok], p[ok]
+        k = int(np.argmax(a))
+        if k < a.size - 1:
+            trend = f"the largest is {a[k]:.3f} at {pk[k]:g} MPa: the area stops growing"
+        elif a.size > 1:
+            trend = f"up from {a[-2]:.3f} at {pk[-2]:g} MPa"
+        else:
+            trend = "the only load"
+        parts.append(_s3("reach_velocity", area=f"{a[-1]:.3f}", velocity=f"{v:g}",
+                         pressure=f"{pk[-1]:g}", trend=trend))
+        if a.max() >= 0.95 * target:
+            verdicts.append(_s3("reach_yes", velocity=f"{v:g}", target=f"{target:g}"))
+        elif k < a.size - 1:
+            verdicts.append(_s3("reach_saturated", velocity=f"{v:g}", target=f"{target:g}",
+                                area=f"{a[k]:.3f}", pressure=f"{pk[k]:g}"))
+        else:
+            verdicts.append(_s3("reach_growing", velocity=f"{v:g}", target=f"{target:g}",
+                                pressure=f"{pk[-1]:g}"))
+    return _s3("reach", parts="; ".join(parts), verdict=" ".join(verdicts))
 
 
 def _eq28_cells(e: dict, ci: dict, bold: bool = False) -> str:
@@ -287,26 +368,6 @@ def extended_rows(extended: dict, relaxed_shear_modulus: float) -> tuple[list[st
     text = (_s3("extended", ranges="; ".join(ranges), n=n)
             + sheared_fem_text(extended, relaxed_shear_modulus))
     return rows, text
-
-
-def settled_rows(path: Path = SETTLED_EQ28) -> list[str]:
-    """Eq. 28 table rows of the creep-settled comparison (law and FEM both settled)."""
-    if not path.exists():
-        return []
-    rows = []
-    for rec in json.loads(path.read_text()):
-        if not (rec["fem"].startswith("settled") and rec["law"].startswith("creep-settled")):
-            continue
-        lo, hi = rec["areas"]
-        loads = "all loads" if rec["loads"] == "all" else rec["loads"]
-        fem = ("FEM" if rec["fem"] == "settled"
-               else f"FEM ({rec['fem'].replace('settled ', 'scaled ')})")
-        rows.append(f"| {rec['velocity']:g} | creep-settled {fem} and law, {loads} "
-                    f"(docs/validation/settled_loads.md): A = {lo:.3f}-{hi:.3f} | " + " | ".join(
-                        f"{100 * rec['error'][m]:.1f} % "
-                        f"({interval_text(*rec['interval'][m], rec['resamples'])})"
-                        if m in rec["interval"] else "-" for m in MODELS) + " | |")
-    return rows
 
 
 def area_at_equal_load_sentence(ds) -> str:
@@ -470,29 +531,36 @@ def plot_phase_curves(extended: dict, path: Path) -> Path:
     return path
 
 
-def _section3_prose(ds, wall: float, level: str) -> list[str]:
+def _section3_prose(ds, wall: float, level: str, solves: list[dict] | None,
+                    pairs: list[dict] | None = None) -> list[str]:
     """The paragraphs before the eq. 28 table: what the quick level reduces and why."""
     out = [_s3("level", level=level, realizations=ds.sizes["realization"],
                velocities=ds["velocity"].values.tolist(),
                fem=json.loads(ds.attrs["config"])["fem"], minutes=f"{wall / 60:.1f}")]
     if level == "quick":
-        out += ["", _reduced_sentence(ds), "", _s3("why240"), "", steadiness_sentence(ds),
+        out += ["", _reduced_sentence(ds), "", why240_sentence(ds), "",
+                steady_sentence(ds, solves), *(["", versus_transient_text(pairs)] if pairs
+                                               else []),
                 "", sampling_sentence(ds), "", per_realization_sentence(ds),
                 "", _fem_area_sentence(ds), "", _s3("below_vhs"), "", _s3("material_model")]
     return out
 
 
 def section3_report(ds, wall, figs, msgs, level, phase_data: dict | None = None,
-                    extended: dict | None = None) -> list[str]:
-    """Paper §3: eq. 28 of every model against the full FEM, and what limits it."""
-    out = [_s3("title"), "", *_section3_prose(ds, wall, level)]
+                    extended: dict | None = None,
+                    solves: list[dict] | None = None,
+                    pairs: list[dict] | None = None) -> list[str]:
+    """Paper §3: eq. 28 of every model against the full FEM, and what limits it (``solves``:
+    ``fem_solves`` of the run; ``pairs``: ``steady_vs_transient``)."""
+    out = [_s3("title"), "", *_section3_prose(ds, wall, level, solves, pairs)]
     out += ["", _s3("eq28_intro", level=f"{100 * INTERVAL_LEVEL:.0f}", resamples=RESAMPLES,
                     paper_realizations=PAPER_REALIZATIONS), "", *_eq28_table(ds, phase_data)]
     extended_text = None
     if extended:
         mat = rc.materials.GeneralizedMaxwell(**json.loads(ds.attrs["material"]))
         rows, extended_text = extended_rows(extended, mat.equilibrium_modulus / 3)
-        out += rows + settled_rows()
+        out += rows
+        extended_text += " " + reach_sentence(ds, extended)
         if figs:
             fig = plot_phase_curves(extended, figs[0].parent / "fig5_phase_averaged.png")
             extended_text += " " + _s3("fig5_phase", stem=fig.stem, path=repo_path(fig))

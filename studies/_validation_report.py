@@ -6,6 +6,7 @@ tables from the results, prose from ``templates/validation*.md`` (section 3:
 from __future__ import annotations
 
 import json
+import re
 from pathlib import Path
 
 import numpy as np
@@ -66,6 +67,196 @@ def cost_lines(ds) -> list[str]:
     return lines
 
 
+def fem_solves(cache: Path, keys) -> list[dict]:
+    """Every FEM solve among the task ``keys`` found in the result cache ``cache``.
+
+    One dict per solve: ``label`` (the task's), ``kind`` ("law" or "full"), ``solver``
+    ("steady", "transient", "transient (fallback)", or "failed"), ``status``, ``wall_time``
+    [s] and ``newton_iterations`` (a speed-path task gives one entry per speed).
+    """
+    import xarray as xr
+
+    from rubbercontact.sweep import ResultCache
+
+    store, out = ResultCache(cache), []
+    for key in sorted(keys):
+        entry = store.load(key)
+        if entry is None:
+            continue
+        attrs = xr.open_dataset(entry.path).attrs
+        if "fem_" not in str(attrs.get("rc_cache_task", "")):
+            continue
+        label = str(attrs.get("rc_cache_label", key[:12]))
+        kind = "law" if label.startswith("law") else "full"
+        if entry.status != "ok":
+            out.append({"label": label, "kind": kind, "solver": "failed",
+                        "status": entry.result.message, "wall_time": entry.wall_time,
+                        "newton_iterations": np.nan})
+            continue
+        res = entry.result
+        status = np.atleast_1d(res["status"].values if "status" in res
+                               else [res.attrs.get("status", "ok")]).astype(str)
+        for i, st in enumerate(status):
+            one = res.isel(velocity=i) if "velocity" in res.dims else res
+            out.append({"label": label if status.size == 1 else f"{label} #{i}", "kind": kind,
+                        "solver": str(res.attrs.get("solver", "?")) if st == "ok" or
+                        status.size == 1 else "failed", "status": str(
+                            res.attrs.get("status", st)) if status.size == 1 else st,
+                        "wall_time": float(one["wall_time"]) if "wall_time" in one
+                        else entry.wall_time,
+                        "newton_iterations": float(one["newton_iterations"])
+                        if "newton_iterations" in one else np.nan})
+    return out
+
+
+def _fem_signature(task: dict) -> str | None:
+    """What a full-FEM task solves (surface, rubber, speed, load, cell), without the solver
+    and its controls: the same for a steady and a time-stepped test of one problem."""
+    kw = task["kwargs"]
+    opts = kw.get("options", kw)              # older tasks: the options as keyword arguments
+    if "min_creep_times" in kw or "min_sliding_time" in str(kw.get("transient", "")):
+        return None
+    cell = {k: opts.get(k) for k in ("mesh", "grading", "height_ratio", "contact_points")}
+    cell["viscous_model"] = opts.get("viscous_model", "simo")
+    return json.dumps([kw["surface"], kw["material"], kw["velocity"], kw["mean_pressure"],
+                       cell], sort_keys=True)
+
+
+def steady_vs_transient(cache: Path, keys, reference: Path) -> list[dict]:
+    """The steady full-FEM solves among ``keys`` in ``cache`` next to the time-stepped test
+    of the same problem in ``reference`` (the tracked solves of the earlier validation; the
+    shortest slide where there are several): ``{label, velocity, steady, transient}`` with
+    ``(friction, contact fraction, wall time)`` each."""
+    import xarray as xr
+
+    def read(path):
+        with xr.open_dataset(path) as ds:
+            task = json.loads(ds.attrs["rc_cache_task"])
+            if not task["function"].endswith(":fem_task") or "wall_time" not in ds:
+                return None
+            values = tuple(float(ds[k]) for k in ("friction", "contact_fraction", "wall_time"))
+            return (task, str(ds.attrs.get("solver", "transient")), values,
+                    int(task["kwargs"].get("periods", {}).get("i", 0)))
+
+    old = {}
+    for path in sorted(reference.glob("sweep-v1/*/*.nc")):
+        rec = read(path)
+        if rec is None or rec[1] != "transient" or rec[0]["label"].startswith("law"):
+            continue
+        sig = _fem_signature(rec[0])
+        if sig is not None and (sig not in old or rec[3] < old[sig][3]):
+            old[sig] = rec
+    out = []
+    for key in sorted(keys):
+        path = cache / "sweep-v1" / key[:2] / f"{key}.nc"
+        rec = read(path) if path.exists() else None
+        if rec is None or rec[1] != "steady" or rec[0]["label"].startswith("law"):
+            continue
+        match = old.get(_fem_signature(rec[0]))
+        if match is not None:
+            out.append({"label": rec[0]["label"],
+                        "velocity": float(rec[0]["kwargs"]["velocity"]["f"]),
+                        "steady": rec[2], "transient": match[2]})
+    return out
+
+
+def not_steady(solves: list[dict]) -> list[dict]:
+    """The solves of :func:`fem_solves` that are not steady solutions (fallback, failed)."""
+    return [s for s in solves if s["solver"] != "steady"]
+
+
+def fem_solves_line(solves: list[dict]) -> str:
+    """One sentence: how many FEM solves of a case were steady, which fell back or failed."""
+    if not solves:
+        return ""
+    bad = not_steady(solves)
+    cases = "; ".join(f"{s['label']} ({s['solver']}: {s['status']})" for s in bad)
+    return render("validation", "fem_solves", n=len(solves),
+                  steady=len(solves) - len(bad),
+                  others=render("validation", "fem_solves_others", count=len(bad),
+                                cases=cases) if bad else
+                  render("validation", "fem_solves_none"))
+
+
+_FEM_TIMES = re.compile(r"The (\d+) full-FEM tests took (\d+) s each \(median; (\d+)-(\d+) s\), "
+                        r"the (\d+) law points (\d+) s on average")
+
+
+def eq28_rows(text: str) -> dict:
+    """``{(velocity, row label): (hybrid, windowed, VHS)}`` in per cent, read from the
+    eq. 28 table of a section 3 report (Markdown as this module writes it)."""
+    out, inside = {}, False
+    for line in text.splitlines():
+        if line.startswith("| velocity [mm/s] | realizations |"):
+            inside = True
+            continue
+        if inside and not line.startswith("|"):
+            break
+        cells = [c.strip().strip("*") for c in line.strip("|").split("|")]
+        if not inside or cells[0].startswith("---") or len(cells) < 5:
+            continue
+        values = []
+        for c in cells[2:5]:
+            m = re.match(r"\**([\d.]+) %", c)
+            values.append(float(m.group(1)) if m else float("nan"))
+        out[(cells[0], cells[1])] = tuple(values)
+    return out
+
+
+def _area_range(label: str) -> str:
+    m = re.search(r"A = ([\d.]+-[\d.]+)", label)
+    return f"A = {m.group(1)}" if m else "?"
+
+
+def fem_times(text: str) -> tuple[str, str] | None:
+    """``("404 s (213-956 s)", "108 s")``: the full-FEM and law-point times of a section 3
+    report, or None."""
+    m = _FEM_TIMES.search(text)
+    if m is None:
+        return None
+    return f"{m.group(2)} s ({m.group(3)}-{m.group(4)} s)", f"{m.group(6)} s"
+
+
+def what_changed(old: str, new: str) -> list[str]:
+    """The 'What changed' section of VALIDATION.md: section 3's eq. 28 and FEM cost, from
+    the frozen time-stepped report ``old`` and this run's ``new`` (both Markdown)."""
+    before, after = eq28_rows(old), eq28_rows(new)
+    if not before or not after:
+        return []
+
+    def kind(text):      # a row by its kind, whatever its N, R or area range
+        return "plain" if text.isdigit() else text.split(":")[0].split(" (N")[0]
+
+    out = [render("validation", "what_changed"), "",
+           "| v [mm/s] | eq. 28 row | hybrid | windowed hybrid | VHS |", "|---|---|---|---|---|"]
+    for key in before:
+        if kind(key[1]) not in ("plain", "first 5", "phase-averaged",
+                                "extended loads, all models"):
+            continue
+        new_key = next((k for k in after if k[0] == key[0] and kind(k[1]) == kind(key[1])),
+                       None)
+        if new_key is None:
+            continue
+        row = {"plain": f"all realizations ({key[1]} → {new_key[1]})",
+               "first 5": "first 5 realizations (the same surfaces)",
+               "phase-averaged": f"{key[1]} → {new_key[1]}".replace(
+                   " → phase-averaged", " →")}.get(kind(key[1]))
+        if row is None:
+            row = f"{kind(key[1])}: {_area_range(key[1])} → {_area_range(new_key[1])}"
+        out.append(f"| {key[0]} | {row} | " + " | ".join(
+            f"{a:.1f} % → **{b:.1f} %**" for a, b in zip(before[key], after[new_key],
+                                                        strict=True)) + " |")
+    versus = next((line for line in new.splitlines()
+                   if line.startswith("**Steady against time-stepped")), None)
+    if versus:
+        out += ["", versus]
+    t_old, t_new = fem_times(old), fem_times(new)
+    if t_old and t_new:
+        out += ["", render("validation", "what_changed_cost", old_fem=t_old[0],
+                           new_fem=t_new[0], old_law=t_old[1], new_law=t_new[1])]
+    return out + [""]
+
+
 def _asphalt_row(s, windowed: bool) -> str:
     def mu(m):
         return (f"{float(s['friction_mean'].sel(model=m)):.3f} "
@@ -84,7 +275,8 @@ def _asphalt_row(s, windowed: bool) -> str:
 _NUMBER_WORDS = ("no", "one", "two", "three", "four", "five", "six", "seven", "eight")
 
 
-def asphalt_report(ds, wall, figs, msgs, level, short_share) -> list[str]:
+def asphalt_report(ds, wall, figs, msgs, level, short_share,
+                   solves: list[dict] | None = None) -> list[str]:
     """Paper §4 on Table 2: the hybrid against the VHS, the law, the short waves' weight."""
     out = [render("validation_asphalt", "title"), "",
            render("validation_asphalt", "level", level=level,
@@ -113,11 +305,13 @@ def asphalt_report(ds, wall, figs, msgs, level, short_share) -> list[str]:
     for (v, p), share in short_share.items():
         out.append(f"| {v:g} | {p:g} | {100 * share:.0f} % |")
     out += ["", *cost_lines(ds), ""]
+    if solves:
+        out += [fem_solves_line(solves), ""]
     out += [f"![{f.stem}]({repo_path(f)})" for f in figs]
     return out + warning_lines(msgs) + [""]
 
 
-def captif_report(ds, wall, figs, msgs) -> list[str]:
+def captif_report(ds, wall, figs, msgs, solves: list[dict] | None = None) -> list[str]:
     """The real CAPTIF road profiles end to end: the fitted series and every model."""
     surf = json.loads(ds.attrs["surface"])
     window = json.loads(ds.attrs["config"])["surface"]["profiles"].get("window") or 16.0
@@ -140,5 +334,7 @@ def captif_report(ds, wall, figs, msgs) -> list[str]:
                      f"{float(s['contact_fraction_mean'].sel(model=m)):.4f}"
                      for m in ds["model"].values]
             out.append(f"| {v:g} | {p:g} | " + " | ".join(cells) + " |")
+    if solves:
+        out += ["", fem_solves_line(solves)]
     out += [""] + [f"![{f.stem}]({repo_path(f)})" for f in figs]
     return out + warning_lines(msgs) + [""]
