@@ -1,7 +1,7 @@
 """The comparisons of the validation: eq. 28 at equal area, its sampling intervals, the
 phase-averaged FEM (control variate) and the section 3 variants the studies reuse.
 
-Pure computations on the results of :func:`rubbercontact.hybrid.run` (``xarray`` datasets)
+Pure computations on the results of :func:`rubbercontact.pipeline.run` (``xarray`` datasets)
 and on the arrays of :func:`phase_average_data`; the words around them are in
 ``_validation_report`` and ``templates/``.
 """
@@ -20,7 +20,7 @@ from rubbercontact.hybrid.metrics import (
     mean_relative_error,
     rising_branch,
 )
-from rubbercontact.hybrid.pipeline import make_runner
+from rubbercontact.pipeline import make_runner
 
 #: The paper's eq. 28 error of the hybrid against its full FEM, per velocity [mm/s].
 PAPER_E = {10.0: 0.029, 50.0: 0.071}
@@ -213,7 +213,7 @@ def phase_average_data(ds, cfg, n: int = PHASE_REALIZATIONS) -> dict:
     cheap_cfg = rc.config.parse_config(data, source=f"section3 ({n} realizations)")
     with warnings.catch_warnings():
         warnings.simplefilter("ignore")   # the same law and loads: ds's run has warned
-        cheap = rc.hybrid.run(cheap_cfg, runner=make_runner(cheap_cfg, progress="log"))
+        cheap = rc.pipeline.run(cheap_cfg, runner=make_runner(cheap_cfg, progress="log"))
 
     def arrays(d, m, v):
         return tuple(d[k].sel(model=m, velocity=v).transpose("realization", "pressure").values
@@ -372,7 +372,7 @@ def extended_phase_data(cfg, phase_data: dict, used_keys: set[str] | None = None
 
             with warnings.catch_warnings():
                 warnings.simplefilter("ignore")    # the law warned in the main run
-                ds = rc.hybrid.run(ext_cfg, runner=recording)
+                ds = rc.pipeline.run(ext_cfg, runner=recording)
             merged = merge_phase_data(merged, phase_average_data(ds, ext_cfg, n)[v])
         out[v] = merged
     return out

@@ -35,8 +35,8 @@ from pathlib import Path
 
 import rubbercontact as rc
 from rubbercontact.config import load_config
-from rubbercontact.hybrid.pipeline import make_runner
 from rubbercontact.io.results import write_results
+from rubbercontact.pipeline import make_runner
 from rubbercontact.plotting.figures import plot_all
 from rubbercontact.sweep import ResultCache
 
@@ -135,7 +135,7 @@ def run_case(case, cfg, outdir: Path, used_keys: set[str] | None = None):
     t0 = time.perf_counter()
     with warnings.catch_warnings(record=True) as caught:
         warnings.simplefilter("always")
-        ds = rc.hybrid.run(cfg, runner=recording_runner)
+        ds = rc.pipeline.run(cfg, runner=recording_runner)
     wall = time.perf_counter() - t0
     path = outdir / case / "results.nc"
     write_results(ds, path, overwrite=True)
