@@ -401,7 +401,8 @@ def test_tests_that_slid_less_than_three_retardation_times_are_named(tmp_path):
     lam = float(mat.retardation_times().max())
     diag = {"sliding_time": np.array([[0.2 * lam, 3.5 * lam, np.nan, 0.0, 2.9 * lam]])}
     msg = creep_unsettled_message(diag, mat, lambda i, j: f"p{j}", "law")
-    assert msg.startswith("law: 2 of 4 FEM tests") and "first: p0 (3.3 ms), p4 (" in msg
+    assert msg.startswith("law: 2 of 4 time-stepped FEM tests")
+    assert "first: p0 (3.3 ms), p4 (" in msg
     assert creep_unsettled_message(diag, rc.materials.GeneralizedMaxwell.elastic(4.0),
                                    lambda i, j: "", "law") is None
     assert creep_unsettled_message({"sliding_time": np.array([4 * lam])}, mat,
@@ -414,8 +415,9 @@ def test_tests_that_slid_less_than_three_retardation_times_are_named(tmp_path):
                            "sliding_time": t})
 
     hs = rc.roughness.high_slope_wave()
-    with pytest.warns(rc.hybrid.LawWarning, match=r"law: 1 of 2 FEM tests slid less than 3 "
-                                                  r"retardation times \(16.3 ms\).*v=50 p=1"):
+    with pytest.warns(rc.hybrid.LawWarning, match=r"law: 1 of 2 time-stepped FEM tests .*slid "
+                                                  r"less than 3 retardation times \(16.3 ms\)"
+                                                  r".*v=50 p=1"):
         law = assemble_law([res(10 * lam), res(0.5 * lam)], [0.5, 1.0], [50.0], hs, mat, {})
     assert law["sliding_time"].attrs["units"] == "s"
 

@@ -69,11 +69,11 @@ def creep_unsettled_message(diag: dict, material: GeneralizedMaxwell, label, wha
         return None
     where = ", ".join(f"{label(*idx)} ({1e3 * t[idx]:.1f} ms)" for idx in short[:6])
     ran = int(np.isfinite(t).sum())
-    return (f"{what}: {len(short)} of {ran} FEM tests slid less than {times:g} retardation "
-            f"times ({1e3 * lam.max():.1f} ms), shortest first: {where}"
+    return (f"{what}: {len(short)} of {ran} time-stepped FEM tests (fem.solver = "
+            f"'transient', or fallbacks of the steady solver) slid less than {times:g} "
+            f"retardation times ({1e3 * lam.max():.1f} ms), shortest first: {where}"
             f"{', ...' if len(short) > 6 else ''}; the bulk may still creep although periods "
-            f"agree: use fem.solver = 'steady' or fem.min_creep_times "
-            f"(docs/validation/creep_settled.md)")
+            f"agree: fem.min_creep_times slides them longer (docs/validation/creep_settled.md)")
 
 
 def sheared_cells_message(diag: dict, label, what: str,
@@ -552,13 +552,26 @@ def tabulated_law_from_dict(table: dict):
                         shear_stress=np.asarray(table["shear_stress"]))
 
 
-def check_coverage(law: xr.Dataset, velocity: float, max_local_pressure: float) -> None:
-    """Warn when the low-slope solve reached pressures beyond the law's successful FEM range."""
+def law_top(law: xr.Dataset, velocity: float) -> float:
+    """Highest pressure [MPa] of the law's successful FEM points at ``velocity`` (0 if none)."""
     row = law.sel(velocity=velocity, method="nearest")
     ok = row["status"].values == "ok"
-    pmax = float(row["pressure"].values[ok].max()) if ok.any() else 0.0
-    if max_local_pressure > pmax:
-        warnings.warn(f"law at v={velocity} mm/s is extrapolated: local low-slope pressure "
-                      f"reaches {max_local_pressure:.3g} MPa, the FEM table ends at {pmax:.3g} "
-                      f"MPa (beyond, the law follows the linear law's shape anchored at the "
-                      f"last FEM point); add higher law pressures", LawWarning, stacklevel=2)
+    return float(row["pressure"].values[ok].max()) if ok.any() else 0.0
+
+
+def check_coverage(law: xr.Dataset, reached: dict[float, float]) -> None:
+    """Warn once when the low-slope solve reached pressures beyond the law's successful
+    FEM range: ``reached`` maps each speed [mm/s] to the highest local pressure [MPa]."""
+    over = {v: (p, law_top(law, v)) for v, p in reached.items() if p > law_top(law, v)}
+    if not over:
+        return
+    vs = sorted(over)
+    where = (f"v={vs[0]:g} mm/s" if len(vs) == 1 else
+             f"{len(vs)} of {len(reached)} speeds ({vs[0]:.3g} … {vs[-1]:.3g} mm/s)")
+    top = max(p for p, _ in over.values())
+    ends = sorted({t for _, t in over.values()})
+    end_text = f"{ends[0]:.3g}" if len(ends) == 1 else f"{ends[0]:.3g}–{ends[-1]:.3g}"
+    warnings.warn(f"law at {where} is extrapolated: local low-slope pressure reaches "
+                  f"{top:.3g} MPa, the FEM table ends at {end_text} MPa (beyond, the law "
+                  f"follows the linear law's shape anchored at the last FEM point); add "
+                  f"higher law pressures", LawWarning, stacklevel=2)
