@@ -85,7 +85,7 @@ def report(rows: list[dict], surfaces: dict) -> str:
         mine = [r for r in rows if r["cell"] == name]
         ok = [r for r in mine if r["solver"] == "steady"]
         cpu = np.array([r["cpu_s"] for r in ok]) if ok else np.array([np.nan])
-        lines += [render("steep_cells", "cell", name=name, waves=waves, period=surf.period,
+        lines += [render("steep_cells", "cell", cell_name=name, waves=waves, period=surf.period,
                          points=len(mine), steady=len(ok),
                          fallback=sum(r["solver"].startswith("transient") for r in mine),
                          failed=sum(r["solver"] == "failed" for r in mine),
