@@ -215,3 +215,13 @@ def test_speed_and_temperature_figures_are_drawn(tmp_path):
     assert {"friction_vs_speed.png", "contact_vs_speed.png",
             "friction_vs_temperature.png"} <= written
     assert all((tmp_path / "fig" / n).stat().st_size > 10_000 for n in written)
+
+
+def test_a_law_mesh_too_coarse_is_named_before_any_task_runs(tmp_path, capsys):
+    # section 3's law cell is one 0.0625 mm wave: 4 columns cannot mesh it. The run must
+    # say so, naming the config key, before it computes (or caches) anything.
+    cfg = _config(tmp_path, surface={"preset": "section3"}, models=["hybrid"],
+                  material={"preset": "sbr"}, fem={"mesh": [4, 4]})
+    with pytest.raises(InputError, match=r"fem\.mesh: the law cell.*elements per shortest"):
+        rc.pipeline.run(cfg, progress=False)
+    assert not (tmp_path / "cache").exists()
