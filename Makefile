@@ -47,4 +47,4 @@ lint: $(VENV)/.installed
 	$(BIN)/ruff check src tests benchmarks studies
 
 clean:
-	rm -rf $(VENV) results
+	rm -rf $(VENV) results docs/_build docs/api/generated docs/auto_examples
