@@ -11,6 +11,7 @@ PARTS = [("halfspace.md", "Half-space (BEM) solver"),
          ("sweep.md", "Sweeps: Dask executor and result cache"),
          ("speed_sweep.md", "Speed sweeps: friction against speed from an empty cache"),
          ("make_run.md", "make run from an empty cache"),
+         ("prony_fit.md", "Prony fit of DMA data against pyvisco"),
          ("meanfield.md", "Mean-field model")]
 
 
