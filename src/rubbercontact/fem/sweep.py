@@ -13,7 +13,9 @@ middle (BENCHMARKS.md, "Steady FEM"). A point whose continuation fails is solved
 
 from __future__ import annotations
 
-from collections.abc import Sequence
+import time
+from collections.abc import Iterator, Sequence
+from dataclasses import dataclass
 
 import numpy as np
 
@@ -81,8 +83,39 @@ def steady_sweep(surface, material, mean_pressures: Sequence[float] | float,
         raise InputError(f"mean_pressures ({p.size}) and velocities ({v.size}): give one "
                          f"value and a sequence, or two sequences of equal length")
     out: list[SlidingTestResult | None] = [None] * p.size
-    for i, j in continuation_order(p.size, first):
-        start = None if j is None else out[j].state   # None after a transient fallback
-        out[i] = steady_sliding(surface, material, float(p[i]), float(v[i]), options=opts,
-                                start=start)
+    for point in sweep_points(surface, material, p, v, opts, first):
+        out[point.index] = point.result
     return out
+
+
+@dataclass(frozen=True)
+class SweepPoint:
+    """One point of :func:`sweep_points`: its ``index`` in the path, its ``result`` (None
+    if it failed), the ``error`` it failed with, and its ``wall`` time [s]."""
+
+    index: int
+    result: SlidingTestResult | None
+    error: Exception | None
+    wall: float
+
+
+def sweep_points(surface, material, p: np.ndarray, v: np.ndarray, options: FemOptions,
+                 first: int | None = None, errors: tuple[type[Exception], ...] = ()
+                 ) -> Iterator[SweepPoint]:
+    """The steady tests of a path ``(p[i], v[i])`` in :func:`continuation_order`, each
+    started from its neighbour's state. A point failing with one of ``errors`` is yielded
+    with its error and passes its neighbour's state on (the solver presses afresh when the
+    continuation from it fails); other errors propagate."""
+    states: list = [None] * len(p)
+    for i, j in continuation_order(len(p), first):
+        start = None if j is None else states[j]     # None after a transient fallback
+        t0 = time.perf_counter()
+        try:
+            res = steady_sliding(surface, material, float(p[i]), float(v[i]),
+                                 options=options, start=start)
+        except errors as exc:
+            states[i] = start
+            yield SweepPoint(i, None, exc, time.perf_counter() - t0)
+            continue
+        states[i] = res.state
+        yield SweepPoint(i, res, None, time.perf_counter() - t0)

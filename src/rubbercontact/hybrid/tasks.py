@@ -159,28 +159,10 @@ def fem_task(surface: dict, material: dict, velocity: float, mean_pressure: floa
     opts = fem.FemOptions.from_dict(options or {})
     surf = _surface(surface)
     out = fem.sliding_test(surf, _material(material), mean_pressure, velocity, options=opts)
-    st = out.stats
-    if st.solver == "steady":
-        sliding_time = np.inf                 # the settled state
-    else:
-        sliding_time = st.periods * surf.period / velocity if velocity > 0 else 0.0
-    values = {
-        "friction": out.friction, "shear_stress": out.shear_stress,
-        "contact_fraction": out.contact_fraction, "mean_separation": out.mean_separation,
-        "mean_pressure": mean_pressure, "velocity": velocity,
-        "wall_time": time.perf_counter() - t0,
-        "steps": st.steps, "newton_iterations": st.newton_iterations, "cutbacks": st.cutbacks,
-        "krylov_iterations": st.krylov_iterations,
-        "max_penetration": st.max_penetration, "steady": int(st.steady),
-        "period_change": st.period_change, "period_area_change": st.period_area_change,
-        "max_segment_penetration": st.max_segment_penetration,
-        "bulk_shear": st.bulk_shear, "surface_offset": st.surface_offset,
-        # how long it slid (the bulk creeps on the longest retardation time; see law.py)
-        "sliding_time": sliding_time,
-    }
-    ds = _scalars(values, {"model": "fem", "solver": st.solver, "status": st.status})
-    for k, unit in (("sliding_time", "s"), ("max_penetration", "mm"),
-                    ("max_segment_penetration", "mm"), ("surface_offset", "mm")):
+    values = _fem_scalars(out, surf, velocity, mean_pressure, time.perf_counter() - t0)
+    ds = _scalars(values, {"model": "fem", "solver": out.stats.solver,
+                           "status": out.stats.status})
+    for k, unit in _FEM_UNITS.items():
         ds[k].attrs["units"] = unit
     prof = out.pressure_profile
     ds["x_fem"] = ("x_fem", np.asarray(prof.x), {"units": "mm"})
@@ -214,34 +196,28 @@ def fem_speed_path_task(surface: dict, material: dict, velocities: list, mean_pr
     """
     from .. import fem
     from ..errors import ConvergenceError
+    from ..fem.sweep import sweep_points
 
     opts = fem.FemOptions.from_dict(options or {})
     if opts.solver != "steady":
         raise InputError("fem_speed_path_task: continuation in speed needs solver = 'steady'")
     surf, mat = _surface(surface), _material(material)
-    n = len(velocities)
-    rows: list = [None] * n
-    status = ["not run"] * n
-    states: list = [None] * n     # a failed point passes its neighbour's state on
-    for i, j in fem.continuation_order(n):
-        t0 = time.perf_counter()
-        start = None if j is None else states[j]
-        try:
-            out = fem.steady_sliding(surf, mat, mean_pressure, float(velocities[i]),
-                                     options=opts, start=start)
-        except (ConvergenceError, InputError, FloatingPointError, np.linalg.LinAlgError) as exc:
-            status[i] = f"{type(exc).__name__}: {exc}"
-            states[i] = start
+    v = np.asarray(velocities, float)
+    rows: list = [None] * v.size
+    status = ["not run"] * v.size
+    for pt in sweep_points(surf, mat, np.full(v.size, mean_pressure), v, opts, errors=(
+            ConvergenceError, InputError, FloatingPointError, np.linalg.LinAlgError)):
+        if pt.result is None:
+            status[pt.index] = f"{type(pt.error).__name__}: {pt.error}"
             continue
-        states[i] = out.state
-        rows[i] = _fem_scalars(out, surf, float(velocities[i]), mean_pressure,
-                               time.perf_counter() - t0)
-        status[i] = "ok"
+        rows[pt.index] = _fem_scalars(pt.result, surf, float(v[pt.index]), mean_pressure,
+                                      pt.wall)
+        status[pt.index] = "ok"
     names = [k for k in next((r for r in rows if r is not None), {"friction": 0.0})
              if k != "velocity"]             # the speed is the coordinate
     data = {k: ("velocity", [np.nan if r is None else r[k] for r in rows],
                 {"units": _FEM_UNITS.get(k, _UNITS.get(k, "1"))}) for k in names}
-    ds = xr.Dataset(data, coords={"velocity": ("velocity", np.asarray(velocities, float),
+    ds = xr.Dataset(data, coords={"velocity": ("velocity", v,
                                                {"units": "mm/s"})},
                     attrs={"model": "fem", "solver": "steady", "path": "continuation in speed"})
     ds["status"] = ("velocity", np.array(status, dtype=str))
@@ -254,7 +230,7 @@ _FEM_UNITS = {"sliding_time": "s", "max_penetration": "mm", "max_segment_penetra
 
 def _fem_scalars(out, surf: SineSeries, velocity: float, mean_pressure: float,
                  wall: float) -> dict:
-    """The scalars :func:`fem_task` reports, of one steady result."""
+    """The scalars :func:`fem_task` reports, of one sliding-test result."""
     st = out.stats
     sliding_time = (np.inf if st.solver == "steady"
                     else st.periods * surf.period / velocity if velocity > 0 else 0.0)
