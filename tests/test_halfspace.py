@@ -213,6 +213,7 @@ def test_bad_input(kwargs, field):
     ({"mixed_newton": 1}, "mixed_newton"),
     ({"complex_preconditioner_maxiter": 0}, "complex_preconditioner_maxiter"),
     ({"dense_max_points": -1}, "dense_max_points"),
+    ({"dense_max_set": 1.5}, "dense_max_set"),
     ({"coarse_min_points": 2.5}, "coarse_min_points"),
     ({"wall_soft_linear_rtol": 0.0}, "wall_soft_linear_rtol"),
 ])
@@ -286,7 +287,9 @@ def test_coarse_grid_start_gives_the_single_grid_answer(law):
 #: The solver's plain paths: Newton on σ = f(u) only, Hermitian preconditioner, single-shift
 #: kernel, GMRES on every grid.
 PLAIN = SolverOptions(mixed_newton=False, complex_preconditioner=False, multi_shift=False,
-                      dense_max_points=0)
+                      dense_max_points=0, dense_max_set=0)
+#: GMRES on every contact set (the preconditioners under test), the fast paths otherwise.
+KRYLOV = SolverOptions(dense_max_points=0, dense_max_set=0)
 
 
 @pytest.mark.parametrize("pressure", [0.38, 3.3])  # ~5 % and ~30 % contact
@@ -310,8 +313,8 @@ def test_newton_iterations_do_not_grow_with_n():
     """Steep law, 30 % contact: Newton steps equal and GMRES iterations nearly equal from
     N = 2^12 to 2^16 (the multi-shift preconditioner follows the resolved contact edges)."""
     surf = rc.roughness.section3(phases=[0.3, 1.2, 2.5])
-    runs = [solve_sliding(surf, None, SBR, 10.0, 3.3, n=n, law=LennardJonesRepulsion())
-            for n in (2**12, 2**14, 2**16)]
+    runs = [solve_sliding(surf, None, SBR, 10.0, 3.3, n=n, law=LennardJonesRepulsion(),
+                          options=KRYLOV) for n in (2**12, 2**14, 2**16)]
     assert len({r.iterations for r in runs}) == 1
     lin = [r.info["linear_iterations"] for r in runs]
     # measured 50, 67, 59; the plain preconditioner needed ~3.7x more at 2^16 than at 2^12
@@ -326,8 +329,7 @@ def test_dense_coarse_solve_matches_gmres(velocity):
     surf = rc.roughness.section3(phases=[0.3, 1.2, 2.5])
     dense = [solve_sliding(surf, None, SBR, velocity, 0.5, n=256, law=law)
              for law in (None, LennardJonesRepulsion())]
-    krylov = [solve_sliding(surf, None, SBR, velocity, 0.5, n=256, law=law,
-                            options=SolverOptions(dense_max_points=0))
+    krylov = [solve_sliding(surf, None, SBR, velocity, 0.5, n=256, law=law, options=KRYLOV)
               for law in (None, LennardJonesRepulsion())]
     for d, k in zip(dense, krylov, strict=True):
         np.testing.assert_array_equal(d.pressure > 0, k.pressure > 0)
@@ -338,14 +340,32 @@ def test_dense_coarse_solve_matches_gmres(velocity):
         np.testing.assert_allclose(d.pressure, k.pressure, atol=1e-6 * k.pressure.max())
 
 
+@pytest.mark.parametrize("velocity, pressure", [(10.0, 0.05), (100.0, 0.4), (1e-3, 0.4)])
+def test_dense_contact_set_solve_matches_gmres(velocity, pressure):
+    """On a fine grid (N = 8192, the asphalt's 8 waves, 0.2–9 % contact) the contact-set
+    systems solved directly on the set's block of the circulant give the GMRES answer: same
+    contact set, μ, area and ū to the linear and Newton tolerance 1e-8 (μ ≈ 1e-3 at 1e-3 mm/s
+    is a cancellation of O(1) terms: absolute 1e-8 there)."""
+    surf = rc.roughness.asphalt_ac8()
+    for law in (None, LennardJonesRepulsion()):
+        dense = solve_sliding(surf, None, SBR, velocity, pressure, n=8192, law=law)
+        krylov = solve_sliding(surf, None, SBR, velocity, pressure, n=8192, law=law,
+                               options=KRYLOV)
+        np.testing.assert_array_equal(dense.pressure > 0, krylov.pressure > 0)
+        assert dense.friction == pytest.approx(krylov.friction, rel=1e-7, abs=1e-8)
+        assert dense.contact_fraction == pytest.approx(krylov.contact_fraction, rel=1e-7)
+        assert dense.mean_separation == pytest.approx(krylov.mean_separation, rel=1e-7)
+
+
 def test_complex_preconditioner_fallback():
     """When GMRES with the complex preconditioner stalls, the Hermitian one takes over (forced
     here by allowing it a single iteration): same hard-wall and steep-law answers."""
     surf = rc.roughness.section3(phases=[0.3, 1.2, 2.5])
-    ref = [solve_sliding(surf, None, SBR, 10.0, 3.3, n=4096, law=law)
+    ref = [solve_sliding(surf, None, SBR, 10.0, 3.3, n=4096, law=law, options=KRYLOV)
            for law in (None, LennardJonesRepulsion())]
     forced = [solve_sliding(surf, None, SBR, 10.0, 3.3, n=4096, law=law,
-                            options=SolverOptions(complex_preconditioner_maxiter=1))
+                            options=SolverOptions(complex_preconditioner_maxiter=1,
+                                                  dense_max_set=0))
               for law in (None, LennardJonesRepulsion())]
     for f, r in zip(forced, ref, strict=True):
         # both converged to 1e-8 (hard wall: linear tolerance; law: Newton residual)

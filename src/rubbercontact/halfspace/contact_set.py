@@ -86,10 +86,10 @@ def _shift_weights(c: np.ndarray, shifts: np.ndarray) -> np.ndarray:
 
 def _solve_dense(prob: Problem, idx: np.ndarray, rhs: np.ndarray, total: float,
                  c: np.ndarray | None) -> LinearSolve:
-    """Direct solve of the contact-set system on a small 1D grid (bordered dense system)."""
+    """Direct solve of the contact-set system in 1D (bordered dense system on the set)."""
     nb = idx.size
     a = np.empty((nb + 1, nb + 1))
-    a[:nb, :nb] = prob.dense()[np.ix_(idx, idx)]
+    a[:nb, :nb] = prob.restricted(idx)
     if c is not None:
         a[np.arange(nb), np.arange(nb)] += c
     a[:nb, nb] = 1.0
@@ -125,7 +125,8 @@ def contact_solve(prob: Problem, idx: np.ndarray, rhs: np.ndarray, total: float,
     """
     nb = idx.size
     opts = prob.options
-    if len(prob.shape) == 1 and prob.size <= opts.dense_max_points:
+    if len(prob.shape) == 1 and (prob.size <= opts.dense_max_points
+                                 or nb <= opts.dense_max_set):
         return _solve_dense(prob, idx, rhs, total, c)
     buf = np.zeros(prob.size)
     m_diag = prob.compliance_diagonal

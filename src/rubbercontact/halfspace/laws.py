@@ -62,6 +62,14 @@ class InteractionLaw:
         return SumLaw(self, other)
 
 
+def _ninth_power(r: np.ndarray) -> np.ndarray:
+    """``r**9`` by three squarings and a product: the wall is evaluated on every grid point
+    in every Newton and bisection step, and ``np.power`` with a float exponent costs ~5×."""
+    r2 = r * r
+    r4 = r2 * r2
+    return r4 * r4 * r
+
+
 @dataclass(frozen=True)
 class LennardJonesRepulsion(InteractionLaw):
     """Adhesionless integrated Lennard-Jones wall–wall repulsion ``σ = p_ref (ℓ/u)⁹``.
@@ -117,7 +125,7 @@ class LennardJonesRepulsion(InteractionLaw):
         u = np.asarray(u, dtype=float)
         umin = 0.25 * ell
         us = np.maximum(u, umin)
-        sig = p * (ell / us) ** 9
+        sig = p * _ninth_power(ell / us)
         below = u < umin
         if np.any(below):
             s_min = p * 4.0**9
@@ -129,7 +137,7 @@ class LennardJonesRepulsion(InteractionLaw):
         ell, p = self._params()
         u = np.asarray(u, dtype=float)
         us = np.maximum(u, 0.25 * ell)
-        return 9.0 * p * (ell / us) ** 9 / us
+        return 9.0 * p * _ninth_power(ell / us) / us
 
     def in_contact(self, u):
         ell, _ = self._params()

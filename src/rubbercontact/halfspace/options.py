@@ -38,6 +38,10 @@ class SolverOptions:
     dense_max_points : int, default 256
         1D grids of at most this many points solve the contact-set systems directly (dense
         bordered matrix); 0: GMRES on every grid.
+    dense_max_set : int, default 1024
+        1D contact sets of at most this many points solve the contact-set systems directly
+        on any grid (the set's block of the circulant ``M``, gathered from one column);
+        0: only grids of at most ``dense_max_points`` points.
     coarse_min_points : int or None, default 256
         Smallest grid of the coarse-grid start of the viscoelastic hard wall: a 1D grid of
         ``N >= 4 × coarse_min_points`` points, ``N`` divisible by 4, starts from the solution
@@ -61,6 +65,7 @@ class SolverOptions:
     multi_shift: bool = True
     multi_shift_min_points: int = 32
     dense_max_points: int = 256
+    dense_max_set: int = 1024
     coarse_min_points: int | None = 256
     coarse_polish_updates: int = 16
     mixed_newton: bool = True
@@ -80,7 +85,7 @@ class SolverOptions:
                         or not 0.0 < value < 1.0:
                     raise InputError(f"{name}: expected a number in (0, 1), got {value!r}")
             elif value is not None or "None" not in f.type:
-                smallest = 0 if f.name == "dense_max_points" else 1
+                smallest = 0 if f.name in ("dense_max_points", "dense_max_set") else 1
                 if isinstance(value, bool) or not isinstance(value, numbers.Integral) \
                         or value < smallest:
                     allowed = " or None" if "None" in f.type else ""

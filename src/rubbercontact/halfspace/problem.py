@@ -99,6 +99,7 @@ class Problem:
     matvecs: int = 0
     _pre: np.ndarray | None = None
     _dense: np.ndarray | None = None
+    _column: np.ndarray | None = None
 
     @property
     def size(self) -> int:
@@ -116,13 +117,25 @@ class Problem:
     def displacement(self, sigma: np.ndarray) -> np.ndarray:
         return self.apply(self.compliance, sigma)
 
+    def column(self) -> np.ndarray:
+        """Response of ``M`` to a unit pressure at point 0 (1D; cached): the circulant's
+        first column, ``(M σ)_i = Σ_j col[(i − j) mod n] σ_j``."""
+        if self._column is None:
+            self._column = kn.inverse(self.compliance, self.shape).ravel()
+        return self._column
+
     def dense(self) -> np.ndarray:
         """Dense (circulant) matrix of ``M`` on a 1D grid (cached; small grids only)."""
         if self._dense is None:
-            col = kn.inverse(self.compliance, self.shape)  # response to a unit pressure at 0
             i = np.arange(self.size)
-            self._dense = col[(i[:, None] - i[None, :]) % self.size]
+            self._dense = self.restricted(i)
         return self._dense
+
+    def restricted(self, idx: np.ndarray) -> np.ndarray:
+        """Dense matrix of ``M`` between the 1D grid points ``idx`` (``M[idx][:, idx]``)."""
+        if self._dense is not None:
+            return self._dense[np.ix_(idx, idx)]
+        return self.column()[(idx[:, None] - idx[None, :]) % self.size]
 
     def preconditioner(self) -> np.ndarray:
         """Hard-wall preconditioner kernel ``1/M`` (or ``1/Re M``, see the options; cached)."""
