@@ -22,10 +22,12 @@ where ``c > m_d`` (the diagonal of ``M``) the point is preconditioned by ``1/(c 
 at least ``options.multi_shift_min_points`` points have ``c > 10 c̄`` (resolved edges) the kernel
 becomes the variable-coefficient ``1/(M(q) + c(x))``, interpolated in ``log c`` between the
 shifts ``c̄, √(c̄ m_d), m_d`` (one forward and three inverse FFTs per application); the Newton
-iteration counts then stay flat in N. 1D grids of at most ``options.dense_max_points`` points
-(the coarsest level of the multilevel starts) solve the system directly (dense bordered
-matrix), where GMRES would be all Python overhead. Iteration counts are measured in
-``benchmarks/halfspace.md``.
+iteration counts then stay flat in N. In 1D, a contact set of at most
+``options.dense_max_set`` points (or any set on a grid of at most ``options.dense_max_points``
+points) is solved directly: the set's block of the circulant ``M`` is gathered from one column
+and the bordered system factorised. That is exact and, for the few percent of contact of a
+rubber on a road, cheaper than GMRES, each of whose iterations costs two FFTs of the whole
+grid. Iteration counts and timings are measured in ``benchmarks/halfspace.md``.
 """
 
 from __future__ import annotations
