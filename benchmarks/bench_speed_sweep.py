@@ -40,7 +40,7 @@ CONFIG = {
 }
 
 
-def run(workers: int) -> dict:
+def run(workers: int, save: Path | None = None) -> dict:
     with tempfile.TemporaryDirectory() as tmp:
         cfg = {**CONFIG, "execution": {"workers": workers, "cache": str(Path(tmp) / "cache")},
                "output": {"directory": str(Path(tmp) / "out")}}
@@ -49,6 +49,12 @@ def run(workers: int) -> dict:
             warnings.simplefilter("always")
             ds = rc.pipeline.run(cfg, progress="log")
         wall = time.perf_counter() - t0
+    if save is not None:
+        # the results with their law table: bench_halfspace_sweep.py reruns the half-space
+        # part from it without the FEM
+        from rubbercontact.io.results import write_results
+
+        write_results(ds, save, overwrite=True)
     timings = json.loads(ds.attrs["timings_s"])
     cpu = json.loads(ds.attrs["model_cpu_time_s"])
     law_ok = int(np.isfinite(ds["law_friction"]).sum())
@@ -91,11 +97,12 @@ def main() -> None:
     ap = argparse.ArgumentParser(description=__doc__.splitlines()[0])
     ap.add_argument("--workers", type=int, default=2)
     ap.add_argument("--output", type=Path)
+    ap.add_argument("--save", type=Path, help="write the results (with the law) to NetCDF")
     args = ap.parse_args()
     commit = subprocess.run(["git", "rev-parse", "--short", "HEAD"], capture_output=True,
                             text=True, check=False).stdout.strip() or "?"
     load0 = os.getloadavg()[0]
-    res = run(args.workers)
+    res = run(args.workers, args.save)
     head = (f"{time.strftime('%Y-%m-%d %H:%M UTC', time.gmtime())}, commit {commit}, "
             f"{platform.processor() or platform.machine()}, {os.cpu_count()} cores, "
             f"{args.workers} workers, one thread each; load average {load0:.1f} at the start, "

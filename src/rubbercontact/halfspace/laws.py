@@ -247,6 +247,8 @@ class TabulatedLaw(InteractionLaw):
             logp = None
             d0 = d1 = 0.0
         c["logp"] = logp
+        # derivatives built once: PPoly.derivative() builds a new polynomial on every call
+        c["dlogp"] = None if logp is None else logp.derivative()
         # stiff continuation below the table: never flatter than the first secant nor than
         # one e-fold over the table's span (a strictly rising pressure, no plateau)
         secant = (np.log(s[1]) - np.log(s[0])) / (u[1] - u[0]) if s[1] > 0 else 0.0
@@ -255,13 +257,16 @@ class TabulatedLaw(InteractionLaw):
         # last segment (last positive sample -> first zero sample), linear-space PCHIP
         c["tail"] = (_pchip_with_slopes(u[npos - 1:npos + 1], s[npos - 1:npos + 1])
                      if zero.size else None)
+        c["dtail"] = None if c["tail"] is None else c["tail"].derivative()
         c["companions"] = {}
         for name, tab in (("alpha", self.contact_fraction_table),
                           ("tau", self.shear_stress_table)):
             c["companions"][name] = None if tab is None else _pchip_with_slopes(u, tab)
 
     # -- evaluation ----------------------------------------------------------------
-    def _eval(self, u: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
+    def _eval(self, u: np.ndarray, stiffness: bool = True) -> tuple[np.ndarray, np.ndarray]:
+        """``(σ(u), k(u) = −σ'(u))``; ``k`` is left 0 unless ``stiffness`` (the law is
+        evaluated on the whole grid in every Newton and line-search step)."""
         c = self._cache
         tab_u, tab_s = self.separation, self.pressure_table
         npos = c["npos"]
@@ -281,16 +286,18 @@ class TabulatedLaw(InteractionLaw):
         upos = tab_u[npos - 1]
         mid = (u >= u0) & (u <= upos)
         if np.any(mid) and c["logp"] is not None:
-            lp = c["logp"](u[mid])
-            sig[mid] = np.exp(lp)
-            k[mid] = -c["logp"].derivative()(u[mid]) * sig[mid]
+            um = u[mid]
+            sig[mid] = np.exp(c["logp"](um))
+            if stiffness:
+                k[mid] = -c["dlogp"](um) * sig[mid]
         elif np.any(mid):  # single positive sample: only u == u0 can land here
             sig[mid] = s0
         if c["tail"] is not None:
             seg = (u > upos) & (u < c["u_zero"])
             if np.any(seg):
                 sig[seg] = c["tail"](u[seg])
-                k[seg] = -c["tail"].derivative()(u[seg])
+                if stiffness:
+                    k[seg] = -c["dtail"](u[seg])
         else:
             hi = u > upos
             if np.any(hi):
@@ -299,7 +306,7 @@ class TabulatedLaw(InteractionLaw):
         return np.maximum(sig, 0.0), np.maximum(k, 0.0)
 
     def pressure(self, u):
-        return self._eval(u)[0]
+        return self._eval(u, stiffness=False)[0]
 
     def stiffness(self, u):
         return self._eval(u)[1]

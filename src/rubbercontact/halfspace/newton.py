@@ -61,10 +61,11 @@ def shift_for_law(law: InteractionLaw, u: np.ndarray, sigma0: float) -> float:
         return lo    # not bracketed within 1e6 spans: start from the end nearest the root
     if mean_p(hi) > sigma0:
         return hi
-    # Brent's method: each evaluation is a pass over the grid, and it needs ~10 of them where
-    # bisection to the same tolerance needs ~50
-    return float(brentq(lambda s: mean_p(s) - sigma0, lo, hi, xtol=1e-15 * span,
-                        rtol=4 * np.finfo(float).eps))
+    # Brent's method on log <f>: each evaluation is a pass over the grid, and a wall's
+    # power law is nearly linear in log while bisection to the same tolerance needs ~50 passes
+    log_s0 = np.log(sigma0)
+    return float(brentq(lambda s: np.log(max(mean_p(s), 1e-300)) - log_s0, lo, hi,
+                        xtol=1e-12 * span, rtol=1e-12))
 
 
 def _newton_rtol(tol: float, res: float, loose: bool = True, mixed: bool = False) -> float:

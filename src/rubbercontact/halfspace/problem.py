@@ -135,7 +135,7 @@ class Problem:
         """Dense matrix of ``M`` between the 1D grid points ``idx`` (``M[idx][:, idx]``)."""
         if self._dense is not None:
             return self._dense[np.ix_(idx, idx)]
-        return self.column()[(idx[:, None] - idx[None, :]) % self.size]
+        return self.column().take(np.subtract.outer(idx, idx), mode="wrap")
 
     def preconditioner(self) -> np.ndarray:
         """Hard-wall preconditioner kernel ``1/M`` (or ``1/Re M``, see the options; cached)."""

@@ -523,10 +523,12 @@ def continue_with_linear_shape(table: dict, hs_surface: SineSeries,
                                     law=None, n=n, nu=nu)
         return r.mean_separation, r.contact_fraction, r.friction * p
 
+    if material.is_elastic:
+        return table        # no hysteresis: no shear stress to borrow the shape of
     s0 = float(sig[0])
     ref = vhs(s0)
     if not (ref[0] > 0 and ref[1] > 0 and ref[2] > 0 and tau[0] > 0):
-        return table        # no shape to borrow (elastic wave or full contact at σ₀)
+        return table        # no shape to borrow (full contact at σ₀)
     rows = []
     p, u_last = s0, ref[0]
     for _ in range(int(max_rows)):
