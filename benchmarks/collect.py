@@ -10,6 +10,7 @@ PARTS = [("halfspace.md", "Half-space (BEM) solver"),
          ("fem.md", "FEM sliding test (time-stepped)"),
          ("sweep.md", "Sweeps: Dask executor and result cache"),
          ("speed_sweep.md", "Speed sweeps: friction against speed from an empty cache"),
+         ("halfspace_sweep.md", "Half-space part of a 15-speed curve, against a baseline"),
          ("make_run.md", "make run from an empty cache"),
          ("prony_fit.md", "Prony fit of DMA data against pyvisco"),
          ("meanfield.md", "Mean-field model")]

@@ -1,6 +1,7 @@
 """``make bench``: run every benchmark script that exists (half-space, steady and
-transient FEM, mean-field); ``bench_speed_sweep.py`` and ``bench_make_run.py`` take
-minutes and run on their own."""
+transient FEM, mean-field); ``bench_speed_sweep.py``, ``bench_halfspace_sweep.py`` (which
+reads the former's ``--save`` file) and ``bench_make_run.py`` take minutes and run on their
+own."""
 
 from __future__ import annotations
 
