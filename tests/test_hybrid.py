@@ -106,7 +106,7 @@ def test_screen_monotone_excludes_and_names_the_offending_points():
     # every point above it.
     top = _law([(0.018, 0.05, 0.01, 0.1), (0.013, 0.15, 0.2, 1.0), (0.009, 0.4, 0.9, 4.0),
                 (0.010, 0.5, 1.5, 8.0)])
-    with pytest.warns(LawWarning, match=r"p=\[8.0\] MPa are excluded"):
+    with pytest.warns(LawWarning, match=r"1 FEM points excluded.*v=10 mm/s: p=\[8.0\]"):
         screened = screen_monotone(top)
     assert screened["status"].values[0, 3].startswith("excluded: non-monotone")
     assert list(screened["status"].values[0, :3]) == ["ok"] * 3
@@ -118,6 +118,14 @@ def test_screen_monotone_excludes_and_names_the_offending_points():
                 (0.009, 0.4, 0.9, 4.0)])
     with pytest.warns(LawWarning, match=r"p=\[0.3\] MPa"):
         screened = screen_monotone(mid)
+    # two speeds with exclusions: one warning naming both
+    pts = [(0.018, 0.05, 0.01, 0.1), (0.013, 0.15, 0.2, 1.0), (0.009, 0.4, 0.9, 4.0),
+           (0.010, 0.5, 1.5, 8.0)]
+    both = _law(pts, velocities=(10.0, 50.0))
+    with pytest.warns(LawWarning) as caught:
+        screen_monotone(both)
+    msgs = [str(w.message) for w in caught if issubclass(w.category, LawWarning)]
+    assert len(msgs) == 1 and "2 FEM points" in msgs[0] and "v=50 mm/s: p=[8.0]" in msgs[0]
     assert list(screened["status"].values[0] == "ok") == [True, False, True, True]
     # a monotone table passes untouched and silently
     import warnings

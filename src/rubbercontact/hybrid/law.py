@@ -366,6 +366,7 @@ def screen_monotone(law: xr.Dataset) -> xr.Dataset:
     status = law["status"].values.astype(object)
     pressures = law["pressure"].values
     order = np.argsort(pressures)
+    excluded = []                                 # (speed, [pressures]) per speed with drops
     for iv, v in enumerate(law["velocity"].values):
         u = law["mean_separation"].values[iv]
         idx = [j for j in order if status[iv, j] == "ok" and np.isfinite(u[j])]
@@ -375,13 +376,15 @@ def screen_monotone(law: xr.Dataset) -> xr.Dataset:
             status[iv, j] = (f"excluded: non-monotone (u = {u[j]:.6g} mm at p = "
                              f"{pressures[j]:g} MPa breaks the decrease of u with p)")
         if dropped:
-            warnings.warn(
-                f"law at v={v:g} mm/s: FEM points at p={[float(pressures[j]) for j in dropped]}"
-                f" MPa are excluded, their mean separations "
-                f"{[float(u[j]) for j in dropped]} mm break the strict decrease of u with p "
-                f"(near the equilibrium modulus the sheared cell's face lifts off; see "
-                f"screen_monotone)",
-                LawWarning, stacklevel=2)
+            excluded.append((float(v), [float(pressures[j]) for j in dropped]))
+    if excluded:
+        # one warning for the whole table: a speed sweep would otherwise print one per speed
+        where = "; ".join(f"v={v:g} mm/s: p={ps}" for v, ps in excluded)
+        warnings.warn(
+            f"law: {sum(len(ps) for _, ps in excluded)} FEM points excluded, their mean "
+            f"separation breaks the strict decrease of u with p ({where} MPa; near the "
+            f"equilibrium modulus the sheared cell's face lifts off; the law's 'status' "
+            f"names each, see screen_monotone)", LawWarning, stacklevel=2)
     law["status"] = (law["status"].dims, status.astype(str))
     return law
 
