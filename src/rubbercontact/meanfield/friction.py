@@ -49,6 +49,7 @@ from ..errors import InputError
 from .contact import cell_average, contact_fraction
 
 CORRECTIONS = ("none", "persson")
+DISSIPATIONS = ("auto", "mode", "patch", "cascade")
 WEIGHTINGS = ("auto", "after", "cell")
 #: Persson's γ of ``S = γ + (1 − γ)A²``.
 PERSSON_GAMMA = 0.5
@@ -77,6 +78,23 @@ class FrictionCorrection:
 
     def describe(self) -> str:
         return "S = 1" if self.kind == "none" else f"S = {self.gamma:g} + {1 - self.gamma:g} A²"
+
+
+def check_dissipation(dissipation: str) -> str:
+    if dissipation not in DISSIPATIONS:
+        raise InputError(f"dissipation: expected one of {', '.join(DISSIPATIONS)}, got "
+                         f"{dissipation!r}")
+    return dissipation
+
+
+def local_fraction(g_after: np.ndarray, dissipation: str) -> np.ndarray:
+    """The contact fraction ``r_i`` a node's patches have (:mod:`.patches`): ``A(ζ_i)``
+    (``"patch"``) or ``A(ζ_i)/A(ζ_{i−1})`` (``"cascade"``), along the last axis."""
+    a = contact_fraction(g_after)
+    if dissipation == "patch":
+        return a
+    before = np.concatenate([np.ones_like(a[..., :1]), a[..., :-1]], axis=-1)
+    return np.minimum(a / before, 1.0)
 
 
 def check_weighting(weighting: str) -> str:
