@@ -6,6 +6,8 @@ theory's error in friction and contact area, for the modelling choices of
 :mod:`rubbercontact.meanfield` (the friction's ``S(q)`` and how a discrete wave is weighted)
 and for the defaults:
 
+0. One sine, the exact 1D limit: Westergaard's contact area and the patch spectrum's
+   friction (:mod:`rubbercontact.meanfield.patches`) against the BEM, five loads and speeds.
 1. 1D multi-wave surfaces: the three-wave section 3 surface, the Table 2 asphalt, the CAPTIF
    fit (octaves 0.25–8 mm of the measured profiles, as examples/captif_road.toml), and four
    random octave ladders with m2 ≤ 0.6 per wave; SBR at 1, 10, 50 and 500 mm/s; four loads
@@ -44,12 +46,16 @@ from rubbercontact.roughness import SineSeries
 from ._meanfield_cases import (
     AREAS,
     HYBRID_AREAS,
+    SINE_LOADS,
+    SINE_SPEEDS,
     SPEEDS,
     VARIANTS,
     load_for_area,
     make_map,
+    one_sine,
     random_ladder,
     self_affine_profile,
+    westergaard_p_star,
 )
 from ._meanfield_report import report
 from ._rows import append_row, publish, read_rows
@@ -117,6 +123,23 @@ def run_1d(rows_path: Path, done: set, captif: Path | None) -> None:
                 row.update(p=p, R=REALIZATIONS, surface=surf.as_dict(),
                            **_bem_average(reals, surf.period, v, p, n))
                 append_row(rows_path, row)
+
+
+def run_sine(rows_path: Path, done: set) -> None:
+    """One sine (the exact 1D limit) at loads given as fractions of Westergaard's ``p*``."""
+    surf = one_sine()
+    lam = float(surf.wavelengths[0])
+    for v in SINE_SPEEDS:
+        for x in SINE_LOADS:
+            row = {"kind": "sine", "case": "one sine", "v": v, "target": x, "n": 8192}
+            if _key(row) in done:
+                continue
+            p = x * westergaard_p_star(surf, SBR, v)
+            t0 = time.perf_counter()
+            res = rc.halfspace.solve_sliding(surf, lam, SBR, v, p, n=8192)
+            row.update(p=p, surface=surf.as_dict(), bem_mu=[res.friction],
+                       bem_A=[res.contact_fraction], bem_time=time.perf_counter() - t0)
+            append_row(rows_path, row)
 
 
 def run_hybrid(rows_path: Path, done: set) -> None:
@@ -255,7 +278,8 @@ def main(argv: list[str] | None = None) -> int:
                          "CAPTIF case")
     ap.add_argument("--rows", type=Path, default=OUT / "meanfield.jsonl")
     ap.add_argument("--report", type=Path, default=OUT / "meanfield.md")
-    ap.add_argument("--parts", default="1d,hybrid,2d,pressure,spectrum,speed,selfaffine")
+    ap.add_argument("--parts",
+                    default="sine,1d,hybrid,2d,pressure,spectrum,speed,selfaffine")
     ap.add_argument("--selfaffine-sizes", default=str(2**20),
                     help="grid sizes of the 4-decade profile's reference solves (comma list)")
     ap.add_argument("--report-only", action="store_true")
@@ -265,6 +289,8 @@ def main(argv: list[str] | None = None) -> int:
         args.rows.parent.mkdir(parents=True, exist_ok=True)
         done = {_key(r) for r in read_rows(args.rows)}
         parts = set(args.parts.split(","))
+        if "sine" in parts:
+            run_sine(args.rows, done)
         if "1d" in parts:
             run_1d(args.rows, done, args.captif)
         if "hybrid" in parts:
