@@ -15,6 +15,7 @@ from rubbercontact.meanfield.patches import westergaard_fraction
 from rubbercontact.roughness import SineSeries
 
 from ._meanfield_cases import SPEEDS, make_map, self_affine_profile, westergaard_p_star
+from ._meanfield_diagnosis import diagnosis
 from ._templates import render
 
 SBR = rc.materials.sbr()
@@ -419,6 +420,7 @@ def report(rows, *, figures: Path, date: str, commit: str, wall: float, variants
     spec, spec_fields = _spectrum_table(rows)
     sa_table, sa_fields = _self_affine_table(points)
     sine_table, sine_fields = _sine_table(rows)
+    scale, oracle, log_area, diag_fields = diagnosis(rows)
     names = _figures(points, hyb, rows, figures)
     rnd = [p for p in points if _is_random(p["case"]) and p["in_range"]]
     both = np.mean([(abs(p["e_mu"]) <= TARGET) and (abs(p["e_A"]) <= TARGET) for p in rnd])
@@ -436,6 +438,10 @@ def report(rows, *, figures: Path, date: str, commit: str, wall: float, variants
                   load=next((f"{r['p']:g}" for r in rows if r["kind"] == "speed"), "–")), "",
            _speed_curve_table(rows), "",
            render("meanfield", "off", **_area_bias(points), **spec_fields), "", spec, "",
+           render("meanfield", "diag_scale"), "", scale, "",
+           render("meanfield", "diag_oracle", **diag_fields), "", oracle, "",
+           render("meanfield", "diag_log"), "", log_area, "",
+           render("meanfield", "few_waves"), "",
            render("meanfield", "self_affine", t20=sa_fields["t20"], t18=sa_fields["t18"]), "",
            sa_table, "",
            render("meanfield", "broadband", sa_default=sa_fields["sa_default"],

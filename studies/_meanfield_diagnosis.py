@@ -1,0 +1,135 @@
+"""Why the 1D mean-field theory misses on the random ladders (studies/meanfield.py report).
+
+Three measurements on the cached BEM rows, no new solve:
+
+* the *area scale* the BEM needs: the factor ``c`` on ``1/(2√G)`` with which Persson's
+  ``erf(c/(2√G))`` equals the BEM's contact fraction, by speed and load;
+* the friction with the BEM's own area imposed (``G`` of every node divided by ``c²``): what
+  is left of the friction error once the area is right, for each dissipation rule;
+* one speed-independent 1D area correction, ``c = 1 + β ln(1/A)`` (the logarithmic growth of
+  a line contact's area per load as the patches shrink), over a few β: what a fitted
+  constant could and could not do.
+"""
+
+from __future__ import annotations
+
+import numpy as np
+from scipy.optimize import brentq
+from scipy.special import erf
+
+import rubbercontact as rc
+from rubbercontact import meanfield as mf
+from rubbercontact.meanfield.contact import (
+    contact_fraction,
+    g_cumulative,
+    half_space_compliance,
+    modal_response,
+)
+from rubbercontact.meanfield.friction import local_fraction
+from rubbercontact.meanfield.patches import patch_loss
+
+SBR = rc.materials.sbr()
+BETAS = (0.0, 0.06, 0.09, 0.12)
+RULES = ("mode", "cascade", "patch")
+
+
+def _ladder_points(rows) -> list[dict]:
+    """Random-ladder rows with the BEM area in 1–50 %, with the theory's nodes."""
+    out = []
+    for r in rows:
+        if r["kind"] != "1d" or not r["case"].startswith("random"):
+            continue
+        area, mu = float(np.mean(r["bem_A"])), float(np.mean(r["bem_mu"]))
+        if not 0.01 <= area <= 0.5:
+            continue
+        s = r["surface"]
+        psd = mf.PSD.from_sines(rc.roughness.SineSeries(s["wavelengths"], s["amplitudes"]))
+        resp = modal_response(half_space_compliance(psd.wavenumbers, psd.variances, 1, SBR,
+                                                    r["v"], 0.5))
+        out.append({"v": r["v"], "target": r["target"], "p": r["p"], "A": area, "mu": mu,
+                    "psd": psd, "resp": resp,
+                    "g": g_cumulative(resp.pressure_variance, r["p"])})
+    return out
+
+
+def _friction(pt, g, area, rule: str) -> float:
+    if rule == "mode":
+        f = pt["resp"].friction_stress
+    else:
+        f = pt["resp"].pressure_variance * patch_loss(
+            local_fraction(g, rule) if area is None else _local(area, rule),
+            pt["psd"].wavenumbers, SBR, pt["v"], 0.5)
+    a = contact_fraction(g) if area is None else area
+    return float(np.sum(f * a) / pt["p"])
+
+
+def _local(area, rule):
+    if rule == "patch":
+        return area
+    return np.minimum(area / np.concatenate([[1.0], area[:-1]]), 1.0)
+
+
+def _pct(x: float) -> str:
+    return f"{100 * x:+.0f} %"
+
+
+def area_scale_table(points) -> str:
+    """The factor ``c`` the BEM's area asks of ``1/(2√G)``, by speed and theory's area."""
+    lines = ["| v [mm/s] | " + " | ".join(f"c at theory's A = {t:.0%}" for t in
+                                          (0.02, 0.06, 0.2, 0.45)) + " |", "|---" * 5 + "|"]
+    for v in sorted({p["v"] for p in points}):
+        cols = []
+        for t in (0.02, 0.06, 0.2, 0.45):
+            cs = [brentq(lambda c, p=p: contact_fraction(p["g"][-1] / c**2) - p["A"], 0.2, 5.0)
+                  for p in points if p["v"] == v and p["target"] == t]
+            cols.append(f"{min(cs):.2f}–{max(cs):.2f}" if cs else "–")
+        lines.append(f"| {v:g} | " + " | ".join(cols) + " |")
+    return "\n".join(lines)
+
+
+def oracle_table(points) -> tuple[str, dict]:
+    """μ error with the BEM's own area imposed, per dissipation rule and speed."""
+    lines = ["| dissipation | " + " | ".join(f"μ error at {v:g} mm/s" for v in
+                                            sorted({p["v"] for p in points}))
+             + " | μ within 15 % |", "|---" * (len({p["v"] for p in points}) + 2) + "|"]
+    share = {}
+    for rule in RULES:
+        errs = []
+        for p in points:
+            c = brentq(lambda c, p=p: contact_fraction(p["g"][-1] / c**2) - p["A"], 0.2, 5.0)
+            g = p["g"] / c**2
+            errs.append((p["v"], _friction(p, g, None, rule) / p["mu"] - 1))
+        cols = []
+        for v in sorted({p["v"] for p in points}):
+            e = np.array([x for w, x in errs if w == v])
+            cols.append(f"{_pct(e.mean())} [{_pct(e.min())}, {_pct(e.max())}]")
+        share[rule] = np.mean([abs(x) <= 0.15 for _, x in errs])
+        lines.append(f"| {rule} | " + " | ".join(cols) + f" | {share[rule]:.0%} |")
+    return "\n".join(lines), {f"oracle_{k}": f"{v:.0%}" for k, v in share.items()}
+
+
+def log_area_table(points) -> str:
+    """``A = erf(c/(2√G))``, ``c = 1 + β ln(1/A_Persson)`` per node, Persson's dissipation."""
+    speeds = sorted({p["v"] for p in points})
+    lines = ["| β | " + " | ".join(f"μ / A error at {v:g} mm/s" for v in speeds)
+             + " | μ and A within 15 % |", "|---" * (len(speeds) + 2) + "|"]
+    for beta in BETAS:
+        errs = []
+        for p in points:
+            g = p["g"]
+            a0 = contact_fraction(g)
+            area = erf(0.5 / np.sqrt(g) * (1 + beta * np.log(1 / a0)))
+            errs.append((p["v"], _friction(p, g, area, "mode") / p["mu"] - 1,
+                         area[-1] / p["A"] - 1))
+        cols = [f"{_pct(np.mean([e[1] for e in errs if e[0] == v]))} / "
+                f"{_pct(np.mean([e[2] for e in errs if e[0] == v]))}" for v in speeds]
+        both = np.mean([abs(e[1]) <= 0.15 and abs(e[2]) <= 0.15 for e in errs])
+        lines.append(f"| {beta:g} | " + " | ".join(cols) + f" | {both:.0%} |")
+    return "\n".join(lines)
+
+
+def diagnosis(rows) -> tuple[str, str, str, dict]:
+    """The three tables (area scale, friction with the BEM's area, log area correction)."""
+    points = _ladder_points(rows)
+    oracle, fields = oracle_table(points)
+    return area_scale_table(points), oracle, log_area_table(points), fields
