@@ -31,6 +31,18 @@ VARIANTS = (
 )
 
 
+#: Elastic two- and four-wave profiles (rms slope 0.3 per wave): is Persson's area low in 1D
+#: because the scales are not separated? (name, wavelengths [mm], grid points)
+SEPARATION = (("2 waves, ratio 16", (4.0, 0.25), 16384), ("2 waves, ratio 2", (4.0, 2.0), 8192),
+              ("4 waves, ratio 2", (4.0, 2.0, 1.0, 0.5), 8192))
+
+
+def separation_series(wavelengths) -> SineSeries:
+    """Waves of rms slope 0.3 each at ``wavelengths`` [mm]."""
+    lam = np.asarray(wavelengths, float)
+    return SineSeries(lam, 0.3 * np.sqrt(2) * lam / (2 * np.pi))
+
+
 def one_sine() -> SineSeries:
     """The single wave of :data:`SINE` (``Δ = m2 √2 λ/(2π)``)."""
     lam = SINE["wavelength"]

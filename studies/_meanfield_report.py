@@ -420,7 +420,7 @@ def report(rows, *, figures: Path, date: str, commit: str, wall: float, variants
     spec, spec_fields = _spectrum_table(rows)
     sa_table, sa_fields = _self_affine_table(points)
     sine_table, sine_fields = _sine_table(rows)
-    scale, oracle, log_area, diag_fields = diagnosis(rows)
+    scale, oracle, separation, log_area, diag_fields = diagnosis(rows)
     names = _figures(points, hyb, rows, figures)
     rnd = [p for p in points if _is_random(p["case"]) and p["in_range"]]
     both = np.mean([(abs(p["e_mu"]) <= TARGET) and (abs(p["e_A"]) <= TARGET) for p in rnd])
@@ -440,6 +440,7 @@ def report(rows, *, figures: Path, date: str, commit: str, wall: float, variants
            render("meanfield", "off", **_area_bias(points), **spec_fields), "", spec, "",
            render("meanfield", "diag_scale"), "", scale, "",
            render("meanfield", "diag_oracle", **diag_fields), "", oracle, "",
+           render("meanfield", "diag_separation"), "", separation, "",
            render("meanfield", "diag_log"), "", log_area, "",
            render("meanfield", "few_waves"), "",
            render("meanfield", "self_affine", t20=sa_fields["t20"], t18=sa_fields["t18"]), "",

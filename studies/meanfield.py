@@ -46,6 +46,7 @@ from rubbercontact.roughness import SineSeries
 from ._meanfield_cases import (
     AREAS,
     HYBRID_AREAS,
+    SEPARATION,
     SINE_LOADS,
     SINE_SPEEDS,
     SPEEDS,
@@ -55,6 +56,7 @@ from ._meanfield_cases import (
     one_sine,
     random_ladder,
     self_affine_profile,
+    separation_series,
     westergaard_p_star,
 )
 from ._meanfield_report import report
@@ -139,6 +141,21 @@ def run_sine(rows_path: Path, done: set) -> None:
             res = rc.halfspace.solve_sliding(surf, lam, SBR, v, p, n=8192)
             row.update(p=p, surface=surf.as_dict(), bem_mu=[res.friction],
                        bem_A=[res.contact_fraction], bem_time=time.perf_counter() - t0)
+            append_row(rows_path, row)
+
+
+def run_separation(rows_path: Path, done: set) -> None:
+    """Elastic (v = 0) two- and four-wave profiles at the theory's areas, 8 realizations."""
+    for name, lams, n in SEPARATION:
+        surf = separation_series(lams)
+        for target in AREAS:
+            row = {"kind": "separation", "case": name, "v": 0.0, "target": target, "n": n}
+            if _key(row) in done:
+                continue
+            p = load_for_area(mf.PSD.from_sines(surf), SBR, 0.0, target)
+            row.update(p=p, R=REALIZATIONS, surface=surf.as_dict(),
+                       **_bem_average(surf.realizations(REALIZATIONS, SEED), surf.period, 0.0,
+                                      p, n))
             append_row(rows_path, row)
 
 
@@ -279,7 +296,8 @@ def main(argv: list[str] | None = None) -> int:
     ap.add_argument("--rows", type=Path, default=OUT / "meanfield.jsonl")
     ap.add_argument("--report", type=Path, default=OUT / "meanfield.md")
     ap.add_argument("--parts",
-                    default="sine,1d,hybrid,2d,pressure,spectrum,speed,selfaffine")
+                    default="sine,separation,1d,hybrid,2d,pressure,spectrum,speed,"
+                            "selfaffine")
     ap.add_argument("--selfaffine-sizes", default=str(2**20),
                     help="grid sizes of the 4-decade profile's reference solves (comma list)")
     ap.add_argument("--report-only", action="store_true")
@@ -291,6 +309,8 @@ def main(argv: list[str] | None = None) -> int:
         parts = set(args.parts.split(","))
         if "sine" in parts:
             run_sine(args.rows, done)
+        if "separation" in parts:
+            run_separation(args.rows, done)
         if "1d" in parts:
             run_1d(args.rows, done, args.captif)
         if "hybrid" in parts:
