@@ -116,6 +116,47 @@ def separation_table(rows) -> str:
     return "\n".join(lines)
 
 
+def broadband_table(rows) -> tuple[str, dict]:
+    """Self-affine profiles over 2 and 3 decades: the default (patch spectrum) against
+    Persson's dissipation, BEM averaged over the realizations."""
+    from ._meanfield_cases import self_affine_profile
+
+    groups: dict[tuple, list] = {}
+    for r in (r for r in rows if r["kind"] == "broadband"):
+        groups.setdefault((r["case"], r["v"], r["target"]), []).append(r)
+    lines = ["| profile | v [mm/s] | BEM μ | BEM A | theory A | A error | μ, patch spectrum "
+             "(default) | error | μ, Persson's dissipation | error |", "|---" * 10 + "|"]
+    errs: dict[str, list] = {"patch": [], "mode": [], "area": []}
+    for (case, v, _), rs in groups.items():
+        par = rs[0]["params"]
+        psd = self_affine_profile(n=4 * int(round(par["length"] / par["lam_min"])), seed=1,
+                                  **par)[1]
+        mu, area = np.mean([x["bem_mu"][0] for x in rs]), np.mean([x["bem_A"][0] for x in rs])
+        res = {d: mf.solve(psd, SBR, v, rs[0]["p"], options=mf.MeanFieldOptions(dissipation=d))
+               for d in ("patch", "mode")}
+        for d in res:
+            errs[d].append((v, res[d].friction / mu - 1))
+        errs["area"].append((v, res["patch"].contact_fraction / area - 1))
+        lines.append(f"| {case} | {v:g} | {mu:.3f} | {area:.3f} | "
+                     f"{res['patch'].contact_fraction:.3f} | "
+                     f"{_pct(res['patch'].contact_fraction / area - 1)} | "
+                     f"{res['patch'].friction:.3f} | {_pct(res['patch'].friction / mu - 1)} | "
+                     f"{res['mode'].friction:.3f} | {_pct(res['mode'].friction / mu - 1)} |")
+
+    def span(key, slow=None):
+        e = np.array([x for v, x in errs[key] if slow is None or (v <= 1.0) == slow])
+        return f"{_pct(e.mean())} [{_pct(e.min())}, {_pct(e.max())}]" if e.size else "–"
+
+    def share(key):
+        return f"{np.mean([abs(x) <= 0.15 for _, x in errs[key]]):.0%}" if errs[key] else "–"
+
+    fields = {"bb_patch": span("patch"), "bb_mode": span("mode"), "bb_area": span("area"),
+              "bb_patch_slow": span("patch", True), "bb_mode_slow": span("mode", True),
+              "bb_patch_fast": span("patch", False), "bb_mode_fast": span("mode", False),
+              "bb_patch_share": share("patch"), "bb_mode_share": share("mode")}
+    return "\n".join(lines), fields
+
+
 def _pct(x: float) -> str:
     return f"{100 * x:+.0f} %"
 

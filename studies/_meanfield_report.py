@@ -15,7 +15,7 @@ from rubbercontact.meanfield.patches import westergaard_fraction
 from rubbercontact.roughness import SineSeries
 
 from ._meanfield_cases import SPEEDS, make_map, self_affine_profile, westergaard_p_star
-from ._meanfield_diagnosis import diagnosis
+from ._meanfield_diagnosis import broadband_table, diagnosis
 from ._templates import render
 
 SBR = rc.materials.sbr()
@@ -421,6 +421,7 @@ def report(rows, *, figures: Path, date: str, commit: str, wall: float, variants
     sa_table, sa_fields = _self_affine_table(points)
     sine_table, sine_fields = _sine_table(rows)
     scale, oracle, separation, log_area, diag_fields = diagnosis(rows)
+    broad, broad_fields = broadband_table(rows)
     names = _figures(points, hyb, rows, figures)
     rnd = [p for p in points if _is_random(p["case"]) and p["in_range"]]
     both = np.mean([(abs(p["e_mu"]) <= TARGET) and (abs(p["e_A"]) <= TARGET) for p in rnd])
@@ -447,6 +448,7 @@ def report(rows, *, figures: Path, date: str, commit: str, wall: float, variants
            sa_table, "",
            render("meanfield", "broadband", sa_default=sa_fields["sa_default"],
                   sa_persson=sa_fields["sa_persson"], sa_mode=sa_fields["sa_mode"]), "",
+           render("meanfield", "broadband_more", **broad_fields), "", broad, "",
            render("meanfield", "hybrid"), "", _hybrid_table(hyb), "",
            render("meanfield", "two_d",
                   mu=_rng(np.array([e[0] for e in errs_2d])) if errs_2d else "–",

@@ -71,6 +71,11 @@ REALIZATIONS, SEED = 8, 1
 RANDOM = ((6, 11), (8, 3), (8, 21), (10, 5))      # (waves, seed) of the random ladders
 SELF_AFFINE = {"length": 10.0, "lam_min": 1e-3, "hurst": 0.8, "rolloff": 4, "slope": 0.7}
 SA_POINTS = ((10.0, 0.05), (50.0, 0.05))           # (speed, theory's area)
+#: Smaller broadband profiles at every target speed: (name, parameters, grid points).
+BROADBAND = (("H = 0.5, 2 decades", {"length": 10.0, "lam_min": 0.1, "hurst": 0.5,
+                                     "rolloff": 4, "slope": 0.5}, 2**13),
+             ("H = 0.8, 3 decades", {"length": 10.0, "lam_min": 0.01, "hurst": 0.8,
+                                     "rolloff": 4, "slope": 0.5}, 2**15))
 MAP = {"n": 512, "length": 4.0, "hurst": 0.8, "rolloff": 4, "kmax": 64, "slope": 0.5}
 MAP_SEEDS = (1, 2)
 SPEED_CURVE = (0.1, 1.0, 10.0, 50.0, 500.0, 5000.0)  # mm/s, Table 2 at one load
@@ -225,6 +230,25 @@ def run_self_affine(rows_path: Path, done: set, sizes: tuple[int, ...]) -> None:
             append_row(rows_path, row)
 
 
+def run_broadband(rows_path: Path, done: set) -> None:
+    """Self-affine profiles over 2 and 3 decades at the four speeds, 2 realizations each."""
+    for name, params, n in BROADBAND:
+        for v in SPEEDS:
+            for target in AREAS[:3]:
+                for seed in (1, 2):
+                    row = {"kind": "broadband", "case": name, "v": v, "target": target,
+                           "n": n, "seed": seed}
+                    if _key(row) in done:
+                        continue
+                    z, psd = self_affine_profile(n=n, seed=seed, **params)
+                    p = load_for_area(psd, SBR, v, target)
+                    t0 = time.perf_counter()
+                    res = rc.halfspace.solve_sliding(z, params["length"], SBR, v, p)
+                    row.update(p=p, params=params, bem_mu=[res.friction],
+                               bem_A=[res.contact_fraction], bem_time=time.perf_counter() - t0)
+                    append_row(rows_path, row)
+
+
 def run_pressure_histogram(rows_path: Path, done: set) -> None:
     """The BEM pressure distribution pooled over realizations, for P(σ) of the theory."""
     m, seed = RANDOM[1]
@@ -297,7 +321,7 @@ def main(argv: list[str] | None = None) -> int:
     ap.add_argument("--report", type=Path, default=OUT / "meanfield.md")
     ap.add_argument("--parts",
                     default="sine,separation,1d,hybrid,2d,pressure,spectrum,speed,"
-                            "selfaffine")
+                            "broadband,selfaffine")
     ap.add_argument("--selfaffine-sizes", default=str(2**20),
                     help="grid sizes of the 4-decade profile's reference solves (comma list)")
     ap.add_argument("--report-only", action="store_true")
@@ -323,6 +347,8 @@ def main(argv: list[str] | None = None) -> int:
             run_spectrum(args.rows, done)
         if "speed" in parts:
             run_speed(args.rows, done)
+        if "broadband" in parts:
+            run_broadband(args.rows, done)
         if "selfaffine" in parts:
             sizes = tuple(int(s) for s in args.selfaffine_sizes.split(",") if s)
             run_self_affine(args.rows, done, sizes)
