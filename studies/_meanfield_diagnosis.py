@@ -154,7 +154,36 @@ def broadband_table(rows) -> tuple[str, dict]:
               "bb_patch_slow": span("patch", True), "bb_mode_slow": span("mode", True),
               "bb_patch_fast": span("patch", False), "bb_mode_fast": span("mode", False),
               "bb_patch_share": share("patch"), "bb_mode_share": share("mode")}
-    return "\n".join(lines), fields
+    return "\n".join(lines), {**fields, **broadband_oracle(rows)}
+
+
+def broadband_oracle(rows) -> dict:
+    """μ error on the continuous profiles with the BEM's own area imposed (``G / c²``)."""
+    from rubbercontact.meanfield.contact import cell_average
+
+    from ._meanfield_cases import self_affine_profile
+
+    groups: dict[tuple, list] = {}
+    for r in (r for r in rows if r["kind"] in ("broadband", "selfaffine")):
+        groups.setdefault((r["case"], r["v"], r["target"]), []).append(r)
+    errs: dict[str, list] = {"mode": [], "patch": []}
+    for rs in groups.values():
+        r, par = rs[0], rs[0]["params"]
+        psd = self_affine_profile(n=4 * int(round(par["length"] / par["lam_min"])), seed=1,
+                                  **par)[1]
+        mu, area = np.mean([x["bem_mu"][0] for x in rs]), np.mean([x["bem_A"][0] for x in rs])
+        resp = modal_response(half_space_compliance(psd.wavenumbers, psd.variances, 1, SBR,
+                                                    r["v"], 0.5))
+        g = g_cumulative(resp.pressure_variance, r["p"])
+        c = brentq(lambda c, g_end=g[-1], a=area: contact_fraction(g_end / c**2) - a, 0.2, 5.0)
+        g = g / c**2
+        weight = cell_average(contact_fraction, np.concatenate([[0.0], g[:-1]]), g)
+        for rule in errs:
+            f = resp.friction_stress if rule == "mode" else resp.pressure_variance * patch_loss(
+                contact_fraction(g), psd.wavenumbers, SBR, r["v"], 0.5)
+            errs[rule].append(float(np.sum(f * weight) / r["p"]) / mu - 1)
+    return {f"bbo_{k}": f"{_pct(np.mean(e))} [{_pct(min(e))}, {_pct(max(e))}]"
+            for k, e in errs.items() if e}
 
 
 def _pct(x: float) -> str:
