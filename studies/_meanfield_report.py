@@ -11,9 +11,11 @@ import numpy as np
 
 import rubbercontact as rc
 from rubbercontact import meanfield as mf
+from rubbercontact.meanfield.patches import westergaard_fraction
 from rubbercontact.roughness import SineSeries
 
-from ._meanfield_cases import SPEEDS, make_map, self_affine_profile
+from ._meanfield_cases import SPEEDS, make_map, self_affine_profile, westergaard_p_star
+from ._meanfield_diagnosis import broadband_table, diagnosis
 from ._templates import render
 
 SBR = rc.materials.sbr()
@@ -138,25 +140,77 @@ def _area_bias(points) -> dict:
             "mu_slow": _pct(mu_slow.mean()), "mu_fast": _pct(mu_fast.mean())}
 
 
+def _westergaard_friction(x: float, p_star: float, q: float, v: float) -> float:
+    """First-order friction of one sine: Westergaard's pressure variance times the patch
+    spectrum's loss, over ``σ0 = x p*`` (:mod:`rubbercontact.meanfield.patches`)."""
+    from rubbercontact.meanfield import patches
+
+    r = float(patches.westergaard_fraction(x))
+    theta = 2 * np.pi * (np.arange(2**16) + 0.5) / 2**16 - np.pi
+    var = np.var(patches.westergaard_pressure(theta, r)) * p_star**2
+    return float(var * patches.patch_loss(np.array([r]), np.array([q]), SBR, v, 0.5)[0]
+                 / (x * p_star))
+
+
+def _sine_table(rows) -> tuple[str, dict]:
+    lines = ["| v [mm/s] | σ0/p* | BEM A | Westergaard A | theory A | BEM μ | Westergaard + patch "
+             "spectrum μ | error | theory μ, mode | error | theory μ, patch r = A | error |",
+             "|---" * 12 + "|"]
+    errs: dict[str, list] = {"west": [], "mode": [], "patch": []}
+    for r in sorted((r for r in rows if r["kind"] == "sine"), key=lambda r: (r["v"],
+                                                                           r["target"])):
+        surf = _series(r["surface"])
+        psd, x, v = mf.PSD.from_sines(surf), r["target"], r["v"]
+        mode, patch = (mf.solve(psd, SBR, v, r["p"], options=mf.MeanFieldOptions(
+            dissipation=d)) for d in ("mode", "patch"))
+        mu, area = r["bem_mu"][0], r["bem_A"][0]
+        west = float(westergaard_fraction(x))
+        cols = [f"{v:g}", f"{x:g}", f"{area:.4f}", f"{west:.4f}", f"{mode.contact_fraction:.4f}"]
+        if v == 0:
+            lines.append("| " + " | ".join(cols + ["0"] + ["–"] * 6) + " |")
+            continue
+        wmu = _westergaard_friction(x, westergaard_p_star(surf, SBR, v),
+                                    float(surf.wavenumbers[0]), v)
+        for key, val in (("west", wmu), ("mode", mode.friction), ("patch", patch.friction)):
+            errs[key].append((v, val / mu - 1))
+        cols += [f"{mu:.4f}", f"{wmu:.4f}", _pct(wmu / mu - 1), f"{mode.friction:.4f}",
+                 _pct(mode.friction / mu - 1), f"{patch.friction:.4f}",
+                 _pct(patch.friction / mu - 1)]
+        lines.append("| " + " | ".join(cols) + " |")
+
+    def span(key, slow):
+        e = np.array([x for v, x in errs[key] if (v <= 1.0) == slow])
+        return _rng(e) if e.size else "–"
+
+    return "\n".join(lines), {f"{k}_{t}": span(k, t == "slow") for k in errs
+                              for t in ("slow", "fast")}
+
+
 def _self_affine_table(points) -> tuple[str, dict]:
     lines = ["| v [mm/s] | σ0 [MPa] | N | realization | BEM μ | BEM A | theory μ | theory A "
-             "| μ error | A error | μ with S = ½ + ½A² | its error | BEM time [s] |",
-             "|---" * 13 + "|"]
-    persson = mf.MeanFieldOptions(correction="persson")
-    e1, e2 = [], []
+             "| μ error | A error | μ, mode dissipation (old default) | its error "
+             "| μ with S = ½ + ½A² | its error | BEM time [s] |",
+             "|---" * 15 + "|"]
+    persson = mf.MeanFieldOptions(correction="persson", dissipation="mode")
+    old = mf.MeanFieldOptions(dissipation="mode")
+    e1, e2, e3 = [], [], []
     for p in sorted((p for p in points if p["kind"] == "selfaffine"),
                     key=lambda p: (p["v"], p["seed"], p["n"])):
         mu_s = mf.solve(_psd(p), SBR, p["v"], p["p"], options=persson).friction
+        mu_o = mf.solve(_psd(p), SBR, p["v"], p["p"], options=old).friction
         e1.append(p["e_mu"])
         e2.append(mu_s / p["mu"] - 1)
+        e3.append(mu_o / p["mu"] - 1)
         lines.append(f"| {p['v']:g} | {p['p']:.4g} | 2^{int(np.log2(p['n']))} | {p['seed']} "
                      f"| {p['mu']:.4f} | {p['A']:.4f} | {p['mf_mu']:.4f} | {p['mf_A']:.4f} "
-                     f"| {_pct(p['e_mu'])} | {_pct(p['e_A'])} | {mu_s:.4f} | "
+                     f"| {_pct(p['e_mu'])} | {_pct(p['e_A'])} | {mu_o:.4f} | "
+                     f"{_pct(e3[-1])} | {mu_s:.4f} | "
                      f"{_pct(e2[-1])} | {p['bem_time']:.0f} |")
     sa = [p for p in points if p["kind"] == "selfaffine"]
     t20 = [p["bem_time"] for p in sa if p["n"] == 2**20]
     t18 = [p["bem_time"] for p in sa if p["n"] == 2**18]
     return "\n".join(lines), {"sa_default": _rng(np.array(e1)), "sa_persson": _rng(np.array(e2)),
+                               "sa_mode": _rng(np.array(e3)),
                                "t20": f"{max(t20) / 60:.0f}" if t20 else "–",
                                "t18": f"{max(t18) / 60:.1f}" if t18 else "–"}
 
@@ -365,6 +419,9 @@ def report(rows, *, figures: Path, date: str, commit: str, wall: float, variants
     two_d, errs_2d = _two_d_table(rows)
     spec, spec_fields = _spectrum_table(rows)
     sa_table, sa_fields = _self_affine_table(points)
+    sine_table, sine_fields = _sine_table(rows)
+    scale, oracle, separation, log_area, diag_fields = diagnosis(rows)
+    broad, broad_fields = broadband_table(rows)
     names = _figures(points, hyb, rows, figures)
     rnd = [p for p in points if _is_random(p["case"]) and p["in_range"]]
     both = np.mean([(abs(p["e_mu"]) <= TARGET) and (abs(p["e_A"]) <= TARGET) for p in rnd])
@@ -373,6 +430,7 @@ def report(rows, *, figures: Path, date: str, commit: str, wall: float, variants
            render("meanfield", "intro", date=date, commit=commit, points=n_1d,
                   wall=f"{wall / 60:.1f}"), "",
            render("meanfield", "theory"), "",
+           render("meanfield", "sine", **sine_fields), "", sine_table, "",
            render("meanfield", "choices"), "", _choices_table(rows, variants), "",
            render("meanfield", "validation", share=f"{both:.0%}", n_random=len(rnd)), "",
            _validation_table(points), "", render("meanfield", "by_speed"), "",
@@ -381,10 +439,16 @@ def report(rows, *, figures: Path, date: str, commit: str, wall: float, variants
                   load=next((f"{r['p']:g}" for r in rows if r["kind"] == "speed"), "–")), "",
            _speed_curve_table(rows), "",
            render("meanfield", "off", **_area_bias(points), **spec_fields), "", spec, "",
+           render("meanfield", "diag_scale"), "", scale, "",
+           render("meanfield", "diag_oracle", **diag_fields), "", oracle, "",
+           render("meanfield", "diag_separation"), "", separation, "",
+           render("meanfield", "diag_log"), "", log_area, "",
+           render("meanfield", "few_waves"), "",
            render("meanfield", "self_affine", t20=sa_fields["t20"], t18=sa_fields["t18"]), "",
            sa_table, "",
            render("meanfield", "broadband", sa_default=sa_fields["sa_default"],
-                  sa_persson=sa_fields["sa_persson"]), "",
+                  sa_persson=sa_fields["sa_persson"], sa_mode=sa_fields["sa_mode"]), "",
+           render("meanfield", "broadband_more", **broad_fields), "", broad, "",
            render("meanfield", "hybrid"), "", _hybrid_table(hyb), "",
            render("meanfield", "two_d",
                   mu=_rng(np.array([e[0] for e in errs_2d])) if errs_2d else "–",

@@ -6,6 +6,8 @@ theory's error in friction and contact area, for the modelling choices of
 :mod:`rubbercontact.meanfield` (the friction's ``S(q)`` and how a discrete wave is weighted)
 and for the defaults:
 
+0. One sine, the exact 1D limit: Westergaard's contact area and the patch spectrum's
+   friction (:mod:`rubbercontact.meanfield.patches`) against the BEM, five loads and speeds.
 1. 1D multi-wave surfaces: the three-wave section 3 surface, the Table 2 asphalt, the CAPTIF
    fit (octaves 0.25–8 mm of the measured profiles, as examples/captif_road.toml), and four
    random octave ladders with m2 ≤ 0.6 per wave; SBR at 1, 10, 50 and 500 mm/s; four loads
@@ -44,12 +46,18 @@ from rubbercontact.roughness import SineSeries
 from ._meanfield_cases import (
     AREAS,
     HYBRID_AREAS,
+    SEPARATION,
+    SINE_LOADS,
+    SINE_SPEEDS,
     SPEEDS,
     VARIANTS,
     load_for_area,
     make_map,
+    one_sine,
     random_ladder,
     self_affine_profile,
+    separation_series,
+    westergaard_p_star,
 )
 from ._meanfield_report import report
 from ._rows import append_row, publish, read_rows
@@ -63,6 +71,11 @@ REALIZATIONS, SEED = 8, 1
 RANDOM = ((6, 11), (8, 3), (8, 21), (10, 5))      # (waves, seed) of the random ladders
 SELF_AFFINE = {"length": 10.0, "lam_min": 1e-3, "hurst": 0.8, "rolloff": 4, "slope": 0.7}
 SA_POINTS = ((10.0, 0.05), (50.0, 0.05))           # (speed, theory's area)
+#: Smaller broadband profiles at every target speed: (name, parameters, grid points).
+BROADBAND = (("H = 0.5, 2 decades", {"length": 10.0, "lam_min": 0.1, "hurst": 0.5,
+                                     "rolloff": 4, "slope": 0.5}, 2**13),
+             ("H = 0.8, 3 decades", {"length": 10.0, "lam_min": 0.01, "hurst": 0.8,
+                                     "rolloff": 4, "slope": 0.5}, 2**15))
 MAP = {"n": 512, "length": 4.0, "hurst": 0.8, "rolloff": 4, "kmax": 64, "slope": 0.5}
 MAP_SEEDS = (1, 2)
 SPEED_CURVE = (0.1, 1.0, 10.0, 50.0, 500.0, 5000.0)  # mm/s, Table 2 at one load
@@ -117,6 +130,38 @@ def run_1d(rows_path: Path, done: set, captif: Path | None) -> None:
                 row.update(p=p, R=REALIZATIONS, surface=surf.as_dict(),
                            **_bem_average(reals, surf.period, v, p, n))
                 append_row(rows_path, row)
+
+
+def run_sine(rows_path: Path, done: set) -> None:
+    """One sine (the exact 1D limit) at loads given as fractions of Westergaard's ``p*``."""
+    surf = one_sine()
+    lam = float(surf.wavelengths[0])
+    for v in SINE_SPEEDS:
+        for x in SINE_LOADS:
+            row = {"kind": "sine", "case": "one sine", "v": v, "target": x, "n": 8192}
+            if _key(row) in done:
+                continue
+            p = x * westergaard_p_star(surf, SBR, v)
+            t0 = time.perf_counter()
+            res = rc.halfspace.solve_sliding(surf, lam, SBR, v, p, n=8192)
+            row.update(p=p, surface=surf.as_dict(), bem_mu=[res.friction],
+                       bem_A=[res.contact_fraction], bem_time=time.perf_counter() - t0)
+            append_row(rows_path, row)
+
+
+def run_separation(rows_path: Path, done: set) -> None:
+    """Elastic (v = 0) two- and four-wave profiles at the theory's areas, 8 realizations."""
+    for name, lams, n in SEPARATION:
+        surf = separation_series(lams)
+        for target in AREAS:
+            row = {"kind": "separation", "case": name, "v": 0.0, "target": target, "n": n}
+            if _key(row) in done:
+                continue
+            p = load_for_area(mf.PSD.from_sines(surf), SBR, 0.0, target)
+            row.update(p=p, R=REALIZATIONS, surface=surf.as_dict(),
+                       **_bem_average(surf.realizations(REALIZATIONS, SEED), surf.period, 0.0,
+                                      p, n))
+            append_row(rows_path, row)
 
 
 def run_hybrid(rows_path: Path, done: set) -> None:
@@ -183,6 +228,25 @@ def run_self_affine(rows_path: Path, done: set, sizes: tuple[int, ...]) -> None:
             row.update(p=p, params=SELF_AFFINE, bem_mu=[res.friction],
                        bem_A=[res.contact_fraction], bem_time=time.perf_counter() - t0)
             append_row(rows_path, row)
+
+
+def run_broadband(rows_path: Path, done: set) -> None:
+    """Self-affine profiles over 2 and 3 decades at the four speeds, 2 realizations each."""
+    for name, params, n in BROADBAND:
+        for v in SPEEDS:
+            for target in AREAS[:3]:
+                for seed in (1, 2):
+                    row = {"kind": "broadband", "case": name, "v": v, "target": target,
+                           "n": n, "seed": seed}
+                    if _key(row) in done:
+                        continue
+                    z, psd = self_affine_profile(n=n, seed=seed, **params)
+                    p = load_for_area(psd, SBR, v, target)
+                    t0 = time.perf_counter()
+                    res = rc.halfspace.solve_sliding(z, params["length"], SBR, v, p)
+                    row.update(p=p, params=params, bem_mu=[res.friction],
+                               bem_A=[res.contact_fraction], bem_time=time.perf_counter() - t0)
+                    append_row(rows_path, row)
 
 
 def run_pressure_histogram(rows_path: Path, done: set) -> None:
@@ -255,7 +319,9 @@ def main(argv: list[str] | None = None) -> int:
                          "CAPTIF case")
     ap.add_argument("--rows", type=Path, default=OUT / "meanfield.jsonl")
     ap.add_argument("--report", type=Path, default=OUT / "meanfield.md")
-    ap.add_argument("--parts", default="1d,hybrid,2d,pressure,spectrum,speed,selfaffine")
+    ap.add_argument("--parts",
+                    default="sine,separation,1d,hybrid,2d,pressure,spectrum,speed,"
+                            "broadband,selfaffine")
     ap.add_argument("--selfaffine-sizes", default=str(2**20),
                     help="grid sizes of the 4-decade profile's reference solves (comma list)")
     ap.add_argument("--report-only", action="store_true")
@@ -265,6 +331,10 @@ def main(argv: list[str] | None = None) -> int:
         args.rows.parent.mkdir(parents=True, exist_ok=True)
         done = {_key(r) for r in read_rows(args.rows)}
         parts = set(args.parts.split(","))
+        if "sine" in parts:
+            run_sine(args.rows, done)
+        if "separation" in parts:
+            run_separation(args.rows, done)
         if "1d" in parts:
             run_1d(args.rows, done, args.captif)
         if "hybrid" in parts:
@@ -277,6 +347,8 @@ def main(argv: list[str] | None = None) -> int:
             run_spectrum(args.rows, done)
         if "speed" in parts:
             run_speed(args.rows, done)
+        if "broadband" in parts:
+            run_broadband(args.rows, done)
         if "selfaffine" in parts:
             sizes = tuple(int(s) for s in args.selfaffine_sizes.split(",") if s)
             run_self_affine(args.rows, done, sizes)

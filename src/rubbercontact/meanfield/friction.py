@@ -34,9 +34,18 @@ elastic energy that a mode does *not* store near the edges of the contact patche
 exact in full contact and lowers the friction where the contact is small.
 
 We default to ``S = 1``: it is the theory's own friction, and against our BEM it is the
-closer of the two on the multi-wave surfaces and on the 2D map of the validation; on a 1D
-self-affine profile over four decades Persson's ``S`` is the closer
-(docs/validation/meanfield.md gives both everywhere).
+closer of the two on the multi-wave surfaces and on the 2D map of the validation. On a 1D
+self-affine profile over four decades ``S = 1`` with Persson's own-wavenumber dissipation
+is 56 % high and Persson's ``S`` 10 % low; the *patch spectrum* (:mod:`.patches`, the
+default on continuous 1D spectra) derives the reduction instead: a mode in partial contact
+carries its pressure power at the harmonics of its patches, which dissipate at their own
+frequencies (+9 % there; docs/validation/meanfield.md gives every variant).
+
+Where the friction stress comes from (``dissipation``)
+------------------------------------------------------
+``f_i`` above is ``s_i (−2 Im[1/E_r(q_i v)])`` (``"mode"``), or ``s_i Σ_n h_n(r_i)
+(−2 Im[1/E_r(n q_i v)])`` with the local patch fraction ``r_i`` of :func:`local_fraction`
+(``"patch"``, ``"cascade"``; :mod:`.patches`).
 """
 
 from __future__ import annotations
@@ -49,6 +58,7 @@ from ..errors import InputError
 from .contact import cell_average, contact_fraction
 
 CORRECTIONS = ("none", "persson")
+DISSIPATIONS = ("auto", "mode", "patch", "cascade")
 WEIGHTINGS = ("auto", "after", "cell")
 #: Persson's γ of ``S = γ + (1 − γ)A²``.
 PERSSON_GAMMA = 0.5
@@ -77,6 +87,23 @@ class FrictionCorrection:
 
     def describe(self) -> str:
         return "S = 1" if self.kind == "none" else f"S = {self.gamma:g} + {1 - self.gamma:g} A²"
+
+
+def check_dissipation(dissipation: str) -> str:
+    if dissipation not in DISSIPATIONS:
+        raise InputError(f"dissipation: expected one of {', '.join(DISSIPATIONS)}, got "
+                         f"{dissipation!r}")
+    return dissipation
+
+
+def local_fraction(g_after: np.ndarray, dissipation: str) -> np.ndarray:
+    """The contact fraction ``r_i`` a node's patches have (:mod:`.patches`): ``A(ζ_i)``
+    (``"patch"``) or ``A(ζ_i)/A(ζ_{i−1})`` (``"cascade"``), along the last axis."""
+    a = contact_fraction(g_after)
+    if dissipation == "patch":
+        return a
+    before = np.concatenate([np.ones_like(a[..., :1]), a[..., :-1]], axis=-1)
+    return np.minimum(a / before, 1.0)
 
 
 def check_weighting(weighting: str) -> str:

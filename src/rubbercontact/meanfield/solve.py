@@ -30,10 +30,25 @@ from .enriched import as_pressure_law, check_interface, march_with_layer, weigh_
 from .friction import (
     PERSSON_GAMMA,
     FrictionCorrection,
+    check_dissipation,
     check_weighting,
     friction_contributions,
+    local_fraction,
 )
+from .patches import patch_loss
 from .psd import PSD
+
+#: ``dissipation="auto"`` on a sine series (docs/validation/meanfield.md).
+AUTO_DISSIPATION_SINES = "mode"
+
+
+def _friction_stress(resp, g, psd: PSD, material, velocity, nu, kind: str) -> np.ndarray:
+    """Each node's full-contact friction stress, or with ``kind != "mode"`` its pressure
+    power times the patch spectrum's loss at the node's local contact fraction."""
+    if kind == "mode":
+        return resp.friction_stress
+    return resp.pressure_variance * patch_loss(local_fraction(g, kind), psd.wavenumbers,
+                                               material, velocity, nu)
 
 
 @dataclass(frozen=True)
@@ -50,6 +65,11 @@ class MeanFieldOptions:
         Contact fraction weighing each node's friction: ``"auto"`` (default: ``"after"``
         for a sine series, ``"cell"`` for a continuous spectrum), ``"after"`` or ``"cell"``
         (:mod:`.friction`).
+    dissipation
+        Where a mode in partial contact dissipates (:mod:`.patches`, 1D only): ``"auto"``
+        (default: ``"patch"`` for a continuous 1D spectrum, ``"mode"`` for a sine series
+        and in 2D), ``"mode"`` (at its own wavenumber, Persson's), ``"patch"`` or
+        ``"cascade"`` (spread over the harmonics of its contact patches).
     interface
         With a law: ``"law"`` (default: the law's compliance in series with the
         half-space, :mod:`.enriched`) or ``"rigid"`` (hard-wall low-slope contact).
@@ -64,6 +84,7 @@ class MeanFieldOptions:
     correction: str = "none"
     gamma: float = PERSSON_GAMMA
     weighting: str = "auto"
+    dissipation: str = "auto"
     interface: str = "law"
     angles: int = ANGLES_2D
     cell_points: int = CELL_POINTS
@@ -73,6 +94,7 @@ class MeanFieldOptions:
         FrictionCorrection(self.correction, self.gamma)   # validates both
         check_interface(self.interface)
         check_weighting(self.weighting)
+        check_dissipation(self.dissipation)
         for name in ("angles", "cell_points", "pressure_points"):
             val = getattr(self, name)
             if isinstance(val, bool) or int(val) != val or val < 2:
@@ -87,6 +109,17 @@ class MeanFieldOptions:
         if self.weighting != "auto":
             return self.weighting
         return "after" if psd.waves is not None else "cell"
+
+    def dissipation_for(self, psd: PSD) -> str:
+        """The dissipation used for ``psd`` (``"auto"`` resolved; 2D: ``"mode"``)."""
+        if self.dissipation != "auto":
+            if psd.dimension != 1 and self.dissipation != "mode":
+                raise InputError(f"dissipation={self.dissipation!r}: the patch spectrum is "
+                                 "the 1D (plane-strain) sine's; use 'mode' in 2D")
+            return self.dissipation
+        if psd.dimension != 1:
+            return "mode"
+        return AUTO_DISSIPATION_SINES if psd.waves is not None else "patch"
 
 
 @dataclass(frozen=True)
@@ -207,7 +240,8 @@ def solve(psd: PSD, material: GeneralizedMaxwell, velocity: float, mean_pressure
     else:
         resp = modal_response(comp)
         g = g_cumulative(resp.pressure_variance, sigma0)
-    parts = friction_contributions(resp.friction_stress, g, sigma0, opts.friction_correction,
+    fstress = _friction_stress(resp, g, psd, material, v, nu, opts.dissipation_for(psd))
+    parts = friction_contributions(fstress, g, sigma0, opts.friction_correction,
                                    opts.cell_points, opts.weighting_for(psd))
     q = psd.wavenumbers
     dist = pressure_distribution(float(g[-1]), sigma0, q[-1], q[-1] / q[0],
@@ -218,7 +252,7 @@ def solve(psd: PSD, material: GeneralizedMaxwell, velocity: float, mean_pressure
     inputs = {"velocity": v, "mean_pressure": sigma0, "nu": float(nu),
               "dimension": psd.dimension, "psd": psd.source, "law": plaw is not None,
               "material": material.name, **asdict(opts),
-              "weighting": opts.weighting_for(psd)}
+              "weighting": opts.weighting_for(psd), "dissipation": opts.dissipation_for(psd)}
     return MeanFieldResult(
         friction=mu_ls + mu_hs, friction_ls=mu_ls, friction_hs=float(mu_hs),
         contact_fraction=float(area), contact_fraction_ls=area_ls,
@@ -241,7 +275,8 @@ def friction_curve(psd: PSD, material: GeneralizedMaxwell, velocities, mean_pres
                                  v, nu, opts.angles)
     resp = modal_response(comp)
     g = g_cumulative(resp.pressure_variance, sigma0)
-    parts = friction_contributions(resp.friction_stress, g, sigma0, opts.friction_correction,
+    fstress = _friction_stress(resp, g, psd, material, v, nu, opts.dissipation_for(psd))
+    parts = friction_contributions(fstress, g, sigma0, opts.friction_correction,
                                    opts.cell_points, opts.weighting_for(psd))
     return FrictionCurve(v, parts.sum(axis=-1), contact_fraction(g[..., -1]),
                          resp.friction_stress.sum(axis=-1) / sigma0, sigma0,

@@ -29,7 +29,7 @@ PRESSURE_QUANTILE = 0.999
 def meanfield_task(surface: dict, material: dict, velocity: float, mean_pressure: float,
                    nu: float = 0.5, interface_law: dict | None = None,
                    correction: str = "none", gamma: float = 0.5, weighting: str = "auto",
-                   interface: str = "law") -> xr.Dataset:
+                   interface: str = "law", dissipation: str = "auto") -> xr.Dataset:
     """One mean-field solve (:func:`rubbercontact.meanfield.solve`).
 
     Parameters
@@ -45,7 +45,7 @@ def meanfield_task(surface: dict, material: dict, velocity: float, mean_pressure
     interface_law
         The high-slope law at this speed (the half-space task's ``interface_law``,
         :func:`rubbercontact.hybrid.law_at_velocity`), or ``None``.
-    correction, gamma, weighting, interface
+    correction, gamma, weighting, interface, dissipation
         :class:`~rubbercontact.meanfield.MeanFieldOptions`.
 
     Returns
@@ -59,7 +59,7 @@ def meanfield_task(surface: dict, material: dict, velocity: float, mean_pressure
     t0 = time.perf_counter()
     psd = PSD.from_dict(surface)
     opts = MeanFieldOptions(correction=correction, gamma=gamma, weighting=weighting,
-                            interface=interface)
+                            interface=interface, dissipation=dissipation)
     res = solve(psd, GeneralizedMaxwell(**material), velocity, mean_pressure, nu=nu,
                 law=interface_law, options=opts)
     dist = res.pressure_distribution
@@ -77,9 +77,10 @@ def meanfield_task(surface: dict, material: dict, velocity: float, mean_pressure
     ds.attrs.update({"model": "meanfield", "hybrid": int(interface_law is not None),
                      "dimension": psd.dimension, "correction": correction,
                      "weighting": res.inputs["weighting"], "interface": interface,
+                     "dissipation": res.inputs["dissipation"],
                      "psd": psd.source})
     return ds
 
 
 #: Version of this task's answers (read by the sweep cache key).
-meanfield_task.cache_version = "1"
+meanfield_task.cache_version = "2"   # 2: the patch spectrum on continuous 1D spectra
