@@ -52,3 +52,28 @@ def test_task_takes_a_spectrum_and_a_law():
                                                    + float(hyb["friction_hs"]), rel=1e-14)
     with pytest.raises(rc.errors.InputError, match="surface"):
         meanfield_task({"heights": [1, 2]}, SBR.as_dict(), 10.0, 0.5)
+
+
+def test_config_dissipation_reaches_the_task():
+    """``[meanfield] dissipation`` is a config field the plan passes to the task; on a
+    continuous 1D spectrum 'mode' (Persson's) and 'patch' answer differently, and the task
+    answers what ``solve`` does with the same option."""
+    from pydantic import ValidationError
+
+    from rubbercontact.config import RunConfig
+    from rubbercontact.pipeline.plan import meanfield_call
+
+    psd = mf.PSD.self_affine(hurst=0.8, qr=1.0, q1=1e3, rms_slope=0.3)
+    base = {"surface": {"preset": "section3"}, "loads": {"pressures": [0.5]},
+            "velocities": [10.0], "models": ["meanfield"]}
+    mus = {}
+    for choice in ("mode", "patch"):
+        cfg = RunConfig.model_validate({**base, "meanfield": {"dissipation": choice}})
+        fn, kw = meanfield_call(cfg, "meanfield", psd.as_dict(), SBR, 10.0, 0.5, None, 8.0)
+        assert kw["dissipation"] == choice
+        mus[choice] = float(meanfield_task(**kw)["friction"])
+        direct = mf.solve(psd, SBR, 10.0, 0.5, options=mf.MeanFieldOptions(dissipation=choice))
+        assert mus[choice] == pytest.approx(direct.friction, rel=1e-12)
+    assert mus["mode"] != pytest.approx(mus["patch"], rel=1e-3)
+    with pytest.raises(ValidationError, match="dissipation"):
+        RunConfig.model_validate({**base, "meanfield": {"dissipation": "everywhere"}})

@@ -183,6 +183,11 @@ class MeanFieldConfig(_Strict):
     weighting: Literal["auto", "after", "cell"] = Field(
         "auto", description="contact fraction weighing a wave's friction: after the wave, "
                             "or the cell mean (auto: after for sine series)")
+    dissipation: Literal["auto", "mode", "patch", "cascade"] = Field(
+        "auto", description="where a mode in partial contact dissipates: at its own "
+                            "wavenumber (mode, Persson), at the harmonics of its contact "
+                            "patches (patch, cascade); auto: patch for a measured (continuous "
+                            "1D) spectrum, mode for sine series")
     interface: Literal["law", "rigid"] = Field(
         "law", description="meanfield-hybrid: the law's compliance in series with the "
                            "half-space, or a rigid low-slope contact")

@@ -148,7 +148,7 @@ def meanfield_call(cfg: RunConfig, model: str, surface: dict, material: Generali
                             "velocity": v, "mean_pressure": p, "nu": cfg.material.nu,
                             "interface_law": law, "correction": mf.correction,
                             "gamma": mf.gamma, "weighting": mf.weighting,
-                            "interface": mf.interface}
+                            "interface": mf.interface, "dissipation": mf.dissipation}
 
 
 def full_fem_task(cfg: RunConfig, surface: SineSeries, material: GeneralizedMaxwell,
