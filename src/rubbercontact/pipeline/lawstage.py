@@ -118,13 +118,15 @@ def fem_law(cfg: RunConfig, hs0: SineSeries, material: GeneralizedMaxwell,
 
     p = np.sort(np.asarray(pressures, float))
     opts = options.to_dict()
+    # highest pressure first: the paths at the highest loads take the longest (most Newton
+    # iterations per speed), and started last they would leave the other workers idle
     tasks = [Task(function="rubbercontact.hybrid.tasks:fem_speed_path_task",
                   kwargs={"surface": hs0.as_dict(), "material": task_material(material),
                           "velocities": v.tolist(), "mean_pressure": float(pi),
                           "options": opts},
                   label=f"law FEM p={pi:g} MPa, {v.size} speeds by continuation")
-             for pi in p]
-    paths = runner(tasks)
+             for pi in p[::-1]]
+    paths = runner(tasks)[::-1]
     points = [_path_point(paths[j], i) for i in range(v.size) for j in range(p.size)]
     return assemble_law(points, p, v, hs0, material, opts)
 
