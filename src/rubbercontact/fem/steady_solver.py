@@ -123,7 +123,8 @@ def _refine(coarse: CellSetup, U: np.ndarray, fine: CellSetup, options: FemOptio
             counters: Counters) -> np.ndarray | None:
     """The coarse solution carried to the finer mesh and solved there (None: failed)."""
     m = fine.model
-    cell = SteadyCell(m, _kernel(fine))
+    kern = _kernel(fine)
+    cell = SteadyCell(m, kern)
     V = prolong(coarse.model, U, m, 0.0)
     # The interpolated Q1/P0 field is not incompressible element by element (pointwise
     # J varies inside a coarse element): relax the interior with the face and the plate
@@ -131,12 +132,17 @@ def _refine(coarse: CellSetup, U: np.ndarray, fine: CellSetup, options: FemOptio
     held = np.concatenate([m.bx, m.by, [m.plate, m.plate_x]])
     repair = newton_krylov(cell.holding(held), V, 0.0, fine.load, "top", fine.atol,
                            options.steady, counters)
-    res = newton_krylov(cell, repair.U, 0.0, fine.load, "face", fine.atol, options.steady,
-                        counters)
-    counters.tried.append(f"refine to {m.cell.nx}x{m.cell.ny}: {len(repair.residuals) - 1} + "
-                          f"{len(res.residuals) - 1} Newton"
-                          + ("" if res.converged else f" ({res.reason})"))
-    return res.U if res.converged else None
+    counters.tried.append(f"repair {m.cell.nx}x{m.cell.ny}: {len(repair.residuals) - 1} Newton"
+                          + ("" if repair.converged else f" ({repair.reason})"))
+    # Releasing the face moves the contact set; a plain Newton from the repaired state
+    # can fail to find its way (the line search stalls at the contact edges). The Newton
+    # homotopy r(U) = (1 − λ) r(U₀) starts exactly at the repaired state and walks the
+    # residual down in steps; its first step (λ = 1) is that plain Newton.
+    bias = cell.evaluate(repair.U, 0.0, fine.load, "face").r
+    path = follow(cell, repair.U, Endpoint(kern, fine.load, bias), Endpoint(kern, fine.load),
+                  0.0, "face", fine.atol, options.steady, counters,
+                  f"release {m.cell.nx}x{m.cell.ny}", first_step=1.0)
+    return path.U if path.converged else None
 
 
 def _coarse_to_fine(surface, material, p, v, options: FemOptions, counters: Counters
