@@ -380,3 +380,27 @@ def test_nested_iteration_reaches_the_state_of_a_direct_solve():
     assert nested.friction == pytest.approx(direct.friction, rel=0.02)
     assert nested.contact_fraction == pytest.approx(direct.contact_fraction, rel=0.02)
     assert nested.mean_separation == pytest.approx(direct.mean_separation, rel=0.02)
+
+
+def test_press_by_height_reaches_the_load_controlled_state():
+    # Displacement control: the plate held at a height, its reaction is the load under
+    # which the same state solves the load-controlled problem (free residual <= the
+    # tolerance); and the press by height, bracketing the target load by regula falsi,
+    # ends at the state the load-controlled press reaches (locally unique; tolerance as
+    # in the homotopy test above, 1e-6 of an element).
+    from rubbercontact.fem.newton_krylov import Counters
+    from rubbercontact.fem.options import SteadyOptions
+    from rubbercontact.fem.press import HeightPress
+
+    res = rc.fem.steady_sliding(rc.roughness.high_slope_wave(), rc.materials.sbr(), 1.0, 10.0,
+                                mesh=(24, 12), coarse_elements=0)
+    setup, cell = _cell(mesh=(24, 12))
+    m = setup.model
+    hp = HeightPress(cell, setup.load, setup.atol, SteadyOptions(), Counters())
+    point, _ = hp.at(np.zeros(m.n), 0.05 * float(res.state.U[m.plate]))
+    assert point is not None and 0.0 < point.load < setup.load
+    free = cell.evaluate(point.U, 0.0, point.load, "face")
+    assert free.norm <= 1.5 * setup.atol
+    out = hp.run(np.zeros(m.n), 0.002, 1e-7)
+    assert out.converged, out.reason
+    assert np.max(np.abs(out.U - res.state.U)) <= 1e-6 * setup.cell.hx
