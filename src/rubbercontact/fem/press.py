@@ -1,16 +1,18 @@
 """The steady press under displacement control: the plate's height as the parameter.
 
 Under load control (:func:`.newton_krylov.follow` in the load) the press of a steep cell
-stalls part-way: near a new contact, or where a contact patch jumps to the next crest,
-the load-height curve of the cell is flat or folds back, and a load step past that point
-has no nearby solution. Holding the plate's height instead, every step is a problem with
-a solution close to the last one (the rubber is pushed a little further onto the
-surface), and the load is an output: the height is lowered in adaptive steps until the
-plate's reaction exceeds the target, then the target is found between the last two
+can stall part-way where the load-height curve of the cell is flat or folds back (a
+contact patch jumping to the next crest): a load step past that point has no nearby
+solution. Holding the plate's height instead, every step is a problem with a solution
+close to the last one (the rubber is pushed a little further onto the
+surface), and the load is an output: the height is moved in adaptive steps until the
+plate's reaction passes the target, then the target is found between the last two
 heights by regula falsi (Illinois) on the height. A state whose reaction is within the
 Newton tolerance of the target *is* the load-controlled solution (its residual with the
 plate free is the held residual plus the load mismatch), so no load-controlled Newton
-through a fold is needed.
+through a fold is needed. It does not help where Newton fails for any small step of
+either parameter (a contact point switching state within the step; most stalled presses
+of the steep CAPTIF cells, docs/validation/steep_cells.md).
 """
 
 from __future__ import annotations
