@@ -10,7 +10,9 @@ Cases (issue 26's performance list), each run by both solvers in one process:
    transient with its defaults (6 periods) against the steady solve.
 3. ``full``: the section 3 full FEM (240 x 45 graded x8, realization 0 of seed 2021) at 0.35
    and 2 MPa, 50 mm/s: steady; ``--transient-full`` adds the creep-settled transient (17
-   periods of 240 steps, tens of minutes).
+   periods of 240 steps, tens of minutes). ``--baseline REV`` runs the same cases first with
+   the library of commit ``REV`` (its ``src`` exported to a temporary directory, run in a
+   child process), so old and new stand side by side in one run.
 4. ``sweep``: 13 speeds over 1e-3 ... 1e3 mm/s at 1 MPa on the law cell by continuation,
    against one fresh point.
 
@@ -19,18 +21,24 @@ single-threaded::
 
     OMP_NUM_THREADS=1 .venv/bin/python benchmarks/bench_steady.py --output benchmarks/steady.md
 
-Times are CPU seconds of this process (``time.process_time``), so a loaded machine changes
-them little; the markdown table (``--output``) goes into BENCHMARKS.md (``collect.py``).
+Times are CPU seconds of this process (``time.process_time``) beside wall seconds, with the
+1-minute load average at the end of each solve: on the shared 2-core machine the CPU
+seconds of one solve rise with the load too (measured: 75 s quiet, 131 s at load 7.7). The
+markdown table (``--output``) goes into BENCHMARKS.md (``collect.py``).
 """
 
 from __future__ import annotations
 
 import argparse
 import json
+import os
 import platform
 import subprocess
+import sys
+import tempfile
 import time
 import warnings
+from pathlib import Path
 
 import numpy as np
 
@@ -42,11 +50,14 @@ FULL = {"mesh": (240, 45), "grading": 8.0}
 
 def _row(label: str, res, cpu: float) -> dict:
     s = res.stats
+    fact = getattr(s, "factorization_time", None)   # not in results of older commits
     row = {"case": label, "solver": s.solver, "friction": res.friction,
            "contact_fraction": res.contact_fraction, "mean_separation_mm": res.mean_separation,
-           "bulk_shear": s.bulk_shear, "cpu_s": cpu, "newton": s.newton_iterations,
+           "bulk_shear": s.bulk_shear, "cpu_s": cpu, "wall_s": s.wall_time,
+           "load": os.getloadavg()[0], "newton": s.newton_iterations,
            "factorizations": s.factorizations, "assembly_s": s.assembly_time,
-           "solve_s": s.solve_time}
+           "solve_s": s.solve_time,
+           "factorization_s": fact if fact is not None and np.isfinite(fact) else None}
     if s.solver == "steady":
         row.update(krylov=s.krylov_iterations, surface_offset=s.surface_offset,
                    tried="; ".join(s.tried))
@@ -119,10 +130,28 @@ def sweep_case(rows: list) -> None:
     rows.append(row)
 
 
+def baseline(rev: str, cases: str) -> list:
+    """The rows of ``cases`` run with the library of commit ``rev`` (in a child process)."""
+    root = Path(__file__).resolve().parents[1]
+    with tempfile.TemporaryDirectory() as tmp:
+        subprocess.run(f"git -C {root} archive {rev} src | tar -x -C {tmp}", shell=True,
+                       check=True)
+        out = Path(tmp) / "rows.json"
+        env = {**os.environ, "PYTHONPATH": str(Path(tmp) / "src"), "OMP_NUM_THREADS": "1"}
+        subprocess.run([sys.executable, __file__, "--cases", cases, "--json", str(out)],
+                       env=env, check=True)
+        rows = json.loads(out.read_text())["rows"]
+    for r in rows:
+        r["case"] += f" [{rev}]"
+    return rows
+
+
 def main() -> None:
     ap = argparse.ArgumentParser(description=__doc__.splitlines()[0])
     ap.add_argument("--cases", default="law,default,full,sweep")
     ap.add_argument("--transient-full", action="store_true")
+    ap.add_argument("--baseline", default=None, metavar="REV",
+                    help="run the cases with commit REV's library first")
     ap.add_argument("--json", default=None)
     ap.add_argument("--output", default=None, help="markdown table for BENCHMARKS.md")
     args = ap.parse_args()
@@ -131,6 +160,9 @@ def main() -> None:
     report = {"date": time.strftime("%Y-%m-%d %H:%M UTC", time.gmtime()), "commit": commit,
               "machine": f"{platform.processor() or platform.machine()}, python "
                          f"{platform.python_version()}, numpy {np.__version__}", "rows": []}
+    if args.baseline:
+        report["baseline"] = args.baseline
+        report["rows"] += baseline(args.baseline, args.cases)
     for case in args.cases.split(","):
         if case == "full":
             full_case(report["rows"], args.transient_full)
@@ -156,16 +188,23 @@ def markdown(report: dict) -> str:
              "CPU seconds of the process. Steady and transient rows of a case ran one after "
              "the other in this run. The transient law rows slide 5 retardation times "
              "(creep-settled); the default transient row uses `rubbercontact fem`'s defaults.",
-             "", "| case | solver | CPU [s] | μ | A | ū [mm] | Newton | factorizations | "
-             "assembly [s, wall] | linear solves [s, wall] |",
-             "|---|---|---:|---:|---:|---:|---:|---:|---:|---:|"]
+             "", "| case | solver | CPU [s] | wall [s] | load | μ | A | ū [mm] | Newton | "
+             "factorizations | assembly [s, wall] | factorization [s, wall] | "
+             "GMRES (split) or all linear solves [s, wall] |",
+             "|---|---|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|"]
     for r in report["rows"]:
         if isinstance(r.get("friction"), list):
             continue
-        lines.append(f"| {r['case']} | {r['solver']} | {r['cpu_s']:.1f} | {r['friction']:.5f} | "
+        fact = r.get("factorization_s")
+        krylov = None if fact is None else r["solve_s"] - fact
+        lines.append(f"| {r['case']} | {r['solver']} | {r['cpu_s']:.1f} | "
+                     f"{_fmt(r.get('wall_s'), '.1f')} | {_fmt(r.get('load'), '.1f')} | "
+                     f"{r['friction']:.5f} | "
                      f"{r['contact_fraction']:.5f} | {r['mean_separation_mm']:.6f} | "
                      f"{r['newton']} | {_fmt(r.get('factorizations'), 'd')} | "
-                     f"{_fmt(r.get('assembly_s'), '.2f')} | {_fmt(r.get('solve_s'), '.2f')} |")
+                     f"{_fmt(r.get('assembly_s'), '.2f')} | {_fmt(fact, '.2f')} | "
+                     + (f"{_fmt(r.get('solve_s'), '.2f')} |" if krylov is None
+                        else f"{krylov:.2f} (GMRES) |"))
     by_case: dict = {}
     for r in report["rows"]:
         if not isinstance(r.get("friction"), list):
@@ -178,6 +217,15 @@ def markdown(report: dict) -> str:
                 ratios.append(f"- {r['case']}: transient / steady CPU = "
                               f"{r['cpu_s'] / st[0]['cpu_s']:.0f}×, μ differs by "
                               f"{abs(r['friction'] / st[0]['friction'] - 1):.1e} (relative)")
+    rev = report.get("baseline")
+    for r in report["rows"]:
+        old = next((o for o in report["rows"] if rev and o["case"] == f"{r['case']} [{rev}]"),
+                   None)
+        if old is not None and not isinstance(r.get("friction"), list):
+            ratios.append(f"- {r['case']}: this commit {r['cpu_s']:.1f} s CPU "
+                          f"({r['newton']} Newton) against {old['cpu_s']:.1f} s "
+                          f"({old['newton']} Newton) at {rev}; μ differs by "
+                          f"{abs(r['friction'] / old['friction'] - 1):.1e} (relative)")
     sweeps = [r for r in report["rows"] if isinstance(r.get("friction"), list)]
     for r in sweeps:
         ratios.append(f"- {r['case']}: {r['cpu_s']:.1f} s, {r['ratio_to_one_point']:.2f}× the "

@@ -65,9 +65,11 @@ def run_point(cell: str, surface, p: float, v: float, fallback: bool = True) -> 
                                         fallback=fallback)
         except rc.errors.RubberContactError as exc:
             steady = isinstance(exc, rc.errors.ConvergenceError) and not fallback
+            tried = (getattr(exc, "diagnostics", None) or {}).get("tried", [])
             return {"cell": cell, "pressure": p, "velocity": v,
                     "solver": "steady failed" if steady else "failed",
-                    "status": str(exc)[:300], "cpu_s": time.process_time() - t0}
+                    "status": str(exc)[:300], "cpu_s": time.process_time() - t0,
+                    "tried": "; ".join(tried)}
     s = res.stats
     return {"cell": cell, "pressure": p, "velocity": v, "solver": s.solver,
             "status": s.status, "cpu_s": time.process_time() - t0,

@@ -339,3 +339,68 @@ def test_paper_size_section3_cell_steady_equals_settled_transient():
     st = rc.fem.steady_sliding(surf, mat, 0.35, 10.0, mesh=(240, 45), grading=8.0)
     tr = _settled_transient(surf, mat, 0.35, 10.0, (240, 45), 8.0, st.stats.surface_offset, 6)
     _agree(st, tr, 240)
+
+
+def test_newton_homotopy_starts_exactly_at_its_start_and_ends_at_the_solution():
+    # r(U) − (1 − λ) r(U₀) = 0 holds at U₀ for λ = 0 to round-off, and its end (λ = 1) is
+    # the steady state: from the converged state's displacements scaled by 0.97 (the face
+    # partly lifted off the surface, the bulk shear and the plate's lead cut by 3 %) the
+    # path must come back to that state. Newton's solution is locally unique, so to
+    # within what the tolerances leave: |ΔU| <= 1e-6 of an element.
+    from rubbercontact.fem.newton_krylov import Counters, Endpoint, follow
+    from rubbercontact.fem.options import SteadyOptions
+
+    res = rc.fem.steady_sliding(rc.roughness.high_slope_wave(), rc.materials.sbr(), 1.0, 10.0,
+                                mesh=(24, 12))
+    setup, cell = _cell(mesh=(24, 12))
+    kern = cell.kernel
+    U0 = 0.97 * res.state.U
+    bias = cell.evaluate(U0, 0.0, setup.load, "face").r
+    assert np.linalg.norm(bias) > 1e3 * setup.atol
+    start = cell.with_kernel(kern, bias).evaluate(U0, 0.0, setup.load, "face")
+    assert start.norm <= 1e-12 * np.linalg.norm(bias)
+    counters = Counters()
+    path = follow(cell, U0, Endpoint(kern, setup.load, bias), Endpoint(kern, setup.load), 0.0,
+                  "face", setup.atol, SteadyOptions(), counters, "test", first_step=0.5)
+    assert path.converged, counters.tried
+    assert np.max(np.abs(path.U - res.state.U)) <= 1e-6 * setup.cell.hx
+
+
+def test_nested_iteration_reaches_the_state_of_a_direct_solve():
+    # The press on 12 columns carried to 24 (repair, then the Newton homotopy that
+    # releases the face) against the press on 24 columns directly: the same discrete
+    # problem, so the same friction, contact fraction and ū to within the sub-column
+    # sensitivity of this mesh (the two may sit at other surface offsets, 2 %, as in
+    # test_a_neighbouring_speed_starts_the_next_solve).
+    surf, mat = rc.roughness.high_slope_wave(), rc.materials.sbr()
+    nested = rc.fem.steady_sliding(surf, mat, 1.0, 10.0, mesh=(24, 12), coarse_columns=12,
+                                   coarse_elements=4)
+    direct = rc.fem.steady_sliding(surf, mat, 1.0, 10.0, mesh=(24, 12), coarse_elements=0)
+    assert any(t.startswith("release 24x12") for t in nested.stats.tried), nested.stats.tried
+    assert nested.friction == pytest.approx(direct.friction, rel=0.02)
+    assert nested.contact_fraction == pytest.approx(direct.contact_fraction, rel=0.02)
+    assert nested.mean_separation == pytest.approx(direct.mean_separation, rel=0.02)
+
+
+def test_press_by_height_reaches_the_load_controlled_state():
+    # Displacement control: the plate held at a height, its reaction is the load under
+    # which the same state solves the load-controlled problem (free residual <= the
+    # tolerance); and the press by height, bracketing the target load by regula falsi,
+    # ends at the state the load-controlled press reaches (locally unique; tolerance as
+    # in the homotopy test above, 1e-6 of an element).
+    from rubbercontact.fem.newton_krylov import Counters
+    from rubbercontact.fem.options import SteadyOptions
+    from rubbercontact.fem.press import HeightPress
+
+    res = rc.fem.steady_sliding(rc.roughness.high_slope_wave(), rc.materials.sbr(), 1.0, 10.0,
+                                mesh=(24, 12), coarse_elements=0)
+    setup, cell = _cell(mesh=(24, 12))
+    m = setup.model
+    hp = HeightPress(cell, setup.load, setup.atol, SteadyOptions(), Counters())
+    point, _ = hp.at(np.zeros(m.n), 0.05 * float(res.state.U[m.plate]))
+    assert point is not None and 0.0 < point.load < setup.load
+    free = cell.evaluate(point.U, 0.0, point.load, "face")
+    assert free.norm <= 1.5 * setup.atol
+    out = hp.run(np.zeros(m.n), 0.002, 1e-7)
+    assert out.converged, out.reason
+    assert np.max(np.abs(out.U - res.state.U)) <= 1e-6 * setup.cell.hx

@@ -157,18 +157,22 @@ def _newton_step(cell: SteadyCell, ev: SteadyEvaluation, pre, gauge: str, eta: f
     return None
 
 
-@dataclass(frozen=True)
+@dataclass(frozen=True, eq=False)
 class Endpoint:
-    """One end of a homotopy: the history kernel and the plate load [N/mm]."""
+    """One end of a homotopy: the history kernel, the plate load [N/mm] and a residual
+    bias [N/mm] (None: zero; see :class:`~.steady.SteadyCell`)."""
 
     kernel: StreamlineKernel
     load: float
+    bias: np.ndarray | None = None
 
 
 def blend(a: Endpoint, b: Endpoint, lam: float) -> Endpoint:
     """The problem at ``λ`` between ``a`` (0) and ``b`` (1); the preconditioner's diagonal
     is ``b``'s (it only changes the splitting, not the Jacobian)."""
-    return Endpoint(a.kernel.blended(b.kernel, lam), (1.0 - lam) * a.load + lam * b.load)
+    parts = [w * e.bias for e, w in ((a, 1.0 - lam), (b, lam)) if e.bias is not None]
+    bias = sum(parts) if parts else None
+    return Endpoint(a.kernel.blended(b.kernel, lam), (1.0 - lam) * a.load + lam * b.load, bias)
 
 
 @dataclass
@@ -197,8 +201,8 @@ def follow(cell: SteadyCell, U0: np.ndarray, start: Endpoint, end: Endpoint, shi
         # face nodes into the surface, where the penalty makes its residual larger than
         # the plain start's (measured: 30x on the high-slope wave).
         prob = blend(start, end, target)
-        res = newton_krylov(cell.with_kernel(prob.kernel), U, shift, prob.load, gauge,
-                            atol, options, counters)
+        res = newton_krylov(cell.with_kernel(prob.kernel, prob.bias), U, shift, prob.load,
+                            gauge, atol, options, counters)
         counters.continuation_steps += 1
         log.debug("%s: λ %.4g %s after %d Newton %s", label, target,
                   "converged" if res.converged else "cut", len(res.residuals) - 1, res.reason)

@@ -93,7 +93,9 @@ class SolverStats:
     -----
     The attributes above are shared by both solvers. Steady solver:
     ``krylov_iterations``, ``continuation_steps``, ``tried`` (one line per stage),
-    ``surface_offset`` (the surface's shift under the cell, mod one column [mm]).
+    ``surface_offset`` (the surface's shift under the cell, mod one column [mm]),
+    ``factorization_time`` (the part of ``solve_time`` that formed and factorized the
+    preconditioner; the rest is GMRES with its matrix-free products).
     Transient: ``steps``, ``cutbacks``, ``line_search_cuts``, ``periods``,
     ``period_change`` / ``period_area_change`` (relative change of μ / A over the last
     period), ``bulk_shear_change`` (over the last period).
@@ -115,6 +117,7 @@ class SolverStats:
     continuation_steps: int = 0
     tried: tuple[str, ...] = ()
     surface_offset: float = 0.0
+    factorization_time: float = np.nan   # [s] steady: tangent formed and factorized
     steps: int = 0
     cutbacks: int = 0
     line_search_cuts: int = 0

@@ -215,7 +215,8 @@ def steady_result(sol: SteadySolution, surface, material, p: float, v: float,
         max_segment_penetration=seg_pen,
         bulk_shear=bulk_shear, krylov_iterations=c.krylov_iterations,
         continuation_steps=c.continuation_steps, tried=tuple(sol.path),
-        surface_offset=float(np.mod(sol.shift, setup.cell.hx)))
+        surface_offset=float(np.mod(sol.shift, setup.cell.hx)),
+        factorization_time=c.factorization_time)
     ue = ev.u_full[model.asm.edofs].reshape(-1, 4, 2)
     return SlidingTestResult(
         friction=mu, shear_stress=mu * p,

@@ -142,10 +142,13 @@ class SteadyCell:
         The history operator along the rows.
     held
         Unknowns held at their starting values.
+    bias
+        Subtracted from the residual (in its gauge) [N/mm]: ``r(U) − bias = 0`` is the
+        Newton homotopy that starts exactly at a state ``U₀`` with ``bias = r(U₀)``.
     """
 
     def __init__(self, model: CellModel, kernel: StreamlineKernel,
-                 held: np.ndarray | None = None) -> None:
+                 held: np.ndarray | None = None, bias: np.ndarray | None = None) -> None:
         if model.plate_x is None:
             raise ValueError("the steady cell needs a model with sliding_plate=True")
         self.model = model
@@ -153,16 +156,19 @@ class SteadyCell:
         self.ny, self.nx = model.cell.ny, model.cell.nx
         #: unknowns held at their starting values (rows of the residual: the change)
         self.held = None if held is None else np.asarray(held, dtype=np.int64)
+        self.bias = bias
         #: the face-mean horizontal displacement as a linear form on the unknowns
         self.c = np.zeros(model.n)
         np.add.at(self.c, model.bx, 1.0 / model.bx.size)
 
-    def with_kernel(self, kernel: StreamlineKernel) -> SteadyCell:
-        return SteadyCell(self.model, kernel, self.held)
+    def with_kernel(self, kernel: StreamlineKernel, bias: np.ndarray | None = None
+                    ) -> SteadyCell:
+        """The same cell with another history kernel and residual bias."""
+        return SteadyCell(self.model, kernel, self.held, bias)
 
     def holding(self, held: np.ndarray | None) -> SteadyCell:
         """The same cell with ``held`` unknowns fixed (None: none)."""
-        return SteadyCell(self.model, self.kernel, held)
+        return SteadyCell(self.model, self.kernel, held, self.bias)
 
     def history(self, s_iso: np.ndarray) -> np.ndarray:
         """``Σ_b Q_b`` at every quadrature point ``(n_el, 4, 3)`` (rows of ``nx`` elements)."""
@@ -197,6 +203,8 @@ class SteadyCell:
             forces[:] = np.nan
         r = forces.copy()
         r[m.plate_x] = self._gauge_row(U, gauge)
+        if self.bias is not None:
+            r -= self.bias
         if self.held is not None:
             r[self.held] = 0.0     # held at the start: Newton never moves them
         return SteadyEvaluation(U, float(shift), float(load), r, forces, u_full, cs, gauge, B,

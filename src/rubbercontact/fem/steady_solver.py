@@ -7,10 +7,13 @@ Protocol (each stage a homotopy or a Newton solve of :mod:`.newton_krylov`):
    from 0 to ``p̄ L0`` in adaptive steps, with the full upstream memory of steady
    sliding at ``v``: friction, the shifted contact and the bulk shear grow with the
    load. The face is held (``"face"`` gauge, see :mod:`.steady`), so the bulk shear
-   moves the plate, not the contact. If that path fails, the cell is pressed
-   frictionless (the history reduced to its local part) and the memory is switched on
-   afterwards by a second homotopy.
-2. *Refine*: the solution interpolated onto the finer mesh and solved there.
+   moves the plate, not the contact. Where the load path stops (a flat or folding
+   load-height curve on steep cells), the press goes on by the plate's height
+   (:mod:`.press`). If that fails too, the cell is pressed frictionless (the history
+   reduced to its local part) and the memory is switched on afterwards by a second
+   homotopy.
+2. *Refine*: the solution interpolated onto the finer mesh and solved there; where the
+   plain Newton fails, a Newton homotopy from the interpolated state.
 3. *Gauge*: the solution translated so that the plate is at ``x = 0``: exactly the
    ``"top"``-gauge steady state on the surface shifted by the plate's lead ``T``, which
    the transient test reaches at one element of travel per step when started at that
@@ -30,8 +33,9 @@ import numpy as np
 from ..materials.maxwell import GeneralizedMaxwell
 from ..roughness.sines import SineSeries
 from .multilevel import coarse_meshes, prolong
-from .newton_krylov import Counters, Endpoint, follow, newton_krylov
+from .newton_krylov import Counters, Endpoint, PathResult, follow, newton_krylov
 from .options import FemOptions
+from .press import HeightPress, PressOutcome
 from .setup import CellSetup, build_cell
 from .steady import SteadyCell, SteadyEvaluation
 from .streamline import StreamlineKernel, streamline_kernel
@@ -96,8 +100,10 @@ def _press(setup: CellSetup, kernel: StreamlineKernel, options: FemOptions,
            counters: Counters) -> np.ndarray:
     """The steady state at the full load, from the undeformed cell, on ``setup``'s mesh.
 
-    The load is raised with the full viscous memory in place; if that path fails, the
-    cell is pressed frictionless (:func:`local_kernel`) and the memory switched on after.
+    The load is raised with the full viscous memory in place; where that path stops, the
+    press goes on from its last state with the plate's height as the parameter
+    (:mod:`.press`); if that fails too, the cell is pressed frictionless
+    (:func:`local_kernel`) and the memory switched on after.
     """
     name = f"{setup.cell.nx}x{setup.cell.ny}"
     cell = SteadyCell(setup.model, kernel)
@@ -107,6 +113,9 @@ def _press(setup: CellSetup, kernel: StreamlineKernel, options: FemOptions,
                    setup.atol, options.steady, counters, f"press {name}")
     if press.converged:
         return press.U
+    by_height = _press_by_height(setup, cell, press, options, counters)
+    if by_height.converged:
+        return by_height.U
     local = local_kernel(kernel)
     plain = follow(cell, U0, Endpoint(local, 0.0), Endpoint(local, load), 0.0, "face",
                    setup.atol, options.steady, counters, f"frictionless press {name}")
@@ -119,11 +128,34 @@ def _press(setup: CellSetup, kernel: StreamlineKernel, options: FemOptions,
     return memory.U
 
 
+def _press_by_height(setup: CellSetup, cell: SteadyCell, press: PathResult,
+                     options: FemOptions, counters: Counters) -> PressOutcome:
+    """The press continued from where the load path stopped, by the plate's height.
+
+    The first height step is a quarter of the travel the load path's secant stiffness
+    predicts for the rest of the load (2 % of the surface's peak-to-valley height if the
+    load path did not start); the smallest is 1e-6 of that height.
+    """
+    m = setup.model
+    pv = float(np.ptp(m.surface.heights(m.X_face[:, 0])))
+    travel = -float(press.U[m.plate])
+    first = 0.02 * pv
+    if press.reached > 0 and travel > 0:
+        first = min(first, 0.25 * travel * (1.0 - press.reached) / press.reached)
+    hp = HeightPress(cell, setup.load, setup.atol, options.steady, counters)
+    out = hp.run(press.U, max(first, 1e-4 * pv), 1e-6 * pv)
+    counters.tried.append(f"height press {m.cell.nx}x{m.cell.ny} from λ = "
+                          f"{press.reached:.4g}: {out.steps} heights"
+                          + (", converged" if out.converged else f" ({out.reason})"))
+    return out
+
+
 def _refine(coarse: CellSetup, U: np.ndarray, fine: CellSetup, options: FemOptions,
             counters: Counters) -> np.ndarray | None:
     """The coarse solution carried to the finer mesh and solved there (None: failed)."""
     m = fine.model
-    cell = SteadyCell(m, _kernel(fine))
+    kern = _kernel(fine)
+    cell = SteadyCell(m, kern)
     V = prolong(coarse.model, U, m, 0.0)
     # The interpolated Q1/P0 field is not incompressible element by element (pointwise
     # J varies inside a coarse element): relax the interior with the face and the plate
@@ -131,12 +163,17 @@ def _refine(coarse: CellSetup, U: np.ndarray, fine: CellSetup, options: FemOptio
     held = np.concatenate([m.bx, m.by, [m.plate, m.plate_x]])
     repair = newton_krylov(cell.holding(held), V, 0.0, fine.load, "top", fine.atol,
                            options.steady, counters)
-    res = newton_krylov(cell, repair.U, 0.0, fine.load, "face", fine.atol, options.steady,
-                        counters)
-    counters.tried.append(f"refine to {m.cell.nx}x{m.cell.ny}: {len(repair.residuals) - 1} + "
-                          f"{len(res.residuals) - 1} Newton"
-                          + ("" if res.converged else f" ({res.reason})"))
-    return res.U if res.converged else None
+    counters.tried.append(f"repair {m.cell.nx}x{m.cell.ny}: {len(repair.residuals) - 1} Newton"
+                          + ("" if repair.converged else f" ({repair.reason})"))
+    # Releasing the face moves the contact set; a plain Newton from the repaired state
+    # can fail to find its way (the line search stalls at the contact edges). The Newton
+    # homotopy r(U) = (1 − λ) r(U₀) starts exactly at the repaired state and walks the
+    # residual down in steps; its first step (λ = 1) is that plain Newton.
+    bias = cell.evaluate(repair.U, 0.0, fine.load, "face").r
+    path = follow(cell, repair.U, Endpoint(kern, fine.load, bias), Endpoint(kern, fine.load),
+                  0.0, "face", fine.atol, options.steady, counters,
+                  f"release {m.cell.nx}x{m.cell.ny}", first_step=1.0)
+    return path.U if path.converged else None
 
 
 def _coarse_to_fine(surface, material, p, v, options: FemOptions, counters: Counters
