@@ -212,6 +212,17 @@ def run_2d(rows_path: Path, done: set) -> None:
                 append_row(rows_path, row)
 
 
+def _self_affine_row(row: dict, params: dict) -> dict:
+    """``row`` (its ``n``, ``seed``, ``v``, ``target``) with the BEM solved on the
+    self-affine profile of ``params`` at the load where the theory's area is ``target``."""
+    z, psd = self_affine_profile(n=row["n"], seed=row["seed"], **params)
+    p = load_for_area(psd, SBR, row["v"], row["target"])
+    t0 = time.perf_counter()
+    res = rc.halfspace.solve_sliding(z, params["length"], SBR, row["v"], p)
+    return {**row, "p": p, "params": params, "bem_mu": [res.friction],
+            "bem_A": [res.contact_fraction], "bem_time": time.perf_counter() - t0}
+
+
 def run_self_affine(rows_path: Path, done: set, sizes: tuple[int, ...]) -> None:
     """Both speeds at N = 2^18 on two realizations; the reference ``sizes`` (2^20: 45 min
     per solve here) on the first realization at the first speed only."""
@@ -219,15 +230,8 @@ def run_self_affine(rows_path: Path, done: set, sizes: tuple[int, ...]) -> None:
         for n, seed in ((2**18, 1), (2**18, 2), *((s, 1) for s in sizes if i == 0)):
             row = {"kind": "selfaffine", "case": "self-affine 4 decades", "v": v,
                    "target": target, "n": n, "seed": seed}
-            if _key(row) in done:
-                continue
-            z, psd = self_affine_profile(n=n, seed=seed, **SELF_AFFINE)
-            p = load_for_area(psd, SBR, v, target)
-            t0 = time.perf_counter()
-            res = rc.halfspace.solve_sliding(z, SELF_AFFINE["length"], SBR, v, p)
-            row.update(p=p, params=SELF_AFFINE, bem_mu=[res.friction],
-                       bem_A=[res.contact_fraction], bem_time=time.perf_counter() - t0)
-            append_row(rows_path, row)
+            if _key(row) not in done:
+                append_row(rows_path, _self_affine_row(row, SELF_AFFINE))
 
 
 def run_broadband(rows_path: Path, done: set) -> None:
@@ -238,15 +242,8 @@ def run_broadband(rows_path: Path, done: set) -> None:
                 for seed in (1, 2):
                     row = {"kind": "broadband", "case": name, "v": v, "target": target,
                            "n": n, "seed": seed}
-                    if _key(row) in done:
-                        continue
-                    z, psd = self_affine_profile(n=n, seed=seed, **params)
-                    p = load_for_area(psd, SBR, v, target)
-                    t0 = time.perf_counter()
-                    res = rc.halfspace.solve_sliding(z, params["length"], SBR, v, p)
-                    row.update(p=p, params=params, bem_mu=[res.friction],
-                               bem_A=[res.contact_fraction], bem_time=time.perf_counter() - t0)
-                    append_row(rows_path, row)
+                    if _key(row) not in done:
+                        append_row(rows_path, _self_affine_row(row, params))
 
 
 def run_pressure_histogram(rows_path: Path, done: set) -> None:
