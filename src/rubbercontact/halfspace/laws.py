@@ -64,7 +64,8 @@ class InteractionLaw:
 
 def _ninth_power(r: np.ndarray) -> np.ndarray:
     """``r**9`` by three squarings and a product: the wall is evaluated on every grid point
-    in every Newton and bisection step, and ``np.power`` with a float exponent costs ~5×."""
+    in every Newton and root-finding step, where ``np.power`` with a float exponent is the
+    dearer operation."""
     r2 = r * r
     r4 = r2 * r2
     return r4 * r4 * r

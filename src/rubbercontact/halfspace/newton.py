@@ -49,20 +49,20 @@ def shift_for_law(law: InteractionLaw, u: np.ndarray, sigma0: float) -> float:
         return float(np.mean(law.pressure(u + s)))
     span = float(np.ptp(u)) + 1e-12
     lo, hi = -span, span
-    while mean_p(lo) < sigma0:
+    p_lo = mean_p(lo)
+    while p_lo < sigma0 and lo >= -1e6 * span:
         lo -= 2 * (hi - lo)
-        if lo < -1e6 * span:
-            break
-    while mean_p(hi) > sigma0:
+        p_lo = mean_p(lo)
+    p_hi = mean_p(hi)
+    while p_hi > sigma0 and hi <= 1e6 * span:
         hi += 2 * (hi - lo)
-        if hi > 1e6 * span:
-            break
-    if mean_p(lo) < sigma0:
+        p_hi = mean_p(hi)
+    if p_lo < sigma0:
         return lo    # not bracketed within 1e6 spans: start from the end nearest the root
-    if mean_p(hi) > sigma0:
+    if p_hi > sigma0:
         return hi
     # Brent's method on log <f>: each evaluation is a pass over the grid, and a wall's
-    # power law is nearly linear in log while bisection to the same tolerance needs ~50 passes
+    # power law is nearly linear in log, where bisection would halve the bracket per pass
     log_s0 = np.log(sigma0)
     return float(brentq(lambda s: np.log(max(mean_p(s), 1e-300)) - log_s0, lo, hi,
                         xtol=1e-12 * span, rtol=1e-12))

@@ -98,7 +98,6 @@ class Problem:
     options: SolverOptions
     matvecs: int = 0
     _pre: np.ndarray | None = None
-    _dense: np.ndarray | None = None
     _column: np.ndarray | None = None
 
     @property
@@ -124,17 +123,9 @@ class Problem:
             self._column = kn.inverse(self.compliance, self.shape).ravel()
         return self._column
 
-    def dense(self) -> np.ndarray:
-        """Dense (circulant) matrix of ``M`` on a 1D grid (cached; small grids only)."""
-        if self._dense is None:
-            i = np.arange(self.size)
-            self._dense = self.restricted(i)
-        return self._dense
-
     def restricted(self, idx: np.ndarray) -> np.ndarray:
-        """Dense matrix of ``M`` between the 1D grid points ``idx`` (``M[idx][:, idx]``)."""
-        if self._dense is not None:
-            return self._dense[np.ix_(idx, idx)]
+        """Dense matrix of ``M`` between the 1D grid points ``idx`` (``M[idx][:, idx]``),
+        gathered from :meth:`column`."""
         return self.column().take(np.subtract.outer(idx, idx), mode="wrap")
 
     def preconditioner(self) -> np.ndarray:

@@ -567,7 +567,8 @@ def law_top(law: xr.Dataset, velocity: float) -> float:
 def check_coverage(law: xr.Dataset, reached: dict[float, float]) -> None:
     """Warn once when the low-slope solve reached pressures beyond the law's successful
     FEM range: ``reached`` maps each speed [mm/s] to the highest local pressure [MPa]."""
-    over = {v: (p, law_top(law, v)) for v, p in reached.items() if p > law_top(law, v)}
+    tops = {v: law_top(law, v) for v in reached}
+    over = {v: (p, tops[v]) for v, p in reached.items() if p > tops[v]}
     if not over:
         return
     vs = sorted(over)

@@ -36,10 +36,10 @@ exact in full contact and lowers the friction where the contact is small.
 We default to ``S = 1``: it is the theory's own friction, and against our BEM it is the
 closer of the two on the multi-wave surfaces and on the 2D map of the validation. On a 1D
 self-affine profile over four decades ``S = 1`` with Persson's own-wavenumber dissipation
-is 56 % high and Persson's ``S`` 10 % low; the *patch spectrum* (:mod:`.patches`, the
-default on continuous 1D spectra) derives the reduction instead: a mode in partial contact
-carries its pressure power at the harmonics of its patches, which dissipate at their own
-frequencies (+9 % there; docs/validation/meanfield.md gives every variant).
+is high and Persson's ``S`` low; the *patch spectrum* (:mod:`.patches`, the default on
+continuous 1D spectra) derives the reduction instead: a mode in partial contact carries its
+pressure power at the harmonics of its patches, which dissipate at their own frequencies
+(docs/validation/meanfield.md gives every variant against the BEM).
 
 Where the friction stress comes from (``dissipation``)
 ------------------------------------------------------

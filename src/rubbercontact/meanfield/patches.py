@@ -17,8 +17,9 @@ Mechanics*, §13.2)
           p(θ) = 2p^*\cos(θ/2)\sqrt{\sin^2(α/2) − \sin^2(θ/2)},\quad θ = qx,
 
 so the contact fraction is ``r = α/π = (2/π) arcsin √(p̄/p*)`` (:func:`westergaard_fraction`;
-Persson's ``erf(p̄/p*)`` lies below it at small loads, and the BEM reproduces it to four
-digits). Its harmonics ``n = 1, 2, …`` carry the fractions ``h_n(r)`` of the pressure variance
+Persson's ``erf(p̄/p*)`` lies below it at small loads; the BEM reproduces it,
+tests/test_meanfield_patches.py). Its harmonics ``n = 1, 2, …`` carry the fractions
+``h_n(r)`` of the pressure variance
 (:func:`harmonic_fractions`, an FFT of ``p(θ)``; in full contact ``h_1 = 1``). To first order
 in the loss, the pressure keeps this elastic shape, and the friction of the sliding sine is
 
@@ -109,8 +110,8 @@ def _bins(n_max: int) -> list[np.ndarray]:
 @lru_cache(maxsize=1)
 def harmonic_table() -> tuple[np.ndarray, np.ndarray, np.ndarray]:
     """``(r, n_b, h_b)``: contact fractions ``(R,)``, the binned harmonics' power-weighted
-    numbers ``(R, B)`` and variance shares ``(R, B)``, computed once (0.2 s). Against a
-    table with 1.5× the rows and 2× the samples, μ moves by < 1e-3 (4-decade profile)."""
+    numbers ``(R, B)`` and variance shares ``(R, B)``, computed once per process (its
+    resolution is checked in docs/validation/meanfield.md, "Cost")."""
     rs = np.geomspace(R_MIN, 1.0, TABLE_ROWS)
     bins = _bins(SAMPLES // 2)
     n = np.arange(1, SAMPLES // 2 + 1, dtype=float)
@@ -156,8 +157,8 @@ def patch_loss(fraction, wavenumbers, material: GeneralizedMaxwell, velocity,
 def _loss_interpolant(material: GeneralizedMaxwell, nu: float, omega: np.ndarray
                       ) -> np.ndarray:
     """``−2 Im[1/E_r(ω)]`` [1/MPa] at ``omega`` [rad/s], read off a log grid of
-    :data:`LOSS_PER_DECADE` points per decade (the loss is smooth in ``log ω``; this is what
-    keeps a 201-speed curve well under a second)."""
+    :data:`LOSS_PER_DECADE` points per decade (the loss is smooth in ``log ω``, and a speed
+    sweep would otherwise evaluate the modulus at every harmonic of every node and speed)."""
     pos = omega[omega > 0]
     if pos.size == 0:
         return np.zeros_like(omega)
