@@ -7,6 +7,7 @@ so they take only serialisable inputs (dicts of numbers) and rebuild the objects
 from __future__ import annotations
 
 import time
+from dataclasses import dataclass, field
 
 import numpy as np
 import xarray as xr
@@ -69,15 +70,100 @@ def halfspace_task(surface: dict, period: float, material: dict, velocity: float
     With ``hs_window`` (the high-slope period [mm]) the hybrid's ``μ_hs`` and ``A_c`` read
     the law at the pressure averaged over that window (see :mod:`.windowing`).
     """
+    t0 = time.perf_counter()
+    point = _halfspace_point(_surface(surface), period, _material(material), velocity,
+                             mean_pressure, n, nu, law, interface_law, hs_window, t0)
+    ds = _scalars(point.values, point.attrs)
+    if keep_profile and point.profiles:
+        ds["x"] = ("x", point.x, {"units": "mm"})
+        for k, arr in point.profiles.items():
+            ds[k] = ("x", arr, {"units": _PROFILE_UNITS[k]})
+    return ds
+
+
+def halfspace_loads_task(surface: dict, period: float, material: dict, velocity: float,
+                         mean_pressures: list, n: int = 4096, nu: float = 0.5,
+                         law: str = "lennard-jones", interface_law: dict | None = None,
+                         keep_profile: bool = False,
+                         hs_window: float | None = None) -> xr.Dataset:
+    """:func:`halfspace_task` at each of several mean pressures, as one task.
+
+    One task per (speed, realization) instead of one per load: the pipeline's result cache
+    writes one file per task, and for the half-space solves of a speed sweep (tens of
+    milliseconds each) writing the files cost about a quarter of the run. A load that fails
+    is recorded in ``status`` and the others are kept.
+
+    Parameters
+    ----------
+    mean_pressures
+        Mean pressures σ0 [MPa]; the other arguments as for :func:`halfspace_task`.
+
+    Returns
+    -------
+    xarray.Dataset
+        The scalars of :func:`halfspace_task` on a ``pressure`` dimension, ``status`` per
+        load (``"ok"`` or the failure) and, with ``keep_profile``, the profiles on
+        ``(pressure, x)``.
+    """
+    from ..errors import ConvergenceError
+
+    surf, mat = _surface(surface), _material(material)
+    p = np.asarray(mean_pressures, float)
+    points: list[_HalfspacePoint | None] = []
+    status = []
+    for sigma0 in p:
+        try:
+            points.append(_halfspace_point(surf, period, mat, velocity, float(sigma0), n, nu,
+                                           law, interface_law, hs_window, time.perf_counter()))
+            status.append("ok")
+        except (ConvergenceError, InputError, FloatingPointError,
+                np.linalg.LinAlgError) as err:
+            points.append(None)
+            status.append(f"{type(err).__name__}: {err}")
+    done = [pt for pt in points if pt is not None]
+    names = list(done[0].values) if done else ["friction", "wall_time"]
+    data = {k: ("pressure", [np.nan if pt is None else pt.values[k] for pt in points],
+                {"units": _UNITS.get(k, "1")}) for k in names if k != "mean_pressure"}
+    ds = xr.Dataset(data, coords={"pressure": ("pressure", p, {"units": "MPa"})},
+                    attrs=done[0].attrs if done else {"model": "halfspace", "law": law})
+    ds["status"] = ("pressure", np.array(status, dtype=str))
+    if keep_profile and done and done[0].profiles:
+        ds["x"] = ("x", done[0].x, {"units": "mm"})
+        # the heights are the same at every load
+        ds["heights_profile"] = ("x", done[0].profiles["heights_profile"], {"units": "mm"})
+        for k in ("pressure_profile", "separation_profile"):
+            rows = [np.full(done[0].x.size, np.nan) if pt is None else pt.profiles[k]
+                    for pt in points]
+            ds[k] = (("pressure", "x"), np.array(rows), {"units": _PROFILE_UNITS[k]})
+    return ds
+
+
+_PROFILE_UNITS = {"pressure_profile": "MPa", "heights_profile": "mm",
+                  "separation_profile": "mm"}
+
+
+@dataclass(frozen=True)
+class _HalfspacePoint:
+    """One half-space solve reduced to what the tasks report."""
+
+    values: dict
+    attrs: dict
+    x: np.ndarray | None = None
+    profiles: dict = field(default_factory=dict)
+
+
+def _halfspace_point(surf: SineSeries, period: float, material: GeneralizedMaxwell,
+                     velocity: float, mean_pressure: float, n: int, nu: float, law: str,
+                     interface_law: dict | None, hs_window: float | None,
+                     t0: float) -> _HalfspacePoint:
+    """Solve one load; the flat low-slope surface by its scalar equation."""
     from .. import halfspace
 
-    t0 = time.perf_counter()
-    surf = _surface(surface)
     if surf.size == 0:
         if interface_law is None:
             raise InputError("surface: empty (flat) surface without an interface law")
         return _flat_interface_solve(interface_law, mean_pressure, velocity, law, t0)
-    res = halfspace.solve_sliding(surf, period, _material(material), velocity,
+    res = halfspace.solve_sliding(surf, period, material, velocity,
                                   mean_pressure, law=halfspace_law(law, interface_law, velocity),
                                   n=n, nu=nu)
     values = {
@@ -85,7 +171,7 @@ def halfspace_task(surface: dict, period: float, material: dict, velocity: float
         "friction_hs": res.friction_hs, "contact_fraction": res.contact_fraction,
         "mean_separation": res.mean_separation, "mean_pressure": mean_pressure,
         "velocity": velocity, "max_local_pressure": float(np.max(res.pressure)),
-        "iterations": res.iterations, "wall_time": time.perf_counter() - t0,
+        "iterations": res.iterations,
     }
     if hs_window is not None and interface_law is not None:
         from .windowing import windowed_hs_terms
@@ -94,24 +180,23 @@ def halfspace_task(surface: dict, period: float, material: dict, velocity: float
                                         mean_pressure)
         values.update(friction=res.friction_ls + mu_hs, friction_hs=mu_hs,
                       contact_fraction=area)
-    ds = _scalars(values, {"model": "halfspace", "law": law,
-                           "hybrid": int(interface_law is not None),
-                           "hs_window_mm": float(hs_window or 0.0)})
-    if keep_profile:
-        ds["x"] = ("x", np.asarray(res.x), {"units": "mm"})
-        ds["pressure_profile"] = ("x", np.asarray(res.pressure), {"units": "MPa"})
-        ds["heights_profile"] = ("x", np.asarray(res.heights), {"units": "mm"})
-        ds["separation_profile"] = ("x", np.asarray(res.separation), {"units": "mm"})
-    return ds
+    values["wall_time"] = time.perf_counter() - t0
+    attrs = {"model": "halfspace", "law": law, "hybrid": int(interface_law is not None),
+             "hs_window_mm": float(hs_window or 0.0)}
+    profiles = {"pressure_profile": np.asarray(res.pressure),
+                "heights_profile": np.asarray(res.heights),
+                "separation_profile": np.asarray(res.separation)}
+    return _HalfspacePoint(values, attrs, np.asarray(res.x), profiles)
 
 
 #: Own version of the half-space task (over the module's CACHE_VERSION, which keys the FEM
 #: task): "3.1" reads the windowed law through the hybrid's own interpolant.
 halfspace_task.cache_version = "3.1"
+halfspace_loads_task.cache_version = "1"
 
 
 def _flat_interface_solve(interface_law: dict, mean_pressure: float, velocity: float,
-                          law: str, t0: float) -> xr.Dataset:
+                          law: str, t0: float) -> _HalfspacePoint:
     """Exact half-space solution for a flat low-slope surface (every wave is high-slope).
 
     With ``z_ls = 0`` the pressure is uniform, ``w = 0`` and ``u = ū`` everywhere, so the
@@ -143,7 +228,7 @@ def _flat_interface_solve(interface_law: dict, mean_pressure: float, velocity: f
               "mean_separation": u, "mean_pressure": mean_pressure, "velocity": velocity,
               "max_local_pressure": mean_pressure, "iterations": 0,
               "wall_time": time.perf_counter() - t0}
-    return _scalars(values, {"model": "halfspace", "law": law, "hybrid": 1, "flat": 1})
+    return _HalfspacePoint(values, {"model": "halfspace", "law": law, "hybrid": 1, "flat": 1})
 
 
 def fem_task(surface: dict, material: dict, velocity: float, mean_pressure: float,

@@ -54,7 +54,8 @@ def model_times(slots: list[Slot], results: list) -> dict[str, float]:
     """Summed wall time of each model's tasks [s] (a mean-field task counted once)."""
     out: dict[str, float] = {}
     for slot, res in zip(slots, results, strict=True):
-        t = float(res["wall_time"]) if failure_message(res) is None and "wall_time" in res else 0.0
+        t = (float(np.nansum(res["wall_time"].values))
+             if failure_message(res) is None and "wall_time" in res else 0.0)
         out[slot.model] = out.get(slot.model, 0.0) + t
     return out
 
@@ -73,10 +74,14 @@ def assemble(models: list[str], velocities: np.ndarray, n_real: int, pressures: 
     fem_diag = {k: np.full(shape[1:], np.nan) for k in STEADINESS_VARIABLES}
     for slot, res in zip(slots, results, strict=True):
         im = models.index(slot.model)
-        at = (im, slot.iv, slice(None) if slot.ir is None else slot.ir, slot.ip)
+        at = (im, slot.iv, slice(None) if slot.ir is None else slot.ir,
+              slice(None) if slot.ip is None else slot.ip)
         msg = failure_message(res)
         if msg is not None:
             status[at] = msg
+            continue
+        if slot.ip is None:
+            _store_loads(data, status, at, res, split=slot.model in SPLIT_MODELS)
             continue
         if slot.model == "fem":
             for k, arr in fem_diag.items():
@@ -107,6 +112,19 @@ def assemble(models: list[str], velocities: np.ndarray, n_real: int, pressures: 
     if "fem" in models:
         ds = add_fem_steadiness(ds, fem_diag, material, stacklevel=4)
     return ds
+
+
+def _store_loads(data: dict, status: np.ndarray, at: tuple, res: xr.Dataset,
+                 split: bool) -> None:
+    """A task's result over every load (a ``pressure`` dimension) into its slot; ``split``:
+    the model reports ``μ_ls`` and ``μ_hs`` (else ``μ_ls = μ``, ``μ_hs = 0``)."""
+    status[at] = res["status"].values.astype(str)
+    for k, arr in data.items():
+        if k in res:
+            arr[at] = res[k].values
+    if not split:
+        data["friction_ls"][at] = res["friction"].values
+        data["friction_hs"][at] = np.where(np.isfinite(res["friction"].values), 0.0, np.nan)
 
 
 def add_fem_steadiness(ds: xr.Dataset, diag: dict, material: GeneralizedMaxwell,
@@ -155,7 +173,8 @@ def add_profiles(ds: xr.Dataset, slots: list[Slot], results: list) -> xr.Dataset
         arr = profiles.setdefault(slot.model, np.full((ds.sizes["velocity"],
                                                        ds.sizes["pressure"], res.sizes["x"]),
                                                       np.nan))
-        arr[slot.iv, slot.ip] = res["pressure_profile"].values
+        arr[slot.iv, slice(None) if slot.ip is None else slot.ip] = \
+            res["pressure_profile"].values
         ds = ds.assign_coords(x=("x", res["x"].values, {"units": "mm"}))
         if "heights" not in ds and slot.model == "vhs":
             ds["heights"] = ("x", res["heights_profile"].values, {"units": "mm"})

@@ -1,8 +1,9 @@
 """``run(config)``: the models of a config, from set-up to the results dataset.
 
 Steps (each in its module): resolve and check the set-up (:mod:`.setup`, :mod:`.speeds`),
-the loads (:mod:`.loads`), the high-slope law (:mod:`.lawstage`), one task per model, speed,
-realization and load (:mod:`.plan`), their results stacked (:mod:`.assemble`), the
+the loads (:mod:`.loads`), the high-slope law (:mod:`.lawstage`), the model tasks (one per
+model, speed and realization over every load for the half-space models; :mod:`.plan`),
+their results stacked (:mod:`.assemble`), the
 adhesive part (:mod:`.adhesion`), statistics and eq. 28 (:mod:`.statistics`), and the
 spread over temperatures (:mod:`.temperature`).
 """

@@ -1,9 +1,11 @@
-"""The sweep tasks of a run's models, one per (model, speed, realization, load).
+"""The sweep tasks of a run's models.
 
-The half-space models (``vhs``, ``hybrid``, ``hybrid-windowed``) and the full FEM run per
-realization; the mean-field models see only the spectrum, so they run once per speed and
-load and their answer stands for every realization. Speeds are the *computed* speeds of
-the :class:`~.speeds.SpeedPlan` (the reduced speeds of a run with temperatures).
+The half-space models (``vhs``, ``hybrid``, ``hybrid-windowed``) run one task per speed and
+realization over every load (the solves are short, and each task is one cache file); the
+full FEM one per speed, realization and load; the mean-field models see only the spectrum,
+so they run once per speed and load and their answer stands for every realization. Speeds
+are the *computed* speeds of the :class:`~.speeds.SpeedPlan` (the reduced speeds of a run
+with temperatures).
 """
 
 from __future__ import annotations
@@ -28,16 +30,18 @@ if TYPE_CHECKING:
     from ..sweep import Task
 
 HALFSPACE_TASK = "rubbercontact.hybrid.tasks:halfspace_task"
+HALFSPACE_LOADS_TASK = "rubbercontact.hybrid.tasks:halfspace_loads_task"
 MEANFIELD_TASK = "rubbercontact.meanfield.tasks:meanfield_task"
 
 
 class Slot(NamedTuple):
-    """Where a task's result goes: model, speed index, realization (None: every one), load."""
+    """Where a task's result goes: model, speed index, realization (None: every one), load
+    (None: every load, the result on a ``pressure`` dimension)."""
 
     model: str
     iv: int
     ir: int | None
-    ip: int
+    ip: int | None
 
 
 def model_tasks(setup: RunSetup, material: GeneralizedMaxwell, pressures: np.ndarray,
@@ -63,6 +67,16 @@ def model_tasks(setup: RunSetup, material: GeneralizedMaxwell, pressures: np.nda
     for m in setup.models:
         for iv, v in enumerate(setup.speeds.computed):
             table = tables.get(float(v))
+            if m not in MEANFIELD_MODELS and m != "fem":
+                # the half-space models: one task per realization over every load
+                for ir, (real, parts) in enumerate(zip(setup.realizations, setup.parts,
+                                                       strict=True)):
+                    kw = halfspace_kwargs(cfg, m, real, parts.low, parts.high.size > 0, setup,
+                                          material, float(v), pressures, table, keep=ir == 0)
+                    tasks.append(Task(function=HALFSPACE_LOADS_TASK, kwargs=kw,
+                                      label=f"{m} v={v:g} r={ir}"))
+                    slots.append(Slot(m, iv, ir, None))
+                continue
             for ip, p in enumerate(pressures):
                 if m in MEANFIELD_MODELS:
                     fn, kw = meanfield_call(cfg, m, spectrum[m], material, float(v), float(p),
@@ -70,18 +84,9 @@ def model_tasks(setup: RunSetup, material: GeneralizedMaxwell, pressures: np.nda
                     tasks.append(Task(function=fn, kwargs=kw, label=f"{m} v={v:g} p={p:.4g}"))
                     slots.append(Slot(m, iv, None, ip))
                     continue
-                for ir, (real, parts) in enumerate(zip(setup.realizations, setup.parts,
-                                                       strict=True)):
-                    if m == "fem" and ir >= setup.n_fem:
-                        continue
-                    if m == "fem":
-                        task = full_fem_task(cfg, real, material, float(v), float(p))
-                        fn, kw = task.function, task.kwargs
-                    else:
-                        fn, kw = HALFSPACE_TASK, halfspace_kwargs(
-                            cfg, m, real, parts.low, parts.high.size > 0, setup, material,
-                            float(v), float(p), table, keep=ir == 0)
-                    tasks.append(Task(function=fn, kwargs=kw,
+                for ir, real in enumerate(setup.realizations[:setup.n_fem]):
+                    task = full_fem_task(cfg, real, material, float(v), float(p))
+                    tasks.append(Task(function=task.function, kwargs=task.kwargs,
                                       label=f"{m} v={v:g} r={ir} p={p:.4g}"))
                     slots.append(Slot(m, iv, ir, ip))
     return slots, tasks
@@ -89,14 +94,15 @@ def model_tasks(setup: RunSetup, material: GeneralizedMaxwell, pressures: np.nda
 
 def halfspace_kwargs(cfg: RunConfig, model: str, real: SineSeries, low: SineSeries,
                      has_high: bool, setup: RunSetup, material: GeneralizedMaxwell,
-                     v: float, p: float, table, keep: bool) -> dict:
-    """Keyword arguments of one half-space task (VHS, or the hybrid's low-slope solve)."""
+                     v: float, pressures: np.ndarray, table, keep: bool) -> dict:
+    """Keyword arguments of one half-space task at every load (VHS, or the hybrid's
+    low-slope solve)."""
     hsc = cfg.halfspace
     surf = real if (model == "vhs" or not has_high) else low
     kw = {"surface": surf.as_dict(), "period": setup.period, "material": task_material(material),
-          "velocity": v, "mean_pressure": p, "n": hsc.n, "nu": cfg.material.nu,
-          "law": hsc.law, "interface_law": table if model in HYBRID_MODELS else None,
-          "keep_profile": keep}
+          "velocity": v, "mean_pressures": [float(p) for p in pressures], "n": hsc.n,
+          "nu": cfg.material.nu, "law": hsc.law,
+          "interface_law": table if model in HYBRID_MODELS else None, "keep_profile": keep}
     if model == "hybrid-windowed" and has_high:
         kw["hs_window"] = float(setup.hs0.period)
     return kw
