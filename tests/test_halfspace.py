@@ -387,3 +387,54 @@ def test_linear_similarity_of_hard_wall_contact():
         assert big.friction == pytest.approx(s * base.friction, rel=1e-6)
         assert big.mean_separation == pytest.approx(s * base.mean_separation, rel=1e-6)
         np.testing.assert_allclose(big.pressure, s * base.pressure, atol=1e-6 * s * p)
+
+
+def _contact_block(n: int, idx: np.ndarray, c: float) -> np.ndarray:
+    """The bordered contact-set matrix of a viscoelastic 1D problem (as the dense path builds)."""
+    from rubbercontact.halfspace.problem import Problem
+
+    mat = rc.materials.sbr()
+    kern = kernels.response_kernel(mat, (n,), (1.0,), 10.0, 0.5)
+    prob = Problem((n,), (1.0,), np.zeros(n), np.zeros(n), kern, 0.1, SolverOptions())
+    nb = idx.size
+    a = np.zeros((nb + 1, nb + 1))
+    a[:nb, :nb] = prob.restricted(idx) + c * np.eye(nb)
+    a[:nb, nb] = a[nb, :nb] = 1.0
+    # the gathered block is the circulant's: check one entry against the operator itself
+    e = np.zeros(n)
+    e[idx[1]] = 1.0
+    np.testing.assert_allclose(a[0, 1], prob.displacement(e)[idx[0]], rtol=1e-12)
+    return a
+
+
+@pytest.mark.parametrize("c", [0.0, 1e-3])
+def test_mixed_precision_solve_is_a_float64_solve(c):
+    """Single-precision LU + refinement solves the contact-set system to float64 accuracy:
+    its backward error is that of a float64 LU (a few ε |a| |x|)."""
+    from rubbercontact.halfspace.contact_set import mixed_precision_solve
+
+    rng = np.random.default_rng(4)
+    idx = np.sort(rng.choice(4096, 400, replace=False))
+    a = _contact_block(4096, idx, c)
+    b = rng.standard_normal(idx.size + 1)
+    x = mixed_precision_solve(a, b)
+    ref = np.linalg.solve(a, b)
+    eps = np.finfo(float).eps
+    bound = np.linalg.norm(a) * np.abs(x).max() * eps * np.sqrt(b.size)
+    assert np.abs(b - a @ x).max() <= bound
+    cond = np.linalg.cond(a)
+    # forward error within what the conditioning allows a backward-stable float64 solve
+    assert np.abs(x - ref).max() <= 10 * cond * eps * np.abs(ref).max()
+
+
+def test_mixed_precision_solve_falls_back_when_single_precision_cannot_converge():
+    """A matrix far too ill-conditioned for float32 (Hilbert, cond ~1e13: the refinement
+    cannot contract) gets the float64 LU's answer."""
+    from scipy.linalg import hilbert
+
+    from rubbercontact.halfspace.contact_set import mixed_precision_solve
+
+    a = hilbert(10)
+    b = a @ np.ones(10)
+    # the fallback is numpy's float64 LU itself: the same numbers, bit for bit
+    np.testing.assert_array_equal(mixed_precision_solve(a, b), np.linalg.solve(a, b))
