@@ -63,6 +63,21 @@ def test_tabulated_exponential_is_reproduced_exactly():
     np.testing.assert_allclose(law.stiffness(uu), 200.0 * np.exp(-uu / 0.01), rtol=1e-10)
 
 
+def test_tabulated_inside_the_table_is_the_log_pchip_of_scipy():
+    """Inside the table the law is ``exp`` of SciPy's PCHIP through ``(u_j, log σ_j)`` and
+    ``k = −σ (log σ)'`` (the law's own piecewise-cubic evaluation against the peer's)."""
+    from scipy.interpolate import PchipInterpolator
+
+    u = np.array([0.0, 0.003, 0.007, 0.012, 0.02, 0.031, 0.05])
+    s = np.array([6.0, 3.1, 1.2, 0.55, 0.2, 0.04, 0.002])
+    ref = PchipInterpolator(u, np.log(s))
+    uu = np.concatenate([u, np.random.default_rng(1).uniform(0.0, 0.05, 200)])
+    law = TabulatedLaw(u, s)
+    np.testing.assert_allclose(law.pressure(uu), np.exp(ref(uu)), rtol=1e-13)
+    np.testing.assert_allclose(law.stiffness(uu), -ref.derivative()(uu) * np.exp(ref(uu)),
+                               rtol=1e-12)
+
+
 def test_tabulated_out_of_table_behaviour():
     u = np.array([0.01, 0.02, 0.03, 0.04])
     s = np.array([1.0, 0.3, 0.05, 0.0])

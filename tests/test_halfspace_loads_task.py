@@ -47,3 +47,20 @@ def test_profiles_on_every_load():
     assert ds["heights_profile"].dims == ("x",)
     # each load's profile carries its mean pressure
     np.testing.assert_allclose(ds["pressure_profile"].mean("x"), LOADS, rtol=1e-10)
+
+
+def test_the_tolerance_reaches_the_solver():
+    """``halfspace.tol`` of the config is the solver's: a loose one stops earlier."""
+    from rubbercontact.config import parse_config
+    from rubbercontact.pipeline.plan import model_tasks
+    from rubbercontact.pipeline.setup import resolve
+
+    cfg = parse_config({"surface": {"wavelengths": [0.25, 1.0], "amplitudes": [0.01, 0.04]},
+                        "loads": {"pressures": LOADS}, "velocities": [10.0], "realizations": 1,
+                        "models": ["vhs"], "halfspace": {"n": 512, "tol": 1e-4}})
+    setup = resolve(cfg)
+    _, tasks = model_tasks(setup, setup.material, np.array(LOADS), {})
+    assert tasks[0].kwargs["tol"] == 1e-4
+    loose = halfspace_loads_task(mean_pressures=LOADS, tol=1e-4, **_kw())
+    tight = halfspace_loads_task(mean_pressures=LOADS, tol=1e-10, **_kw())
+    assert (loose["iterations"] < tight["iterations"]).any()

@@ -64,15 +64,17 @@ def halfspace_law(kind: str, interface_law: dict | None = None, velocity: float 
 def halfspace_task(surface: dict, period: float, material: dict, velocity: float,
                    mean_pressure: float, n: int = 4096, nu: float = 0.5,
                    law: str = "lennard-jones", interface_law: dict | None = None,
-                   keep_profile: bool = False, hs_window: float | None = None) -> xr.Dataset:
+                   keep_profile: bool = False, hs_window: float | None = None,
+                   tol: float = 1e-8) -> xr.Dataset:
     """One steady-sliding half-space solve (VHS model, or the low-slope part of the hybrid).
 
     With ``hs_window`` (the high-slope period [mm]) the hybrid's ``μ_hs`` and ``A_c`` read
-    the law at the pressure averaged over that window (see :mod:`.windowing`).
+    the law at the pressure averaged over that window (see :mod:`.windowing`); ``tol`` is
+    the solver's relative tolerance (:func:`rubbercontact.halfspace.solve_sliding`).
     """
     t0 = time.perf_counter()
     point = _halfspace_point(_surface(surface), period, _material(material), velocity,
-                             mean_pressure, n, nu, law, interface_law, hs_window, t0)
+                             mean_pressure, n, nu, law, interface_law, hs_window, t0, tol)
     ds = _scalars(point.values, point.attrs)
     if keep_profile and point.profiles:
         ds["x"] = ("x", point.x, {"units": "mm"})
@@ -84,8 +86,8 @@ def halfspace_task(surface: dict, period: float, material: dict, velocity: float
 def halfspace_loads_task(surface: dict, period: float, material: dict, velocity: float,
                          mean_pressures: list, n: int = 4096, nu: float = 0.5,
                          law: str = "lennard-jones", interface_law: dict | None = None,
-                         keep_profile: bool = False,
-                         hs_window: float | None = None) -> xr.Dataset:
+                         keep_profile: bool = False, hs_window: float | None = None,
+                         tol: float = 1e-8) -> xr.Dataset:
     """:func:`halfspace_task` at each of several mean pressures, as one task.
 
     One task per (speed, realization) instead of one per load: the pipeline's result cache
@@ -114,7 +116,8 @@ def halfspace_loads_task(surface: dict, period: float, material: dict, velocity:
     for sigma0 in p:
         try:
             points.append(_halfspace_point(surf, period, mat, velocity, float(sigma0), n, nu,
-                                           law, interface_law, hs_window, time.perf_counter()))
+                                           law, interface_law, hs_window, time.perf_counter(),
+                                           tol))
             status.append("ok")
         except (ConvergenceError, InputError, FloatingPointError,
                 np.linalg.LinAlgError) as err:
@@ -155,7 +158,7 @@ class _HalfspacePoint:
 def _halfspace_point(surf: SineSeries, period: float, material: GeneralizedMaxwell,
                      velocity: float, mean_pressure: float, n: int, nu: float, law: str,
                      interface_law: dict | None, hs_window: float | None,
-                     t0: float) -> _HalfspacePoint:
+                     t0: float, tol: float = 1e-8) -> _HalfspacePoint:
     """Solve one load; the flat low-slope surface by its scalar equation."""
     from .. import halfspace
 
@@ -165,7 +168,7 @@ def _halfspace_point(surf: SineSeries, period: float, material: GeneralizedMaxwe
         return _flat_interface_solve(interface_law, mean_pressure, velocity, law, t0)
     res = halfspace.solve_sliding(surf, period, material, velocity,
                                   mean_pressure, law=halfspace_law(law, interface_law, velocity),
-                                  n=n, nu=nu)
+                                  n=n, nu=nu, tol=tol)
     values = {
         "friction": res.friction, "friction_ls": res.friction_ls,
         "friction_hs": res.friction_hs, "contact_fraction": res.contact_fraction,

@@ -150,7 +150,8 @@ def add_vhs(law: xr.Dataset, hs: SineSeries, material: GeneralizedMaxwell, cfg: 
                   kwargs={"surface": hs.as_dict(), "period": hs.period,
                           "material": task_material(material), "velocity": float(v),
                           "mean_pressure": float(p), "n": min(cfg.halfspace.n, 4096),
-                          "nu": cfg.material.nu, "law": cfg.halfspace.law},
+                          "nu": cfg.material.nu, "law": cfg.halfspace.law,
+                          "tol": cfg.halfspace.tol},
                   label=f"vhs on z_hs v={v:g} p={p:.4g}")
              for v in law["velocity"].values for p in law["pressure"].values]
     res = runner(tasks)

@@ -101,7 +101,7 @@ def halfspace_kwargs(cfg: RunConfig, model: str, real: SineSeries, low: SineSeri
     surf = real if (model == "vhs" or not has_high) else low
     kw = {"surface": surf.as_dict(), "period": setup.period, "material": task_material(material),
           "velocity": v, "mean_pressures": [float(p) for p in pressures], "n": hsc.n,
-          "nu": cfg.material.nu, "law": hsc.law,
+          "nu": cfg.material.nu, "law": hsc.law, "tol": hsc.tol,
           "interface_law": table if model in HYBRID_MODELS else None, "keep_profile": keep}
     if model == "hybrid-windowed" and has_high:
         kw["hs_window"] = float(setup.hs0.period)
