@@ -82,9 +82,13 @@ def wall_soft_active_set(prob: Problem, soft: InteractionLaw, tol: float, max_it
     zscale = float(np.abs(z).max()) or 1.0
     w = prob.displacement(sigma)
     u = ubar + w - z
+    # the soft law is only evaluated at u >= 0: penetration is the wall's business (it
+    # enters the set at the next update); its steep extrapolation below u = 0 would
+    # otherwise dominate the line-search merit
+    f = soft.pressure(np.maximum(u, 0.0))
+    k = soft.stiffness(np.maximum(u, 0.0))
     if active is None:
-        k0 = soft.stiffness(np.maximum(u, 0.0))
-        active = (sigma - soft.pressure(np.maximum(u, 0.0))) / (k0 + 1.0 / m_diag) > u
+        active = (sigma - f) / (k + 1.0 / m_diag) > u
     lin_its = 0
     history = []
     res = np.inf
@@ -94,11 +98,6 @@ def wall_soft_active_set(prob: Problem, soft: InteractionLaw, tol: float, max_it
         return np.minimum(uu, wgt * (sig - ff))
 
     for it in range(1, max_iter + 1):
-        # the soft law is only evaluated at u >= 0: penetration is the wall's business (it
-        # enters the set at the next update); its steep extrapolation below u = 0 would
-        # otherwise dominate the line-search merit
-        f = soft.pressure(np.maximum(u, 0.0))
-        k = soft.stiffness(np.maximum(u, 0.0))
         stiff = active | (k * m_diag > 1e-8)
         idx = np.flatnonzero(stiff)
         free = ~stiff
@@ -141,6 +140,7 @@ def wall_soft_active_set(prob: Problem, soft: InteractionLaw, tol: float, max_it
             return Solution(sigma, u, w, ubar, it, res, True,
                             {"linear_iterations": lin_its, "history": history, "active": active})
         active = new
+        f, k = f_t, k_t       # the law at the accepted u, for the next step
     return Solution(sigma, u, w, ubar, max_iter, res, False,
                     {"linear_iterations": lin_its, "history": history, "active": active})
 
