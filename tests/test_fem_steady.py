@@ -404,3 +404,59 @@ def test_press_by_height_reaches_the_load_controlled_state():
     out = hp.run(np.zeros(m.n), 0.002, 1e-7)
     assert out.converged, out.reason
     assert np.max(np.abs(out.U - res.state.U)) <= 1e-6 * setup.cell.hx
+
+
+def test_loose_intermediate_steps_end_at_the_state_of_the_fully_converged_path():
+    # The press converged to 1e-3 of the load at every intermediate step (the default)
+    # against the same press with every step converged to the Newton tolerance: the end of
+    # both is converged to the tolerance, so both are the same locally unique state (to
+    # 1e-6 of an element, as the homotopy test above), and the loose path needs fewer
+    # Newton iterations for it.
+    from rubbercontact.fem.newton_krylov import Counters, Endpoint, follow
+    from rubbercontact.fem.options import SteadyOptions
+
+    setup, cell = _cell(mesh=(24, 12))
+    U0 = np.zeros(setup.model.n)
+    runs = {}
+    for factor in (1.0, 1000.0):
+        counters = Counters()
+        runs[factor] = (follow(cell, U0, Endpoint(cell.kernel, 0.0),
+                               Endpoint(cell.kernel, setup.load), 0.0, "face", setup.atol,
+                               SteadyOptions(), counters, "press", path_tol_factor=factor),
+                        counters)
+    (plain, c_plain), (loose, c_loose) = runs[1.0], runs[1000.0]
+    assert plain.converged and loose.converged, (c_plain.tried, c_loose.tried)
+    assert loose.ev.norm <= 30 * setup.atol
+    assert np.max(np.abs(loose.U - plain.U)) <= 1e-6 * setup.cell.hx
+    assert c_loose.newton_iterations < c_plain.newton_iterations
+
+
+def test_gmres_that_stagnates_gives_no_direction_after_one_restart_cycle():
+    # A singular operator (half of the unknowns have no stiffness: a floating cell) with a
+    # right-hand side mostly in its null space: GMRES cannot get below the null part's
+    # share (0.89 here), so the direction is refused after one restart cycle instead of
+    # max_krylov iterations; a regular operator still gets its direction to the tolerance.
+    from types import SimpleNamespace
+
+    from rubbercontact.fem.newton_krylov import _direction
+    from rubbercontact.fem.options import SteadyOptions
+
+    n = 200
+    rng = np.random.default_rng(3)
+    b = np.concatenate([rng.normal(size=n // 2), 2.0 * rng.normal(size=n // 2)])
+    pre = SimpleNamespace(solve=lambda v, gauge: v)
+    ev = SimpleNamespace(r=-b)
+    calls = []
+
+    def singular(v):
+        calls.append(1)
+        return np.concatenate([np.linspace(1.0, 50.0, n // 2) * v[:n // 2], 0.0 * v[n // 2:]])
+
+    opts = SteadyOptions(max_krylov=200)
+    assert _direction(SimpleNamespace(jvp=lambda e, v: singular(v)), ev, pre, "face", 1e-2,
+                      opts) is None
+    assert len(calls) <= 61
+    d = np.linspace(1.0, 50.0, n)
+    lin = _direction(SimpleNamespace(jvp=lambda e, v: d * v), ev, pre, "face", 1e-8, opts)
+    assert lin is not None and lin.residual <= 1e-8
+    assert np.allclose(d * lin.x, b, rtol=0, atol=1e-6 * np.linalg.norm(b))
