@@ -148,6 +148,7 @@ class WaveTables:
     strips: SlidingStrip          # on the x grid
     fractions: np.ndarray         # r grid
     loss: np.ndarray              # Σ h_n(r)(−2 Im[1/E_r(nqv)]) on the r grid [1/MPa]
+    own_loss: float               # −2 Im[1/E_r(qv)] [1/MPa]: the loss in full contact
 
     @property
     def curvature(self) -> float:
@@ -164,21 +165,24 @@ class WaveTables:
         return SlidingStrip(r, e)
 
     def loss_at(self, fraction: np.ndarray) -> np.ndarray:
-        """The strips' loss [1/MPa] at the fractions (clipped to the grid)."""
+        """The strips' loss [1/MPa] at the fractions (clipped to the grid; the mode's own,
+        exactly, in full contact)."""
         lr = np.log(np.clip(fraction, self.fractions[0], 1.0))
-        return np.interp(lr, np.log(self.fractions), self.loss)
+        return np.where(fraction >= 1.0, self.own_loss,
+                        np.interp(lr, np.log(self.fractions), self.loss))
 
 
 def wave_tables(wavenumber: float, amplitude: float, material: GeneralizedMaxwell,
                 velocity: float, nu: float) -> WaveTables:
     """Tabulate :func:`sliding_fraction` and :func:`~.patches.patch_loss` for one wave."""
-    e_r = abs(complex(material.complex_modulus(wavenumber * abs(velocity)))) / (1.0 - nu**2)
+    modulus = complex(material.complex_modulus(wavenumber * abs(velocity))) / (1.0 - nu**2)
     ratios = np.geomspace(SMALLEST_RATIO, 1.0, TABLE_POINTS)
     fractions = np.geomspace(SMALLEST_FRACTION, 1.0, TABLE_POINTS)
     loss = patch_loss(fractions, np.full(fractions.size, wavenumber), material, velocity, nu)
-    return WaveTables(wavenumber, amplitude, wavenumber * amplitude * e_r / 2, ratios,
-                      sliding_fraction(ratios, wavenumber, material, velocity, nu),
-                      fractions, loss)
+    own = -2.0 * (1.0 / modulus).imag * np.sign(velocity)      # E(−ω) = conj E(ω)
+    return WaveTables(wavenumber, amplitude, wavenumber * amplitude * abs(modulus) / 2,
+                      ratios, sliding_fraction(ratios, wavenumber, material, velocity, nu),
+                      fractions, loss, float(own))
 
 
 @dataclass(frozen=True)
