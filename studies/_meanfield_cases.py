@@ -17,17 +17,20 @@ SINE = {"wavelength": 1.0, "m2": 0.4}
 SINE_SPEEDS = (0.0, 1.0, 10.0, 50.0, 500.0)
 SINE_LOADS = (0.01, 0.03, 0.1, 0.3, 0.6)
 #: The modelling choices compared (label, options); the first is the issue's naive
-#: transcription of the 2D theory, the last but one the package default.
+#: transcription of the 2D theory, the last the package default on sine series.
+DIFFUSION = mf.MeanFieldOptions(geometry="diffusion")
 VARIANTS = (
-    ("naive: S = ½ + ½A², cell mean", mf.MeanFieldOptions(correction="persson",
-                                                           weighting="cell")),
-    ("S = 1, cell mean", mf.MeanFieldOptions(weighting="cell")),
-    ("S = ½ + ½A², after the wave", mf.MeanFieldOptions(correction="persson",
-                                                         weighting="after")),
-    ("S = 1, after the wave (default)", mf.MeanFieldOptions()),
+    ("naive: S = ½ + ½A², cell mean", mf.MeanFieldOptions(
+        correction="persson", weighting="cell", geometry="diffusion")),
+    ("S = 1, cell mean", mf.MeanFieldOptions(weighting="cell", geometry="diffusion")),
+    ("S = ½ + ½A², after the wave", mf.MeanFieldOptions(
+        correction="persson", weighting="after", geometry="diffusion")),
+    ("S = 1, after the wave (previous default)", DIFFUSION),
     ("S = 1, after the wave, patch spectrum r = A_i/A_(i−1) (cascade)",
-     mf.MeanFieldOptions(dissipation="cascade")),
-    ("S = 1, after the wave, patch spectrum r = A_i", mf.MeanFieldOptions(dissipation="patch")),
+     mf.MeanFieldOptions(dissipation="cascade", geometry="diffusion")),
+    ("S = 1, after the wave, patch spectrum r = A_i",
+     mf.MeanFieldOptions(dissipation="patch", geometry="diffusion")),
+    ("Westergaard strips (default)", mf.MeanFieldOptions()),
 )
 
 
@@ -65,10 +68,11 @@ def random_ladder(waves: int, seed: int, longest: float = 8.0) -> SineSeries:
 
 
 def load_for_area(psd, material, velocity: float, area: float) -> float:
-    """The mean pressure [MPa] at which the theory's contact fraction is ``area``
-    (4 significant digits)."""
+    """The mean pressure [MPa] at which the diffusion's (Persson's) contact fraction is
+    ``area`` (4 significant digits; the loads of the cached rows)."""
     def gap(logp):
-        return mf.solve(psd, material, velocity, float(np.exp(logp))).contact_fraction - area
+        return mf.solve(psd, material, velocity, float(np.exp(logp)),
+                        options=DIFFUSION).contact_fraction - area
 
     return float(f"{np.exp(brentq(gap, np.log(1e-6), np.log(1e5), xtol=1e-6)):.4g}")
 

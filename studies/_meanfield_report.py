@@ -14,7 +14,13 @@ from rubbercontact import meanfield as mf
 from rubbercontact.meanfield.patches import westergaard_fraction
 from rubbercontact.roughness import SineSeries
 
-from ._meanfield_cases import SPEEDS, make_map, self_affine_profile, westergaard_p_star
+from ._meanfield_cases import (
+    DIFFUSION,
+    SPEEDS,
+    make_map,
+    self_affine_profile,
+    westergaard_p_star,
+)
 from ._meanfield_diagnosis import broadband_table, diagnosis
 from ._templates import render
 
@@ -79,11 +85,19 @@ def _choices_table(rows, variants) -> str:
     return "\n".join(lines)
 
 
-def _validation_table(points) -> str:
+def _ok(p: dict) -> bool:
+    return abs(p["e_mu"]) <= TARGET and abs(p["e_A"]) <= TARGET
+
+
+def _validation_table(points, old) -> str:
+    """Per surface: the default against the BEM, and the previous default (the diffusion)
+    beside it (the same rows; continuous spectra have no strips, the two coincide)."""
     lines = ["| surface | waves | max m2 | points (BEM A in 1–50 %) | μ error mean [min, max] "
-             "| A error mean [min, max] | μ and A within 15 % |", "|---|---|---|---|---|---|---|"]
+             "| A error mean [min, max] | μ and A within 15 % | previous default (diffusion): "
+             "μ error | A error | within 15 % |", "|---" * 10 + "|"]
     for case in dict.fromkeys(p["case"] for p in points):
         pts = [p for p in points if p["case"] == case and p["in_range"]]
+        prev = [p for p in old if p["case"] == case and p["in_range"]]
         if not pts:
             continue
         first = pts[0]
@@ -93,12 +107,30 @@ def _validation_table(points) -> str:
         else:
             waves, m2 = f"{int(round(first['params']['length'] / first['params']['lam_min']))} " \
                         "harmonics", "–"
-        e_mu = np.array([p["e_mu"] for p in pts])
-        e_a = np.array([p["e_A"] for p in pts])
-        ok = np.mean((np.abs(e_mu) <= TARGET) & (np.abs(e_a) <= TARGET))
-        lines.append(f"| {case} | {waves} | {m2} | {len(pts)} | {_rng(e_mu)} | {_rng(e_a)} "
-                     f"| {ok:.0%} |")
+        cols = []
+        for sel in (pts, prev):
+            cols += [_rng(np.array([p["e_mu"] for p in sel])),
+                     _rng(np.array([p["e_A"] for p in sel])),
+                     f"{np.mean([_ok(p) for p in sel]):.0%}"]
+        lines.append(f"| {case} | {waves} | {m2} | {len(pts)} | " + " | ".join(cols) + " |")
     return "\n".join(lines)
+
+
+def _share_table(points, old) -> tuple[str, dict]:
+    """Random-ladder points with μ and A within 15 %, by speed: previous default and
+    default."""
+    lines = ["| v [mm/s] | points | previous default (diffusion) | default (strips) |",
+             "|---|---|---|---|"]
+    fields = {}
+    for v in (*SPEEDS, None):
+        sel = [[p for p in pts if _is_random(p["case"]) and p["in_range"]
+                and (v is None or p["v"] == v)] for pts in (old, points)]
+        shares = [np.mean([_ok(p) for p in s]) for s in sel]
+        label = "all" if v is None else f"{v:g}"
+        lines.append(f"| {label} | {len(sel[1])} | {shares[0]:.0%} | {shares[1]:.0%} |")
+        fields[f"share_{label}"] = f"{shares[1]:.0%}"
+        fields[f"share_old_{label}"] = f"{shares[0]:.0%}"
+    return "\n".join(lines), fields
 
 
 def _speed_table(points) -> str:
@@ -114,15 +146,19 @@ def _speed_table(points) -> str:
 
 
 def _speed_curve_table(rows) -> str:
-    lines = ["| v [mm/s] | BEM μ (± s.e.) | theory μ | μ error | BEM A | theory A | A error |",
-             "|---|---|---|---|---|---|---|"]
+    lines = ["| v [mm/s] | BEM μ (± s.e.) | theory μ | μ error | BEM A | theory A | A error "
+             "| diffusion μ | error | diffusion A | error |", "|---" * 11 + "|"]
     for r in sorted((r for r in rows if r["kind"] == "speed"), key=lambda r: r["v"]):
-        res = mf.solve(mf.PSD.from_sines(_series(r["surface"])), SBR, r["v"], r["p"])
+        psd = mf.PSD.from_sines(_series(r["surface"]))
+        res = mf.solve(psd, SBR, r["v"], r["p"])
+        dif = mf.solve(psd, SBR, r["v"], r["p"], options=DIFFUSION)
         mu, area = np.mean(r["bem_mu"]), np.mean(r["bem_A"])
         se = np.std(r["bem_mu"], ddof=1) / np.sqrt(len(r["bem_mu"]))
         lines.append(f"| {r['v']:g} | {mu:.3f} ± {se:.3f} | {res.friction:.3f} | "
                      f"{_pct(res.friction / mu - 1)} | {area:.4f} | {res.contact_fraction:.4f} "
-                     f"| {_pct(res.contact_fraction / area - 1)} |")
+                     f"| {_pct(res.contact_fraction / area - 1)} | {dif.friction:.3f} | "
+                     f"{_pct(dif.friction / mu - 1)} | {dif.contact_fraction:.4f} | "
+                     f"{_pct(dif.contact_fraction / area - 1)} |")
     return "\n".join(lines)
 
 
@@ -153,27 +189,34 @@ def _westergaard_friction(x: float, p_star: float, q: float, v: float) -> float:
 
 
 def _sine_table(rows) -> tuple[str, dict]:
-    lines = ["| v [mm/s] | σ0/p* | BEM A | Westergaard A | theory A | BEM μ | Westergaard + patch "
-             "spectrum μ | error | theory μ, mode | error | theory μ, patch r = A | error |",
-             "|---" * 12 + "|"]
-    errs: dict[str, list] = {"west": [], "mode": [], "patch": []}
+    lines = ["| v [mm/s] | σ0/p* | BEM A | Westergaard A | strips A (default) | diffusion A "
+             "| BEM μ | Westergaard + patch spectrum μ | error | strips μ (default) | error "
+             "| diffusion μ, mode | error | diffusion μ, patch r = A | error |",
+             "|---" * 15 + "|"]
+    errs: dict[str, list] = {"west": [], "mode": [], "patch": [], "strips": [],
+                             "strips_A": []}
     for r in sorted((r for r in rows if r["kind"] == "sine"), key=lambda r: (r["v"],
                                                                            r["target"])):
         surf = _series(r["surface"])
         psd, x, v = mf.PSD.from_sines(surf), r["target"], r["v"]
         mode, patch = (mf.solve(psd, SBR, v, r["p"], options=mf.MeanFieldOptions(
-            dissipation=d)) for d in ("mode", "patch"))
+            dissipation=d, geometry="diffusion")) for d in ("mode", "patch"))
+        strips = mf.solve(psd, SBR, v, r["p"])
         mu, area = r["bem_mu"][0], r["bem_A"][0]
         west = float(westergaard_fraction(x))
-        cols = [f"{v:g}", f"{x:g}", f"{area:.4f}", f"{west:.4f}", f"{mode.contact_fraction:.4f}"]
+        cols = [f"{v:g}", f"{x:g}", f"{area:.4f}", f"{west:.4f}",
+                f"{strips.contact_fraction:.4f}", f"{mode.contact_fraction:.4f}"]
         if v == 0:
-            lines.append("| " + " | ".join(cols + ["0"] + ["–"] * 6) + " |")
+            lines.append("| " + " | ".join(cols + ["0"] + ["–"] * 8) + " |")
             continue
+        errs["strips_A"].append((v, strips.contact_fraction / area - 1))
         wmu = _westergaard_friction(x, westergaard_p_star(surf, SBR, v),
                                     float(surf.wavenumbers[0]), v)
-        for key, val in (("west", wmu), ("mode", mode.friction), ("patch", patch.friction)):
+        for key, val in (("west", wmu), ("mode", mode.friction), ("patch", patch.friction),
+                         ("strips", strips.friction)):
             errs[key].append((v, val / mu - 1))
-        cols += [f"{mu:.4f}", f"{wmu:.4f}", _pct(wmu / mu - 1), f"{mode.friction:.4f}",
+        cols += [f"{mu:.4f}", f"{wmu:.4f}", _pct(wmu / mu - 1), f"{strips.friction:.4f}",
+                 _pct(strips.friction / mu - 1), f"{mode.friction:.4f}",
                  _pct(mode.friction / mu - 1), f"{patch.friction:.4f}",
                  _pct(patch.friction / mu - 1)]
         lines.append("| " + " | ".join(cols) + " |")
@@ -182,8 +225,9 @@ def _sine_table(rows) -> tuple[str, dict]:
         e = np.array([x for v, x in errs[key] if (v <= 1.0) == slow])
         return _rng(e) if e.size else "–"
 
-    return "\n".join(lines), {f"{k}_{t}": span(k, t == "slow") for k in errs
-                              for t in ("slow", "fast")}
+    sliding = {k: _rng(np.array([x for _, x in errs[k]])) for k in ("strips", "strips_A")}
+    return "\n".join(lines), {**{f"{k}_{t}": span(k, t == "slow") for k in errs
+                                for t in ("slow", "fast")}, **sliding}
 
 
 def _self_affine_table(points) -> tuple[str, dict]:
@@ -222,7 +266,7 @@ def _spectrum_table(rows) -> tuple[str, dict]:
     fields = {}
     for r in sorted((r for r in rows if r["kind"] == "spectrum"), key=lambda r: r["v"]):
         s = _series(r["surface"])
-        res = mf.solve(mf.PSD.from_sines(s), SBR, r["v"], r["p"])
+        res = mf.solve(mf.PSD.from_sines(s), SBR, r["v"], r["p"], options=DIFFUSION)
         bem_a = np.mean(r["bem_A"])
         bands = np.asarray(r["bem_bands"])
         total, in_band = bands.sum(), bands[1:-1].sum()
@@ -332,12 +376,14 @@ def _figures(points, hyb, rows, folder: Path) -> list[str]:
     press = [r for r in rows if r["kind"] == "pressure"]
     if press:
         r = press[0]
-        res = mf.solve(mf.PSD.from_sines(_series(r["surface"])), SBR, r["v"], r["p"])
-        d = res.pressure_distribution
+        psd = mf.PSD.from_sines(_series(r["surface"]))
+        d = mf.solve(psd, SBR, r["v"], r["p"]).pressure_distribution
+        dd = mf.solve(psd, SBR, r["v"], r["p"], options=DIFFUSION).pressure_distribution
         e = np.asarray(r["edges"])
         fig, ax = plt.subplots(figsize=(6, 4))
         ax.stairs(r["density"], e, label="BEM (8 realizations, σ > 0)")
-        ax.plot(d.sigma, d.density, label="theory P(σ)")
+        ax.plot(d.sigma, d.density, label="strips (histogram of the local pressures)")
+        ax.plot(dd.sigma, dd.density, "--", label="diffusion P(σ)")
         ax.set_xlim(0, e[-1])
         ax.set_xlabel("contact pressure σ [MPa]")
         ax.set_ylabel("P(σ) [1/MPa]")
@@ -374,8 +420,11 @@ def _figures(points, hyb, rows, folder: Path) -> list[str]:
     fig, ax = plt.subplots(figsize=(6.8, 4.4))
     if speed:
         p0 = speed[0]["p"]
-        curve = mf.friction_curve(mf.PSD.from_sines(_series(speed[0]["surface"])), SBR, v, p0)
-        ax.semilogx(v, curve.friction, "C0", label=f"Table 2, σ0 = {p0:g} MPa: theory")
+        t2 = mf.PSD.from_sines(_series(speed[0]["surface"]))
+        curve = mf.friction_curve(t2, SBR, v[::5], p0)
+        ax.semilogx(v[::5], curve.friction, "C0", label=f"Table 2, σ0 = {p0:g} MPa: strips")
+        curve = mf.friction_curve(t2, SBR, v, p0, options=DIFFUSION)
+        ax.semilogx(v, curve.friction, "C0--", lw=1, label="Table 2: diffusion")
         ax.errorbar([r["v"] for r in speed], [np.mean(r["bem_mu"]) for r in speed],
                     yerr=[np.std(r["bem_mu"], ddof=1) / np.sqrt(len(r["bem_mu"]))
                           for r in speed], fmt="o", color="C0", label="Table 2: BEM")
@@ -402,19 +451,27 @@ def _cost(points) -> dict:
     t0 = time.perf_counter()
     mf.friction_curve(psd, SBR, v, 0.3)
     sweep = time.perf_counter() - t0
+    t2 = mf.PSD.from_sines(rc.roughness.asphalt_ac8())
     t0 = time.perf_counter()
     for _ in range(20):
-        mf.solve(mf.PSD.from_sines(rc.roughness.asphalt_ac8()), SBR, 10.0, 0.3)
+        mf.solve(t2, SBR, 10.0, 0.3, options=DIFFUSION)
     one = (time.perf_counter() - t0) / 20
+    t0 = time.perf_counter()
+    for _ in range(5):
+        mf.solve(t2, SBR, 10.0, 0.3)
+    strips = (time.perf_counter() - t0) / 5
     bem = {k: np.mean([p["bem_time"] for p in points if p["case"] == k]) for k in
            ("Table 2", "self-affine 4 decades") if any(p["case"] == k for p in points)}
     return {"sweep": f"{sweep:.2f}", "sweep_nodes": psd.size, "one": f"{1e3 * one:.1f}",
+            "one_strips": f"{strips:.2f}",
             "bem_t2": f"{bem.get('Table 2', np.nan):.2f}",
             "bem_sa": f"{bem.get('self-affine 4 decades', np.nan):.0f}"}
 
 
 def report(rows, *, figures: Path, date: str, commit: str, wall: float, variants) -> str:
     points = _points(rows)
+    old = _points(rows, DIFFUSION)
+    shares, share_fields = _share_table(points, old)
     hyb = _hybrid_rows(rows)
     two_d, errs_2d = _two_d_table(rows)
     spec, spec_fields = _spectrum_table(rows)
@@ -424,21 +481,20 @@ def report(rows, *, figures: Path, date: str, commit: str, wall: float, variants
     broad, broad_fields = broadband_table(rows)
     names = _figures(points, hyb, rows, figures)
     rnd = [p for p in points if _is_random(p["case"]) and p["in_range"]]
-    both = np.mean([(abs(p["e_mu"]) <= TARGET) and (abs(p["e_A"]) <= TARGET) for p in rnd])
     n_1d = sum(r["kind"] == "1d" for r in rows)
     out = [render("meanfield", "title"), "",
            render("meanfield", "intro", date=date, commit=commit, points=n_1d,
-                  wall=f"{wall / 60:.1f}"), "",
-           render("meanfield", "theory"), "",
+                  wall=f"{wall / 60:.1f}", **share_fields), "",
+           render("meanfield", "theory"), "", render("meanfield", "strips"), "",
            render("meanfield", "sine", **sine_fields), "", sine_table, "",
            render("meanfield", "choices"), "", _choices_table(rows, variants), "",
-           render("meanfield", "validation", share=f"{both:.0%}", n_random=len(rnd)), "",
-           _validation_table(points), "", render("meanfield", "by_speed"), "",
-           _speed_table(points), "",
+           render("meanfield", "validation", n_random=len(rnd), **share_fields), "",
+           _validation_table(points, old), "", shares, "",
+           render("meanfield", "by_speed"), "", _speed_table(points), "",
            render("meanfield", "speed_curve",
                   load=next((f"{r['p']:g}" for r in rows if r["kind"] == "speed"), "–")), "",
            _speed_curve_table(rows), "",
-           render("meanfield", "off", **_area_bias(points), **spec_fields), "", spec, "",
+           render("meanfield", "off", **_area_bias(old), **spec_fields), "", spec, "",
            render("meanfield", "diag_scale"), "", scale, "",
            render("meanfield", "diag_oracle", **diag_fields), "", oracle, "",
            render("meanfield", "diag_separation"), "", separation, "",

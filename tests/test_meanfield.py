@@ -78,8 +78,9 @@ def test_small_load_area_is_linear_with_the_theory_slope(dimension):
 
 def test_pressure_distribution_is_normalised_and_vanishes_at_zero():
     psd = mf.PSD.from_sines(rc.roughness.asphalt_ac8())
+    diffusion = mf.MeanFieldOptions(geometry="diffusion")
     for v, p in ((10.0, 0.2), (50.0, 3.0), (1.0, 40.0)):
-        res = mf.solve(psd, SBR, v, p)
+        res = mf.solve(psd, SBR, v, p, options=diffusion)
         dist = res.pressure_distribution
         g = float(res.area.g[-1])
         # ∫P = erf(1/(2√G)) and ∫σP = σ0 (Simpson on 801 points over ±9 sd: 1e-8 measured)
@@ -191,7 +192,7 @@ def test_enrichment_by_the_theory_s_own_law_is_the_plain_theory():
     # P(σ) on 801 points: measured 3e-5 (area) and 1.4e-5 (friction); 2e-4 allowed.
     t2 = rc.roughness.asphalt_ac8()
     hs, ls = mf.PSD.from_sines(t2).partition(1.0)
-    opts = mf.MeanFieldOptions(weighting="cell", interface="rigid")
+    opts = mf.MeanFieldOptions(weighting="cell", interface="rigid", geometry="diffusion")
     for v, p in ((10.0, 0.2), (50.0, 1.6)):
         law = theory_law(hs, SBR, v, np.geomspace(1e-4, 1e3, 600), options=opts)
         whole = mf.solve(mf.PSD.from_sines(t2), SBR, v, p, options=opts)
@@ -266,10 +267,9 @@ def test_bad_input_is_refused_with_a_clear_message():
 def test_agrees_with_the_bem_on_a_small_random_surface():
     # Six octaves, m2 = 0.15-0.5 per wave, SBR at 10 mm/s, 0.35 MPa (about 12 % contact),
     # BEM averaged over 4 random phases at 4096 points (μ and A within 0.5 % of 16384
-    # points). Measured: μ −8 %, A −25 % (BEM 0.151, 0.146; the phases' μ spread 0.117–0.183,
-    # a standard error of 11 %). On this class at 10 mm/s docs/validation/meanfield.md finds
-    # μ −25 … −4 % and A −32 … −6 %: the 1D theory's area is low at small loads. Held to the
-    # issue's 15 % in μ and to 30 % in A.
+    # points; the phases' μ spread 0.117–0.183, a standard error of 11 %). Measured: the
+    # default (the strip cascade) μ +10 %, A −17 %; Persson's diffusion μ −8 %, A −25 %.
+    # Held to the issue's 15 % in μ and to 20 % in A.
     lam = 8.0 / 2.0 ** np.arange(6)
     m2 = np.array([0.3, 0.15, 0.5, 0.25, 0.4, 0.2])
     surf = SineSeries(lam, m2 * np.sqrt(2) * lam / (2 * np.pi))
@@ -279,7 +279,7 @@ def test_agrees_with_the_bem_on_a_small_random_surface():
     a_b = np.mean([b.contact_fraction for b in bem])
     res = mf.solve(mf.PSD.from_sines(surf), SBR, 10.0, 0.35)
     assert res.friction == pytest.approx(mu_b, rel=0.15)
-    assert res.contact_fraction == pytest.approx(a_b, rel=0.30)
+    assert res.contact_fraction == pytest.approx(a_b, rel=0.20)
 
 
 def test_law_layer_in_full_contact_is_the_series_compliance_closed_form():

@@ -119,7 +119,8 @@ def test_cascade_keeps_the_markov_property_of_the_enrichment():
 
     t2 = rc.roughness.asphalt_ac8()
     hs, ls = mf.PSD.from_sines(t2).partition(1.0)
-    opts = mf.MeanFieldOptions(weighting="cell", interface="rigid", dissipation="cascade")
+    opts = mf.MeanFieldOptions(weighting="cell", interface="rigid", dissipation="cascade",
+                               geometry="diffusion")
     for v, p in ((10.0, 0.2), (50.0, 1.6)):
         law = theory_law(hs, SBR, v, np.geomspace(1e-4, 1e3, 600), options=opts)
         whole = mf.solve(mf.PSD.from_sines(t2), SBR, v, p, options=opts)

@@ -195,6 +195,9 @@ class PressureDistribution:
         ``G`` [-] at that magnification.
     mean_pressure
         ``σ0`` [MPa].
+    fraction
+        The contact fraction when the density is not the diffusion's (the strip cascade of
+        :mod:`.strips`, a histogram), else ``None``.
     """
 
     sigma: np.ndarray
@@ -203,10 +206,13 @@ class PressureDistribution:
     magnification: float
     g: float
     mean_pressure: float
+    fraction: float | None = None
 
     @property
     def contact_fraction(self) -> float:
-        """``erf(1/(2√G))`` [-] (the exact integral of :attr:`density`)."""
+        """``erf(1/(2√G))`` [-] (the exact integral of :attr:`density`), or :attr:`fraction`."""
+        if self.fraction is not None:
+            return float(self.fraction)
         return float(contact_fraction(self.g))
 
     def expect(self, values) -> float:

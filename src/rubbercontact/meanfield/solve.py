@@ -37,9 +37,13 @@ from .friction import (
 )
 from .patches import patch_loss
 from .psd import PSD
+from .strips import StripContact, strip_contact
 
 #: ``dissipation="auto"`` on a sine series (docs/validation/meanfield.md).
 AUTO_DISSIPATION_SINES = "mode"
+GEOMETRIES = ("auto", "diffusion", "strips")
+#: Bins of the strip cascade's pressure histogram (:attr:`MeanFieldResult.pressure_distribution`).
+HISTOGRAM_BINS = 200
 
 
 def _friction_stress(resp, g, psd: PSD, material, velocity, nu, kind: str) -> np.ndarray:
@@ -49,6 +53,23 @@ def _friction_stress(resp, g, psd: PSD, material, velocity, nu, kind: str) -> np
         return resp.friction_stress
     return resp.pressure_variance * patch_loss(local_fraction(g, kind), psd.wavenumbers,
                                                material, velocity, nu)
+
+
+def _strips(psd: PSD, material, velocity: float, sigma0: float, nu: float) -> StripContact:
+    """The strip cascade on the spectrum's nodes (one wave each, amplitude ``√(2 v_i)``)."""
+    return strip_contact(psd.wavenumbers, np.sqrt(2.0 * psd.variances), material, velocity,
+                         sigma0, nu)
+
+
+def _histogram(strips: StripContact, g: float, sigma0: float, q: np.ndarray
+               ) -> PressureDistribution:
+    """The strip cascade's local pressures as a density on :data:`HISTOGRAM_BINS` bins."""
+    smp = strips.samples
+    edges = np.linspace(0.0, float(smp.pressure.max()) * (1 + 1e-9), HISTOGRAM_BINS + 1)
+    weight, _ = np.histogram(smp.pressure, bins=edges, weights=smp.weight)
+    return PressureDistribution(0.5 * (edges[1:] + edges[:-1]), weight / np.diff(edges),
+                                float(q[-1]), float(q[-1] / q[0]), float(g), sigma0,
+                                fraction=float(smp.weight.sum()))
 
 
 @dataclass(frozen=True)
@@ -70,6 +91,12 @@ class MeanFieldOptions:
         (default: ``"patch"`` for a continuous 1D spectrum, ``"mode"`` for a sine series
         and in 2D), ``"mode"`` (at its own wavenumber, Persson's), ``"patch"`` or
         ``"cascade"`` (spread over the harmonics of its contact patches).
+    geometry
+        The contact's geometry: ``"auto"`` (default: ``"strips"`` for a 1D sine series
+        without a law, ``"diffusion"`` otherwise), ``"diffusion"`` (Persson's
+        ``P(σ)``, :mod:`.contact`) or ``"strips"`` (the cascade of Westergaard strips of
+        :mod:`.strips`, which gives the area and the friction of a 1D sine series; the
+        options ``correction``, ``weighting`` and ``dissipation`` are then not used).
     interface
         With a law: ``"law"`` (default: the law's compliance in series with the
         half-space, :mod:`.enriched`) or ``"rigid"`` (hard-wall low-slope contact).
@@ -85,6 +112,7 @@ class MeanFieldOptions:
     gamma: float = PERSSON_GAMMA
     weighting: str = "auto"
     dissipation: str = "auto"
+    geometry: str = "auto"
     interface: str = "law"
     angles: int = ANGLES_2D
     cell_points: int = CELL_POINTS
@@ -95,6 +123,9 @@ class MeanFieldOptions:
         check_interface(self.interface)
         check_weighting(self.weighting)
         check_dissipation(self.dissipation)
+        if self.geometry not in GEOMETRIES:
+            raise InputError(f"geometry: expected one of {', '.join(GEOMETRIES)}, got "
+                             f"{self.geometry!r}")
         for name in ("angles", "cell_points", "pressure_points"):
             val = getattr(self, name)
             if isinstance(val, bool) or int(val) != val or val < 2:
@@ -109,6 +140,17 @@ class MeanFieldOptions:
         if self.weighting != "auto":
             return self.weighting
         return "after" if psd.waves is not None else "cell"
+
+    def geometry_for(self, psd: PSD, law: bool = False) -> str:
+        """The geometry used for ``psd`` (``"auto"`` resolved): the strips need the waves
+        of a 1D sine series (they are the exact 1D limit there) and no law."""
+        strips_apply = psd.dimension == 1 and psd.waves is not None and not law
+        if self.geometry == "auto":
+            return "strips" if strips_apply else "diffusion"
+        if self.geometry == "strips" and not strips_apply:
+            raise InputError("geometry='strips': needs a 1D sine series (PSD.from_sines) and "
+                             "no law; use 'diffusion'")
+        return self.geometry
 
     def dissipation_for(self, psd: PSD) -> str:
         """The dissipation used for ``psd`` (``"auto"`` resolved; 2D: ``"mode"``)."""
@@ -240,24 +282,31 @@ def solve(psd: PSD, material: GeneralizedMaxwell, velocity: float, mean_pressure
     else:
         resp = modal_response(comp)
         g = g_cumulative(resp.pressure_variance, sigma0)
-    fstress = _friction_stress(resp, g, psd, material, v, nu, opts.dissipation_for(psd))
-    parts = friction_contributions(fstress, g, sigma0, opts.friction_correction,
-                                   opts.cell_points, opts.weighting_for(psd))
     q = psd.wavenumbers
-    dist = pressure_distribution(float(g[-1]), sigma0, q[-1], q[-1] / q[0],
-                                 opts.pressure_points)
+    if opts.geometry_for(psd, plaw is not None) == "strips":
+        strips = _strips(psd, material, v, sigma0, nu)
+        parts, area_curve = strips.friction_stress / sigma0, strips.contact_fraction
+        dist = _histogram(strips, g[-1], sigma0, q)
+    else:
+        fstress = _friction_stress(resp, g, psd, material, v, nu, opts.dissipation_for(psd))
+        parts = friction_contributions(fstress, g, sigma0, opts.friction_correction,
+                                       opts.cell_points, opts.weighting_for(psd))
+        area_curve = contact_fraction(g)
+        dist = pressure_distribution(float(g[-1]), sigma0, q[-1], q[-1] / q[0],
+                                     opts.pressure_points)
     mu_ls = float(parts.sum())
     area_ls = dist.contact_fraction
     mu_hs, area = (0.0, area_ls) if plaw is None else weigh_law(dist, plaw)
     inputs = {"velocity": v, "mean_pressure": sigma0, "nu": float(nu),
               "dimension": psd.dimension, "psd": psd.source, "law": plaw is not None,
               "material": material.name, **asdict(opts),
-              "weighting": opts.weighting_for(psd), "dissipation": opts.dissipation_for(psd)}
+              "weighting": opts.weighting_for(psd), "dissipation": opts.dissipation_for(psd),
+              "geometry": opts.geometry_for(psd, plaw is not None)}
     return MeanFieldResult(
         friction=mu_ls + mu_hs, friction_ls=mu_ls, friction_hs=float(mu_hs),
         contact_fraction=float(area), contact_fraction_ls=area_ls,
         friction_full=float(resp.friction_stress.sum() / sigma0), pressure_distribution=dist,
-        area=AreaCurve(q, q / q[0], contact_fraction(g), g),
+        area=AreaCurve(q, q / q[0], area_curve, g),
         friction_spectrum=(q, parts), inputs=inputs, elapsed=time.perf_counter() - t0)
 
 
@@ -266,7 +315,8 @@ def friction_curve(psd: PSD, material: GeneralizedMaxwell, velocities, mean_pres
     """``μ(v)``, ``A(v)`` of the plain theory for many speeds in one vectorised pass.
 
     The same numbers as :func:`solve` at each speed (no law: a law table belongs to one
-    speed). Cost: one complex modulus per node, speed and direction, then cumulative sums.
+    speed). Cost: one complex modulus per node, speed and direction, then cumulative sums;
+    the strip cascade of a sine series (``geometry``) runs speed by speed.
     """
     sigma0 = _check(psd, material, mean_pressure, nu)
     v = finite_array("velocities", velocities, ndim=1)
@@ -275,10 +325,16 @@ def friction_curve(psd: PSD, material: GeneralizedMaxwell, velocities, mean_pres
                                  v, nu, opts.angles)
     resp = modal_response(comp)
     g = g_cumulative(resp.pressure_variance, sigma0)
-    fstress = _friction_stress(resp, g, psd, material, v, nu, opts.dissipation_for(psd))
-    parts = friction_contributions(fstress, g, sigma0, opts.friction_correction,
-                                   opts.cell_points, opts.weighting_for(psd))
-    return FrictionCurve(v, parts.sum(axis=-1), contact_fraction(g[..., -1]),
-                         resp.friction_stress.sum(axis=-1) / sigma0, sigma0,
+    if opts.geometry_for(psd) == "strips":
+        runs = [_strips(psd, material, float(vi), sigma0, nu) for vi in v]
+        mu = np.array([r.friction_stress.sum() / sigma0 for r in runs])
+        area = np.array([r.contact_fraction[-1] for r in runs])
+    else:
+        fstress = _friction_stress(resp, g, psd, material, v, nu, opts.dissipation_for(psd))
+        mu = friction_contributions(fstress, g, sigma0, opts.friction_correction,
+                                    opts.cell_points, opts.weighting_for(psd)).sum(axis=-1)
+        area = contact_fraction(g[..., -1])
+    return FrictionCurve(v, mu, area, resp.friction_stress.sum(axis=-1) / sigma0, sigma0,
                          {"nu": float(nu), "dimension": psd.dimension, "psd": psd.source,
-                          "material": material.name, **asdict(opts)})
+                          "material": material.name, **asdict(opts),
+                          "geometry": opts.geometry_for(psd)})

@@ -29,7 +29,8 @@ PRESSURE_QUANTILE = 0.999
 def meanfield_task(surface: dict, material: dict, velocity: float, mean_pressure: float,
                    nu: float = 0.5, interface_law: dict | None = None,
                    correction: str = "none", gamma: float = 0.5, weighting: str = "auto",
-                   interface: str = "law", dissipation: str = "auto") -> xr.Dataset:
+                   interface: str = "law", dissipation: str = "auto",
+                   geometry: str = "auto") -> xr.Dataset:
     """One mean-field solve (:func:`rubbercontact.meanfield.solve`).
 
     Parameters
@@ -45,7 +46,7 @@ def meanfield_task(surface: dict, material: dict, velocity: float, mean_pressure
     interface_law
         The high-slope law at this speed (the half-space task's ``interface_law``,
         :func:`rubbercontact.hybrid.law_at_velocity`), or ``None``.
-    correction, gamma, weighting, interface, dissipation
+    correction, gamma, weighting, interface, dissipation, geometry
         :class:`~rubbercontact.meanfield.MeanFieldOptions`.
 
     Returns
@@ -59,7 +60,8 @@ def meanfield_task(surface: dict, material: dict, velocity: float, mean_pressure
     t0 = time.perf_counter()
     psd = PSD.from_dict(surface)
     opts = MeanFieldOptions(correction=correction, gamma=gamma, weighting=weighting,
-                            interface=interface, dissipation=dissipation)
+                            interface=interface, dissipation=dissipation,
+                            geometry=geometry)
     res = solve(psd, GeneralizedMaxwell(**material), velocity, mean_pressure, nu=nu,
                 law=interface_law, options=opts)
     dist = res.pressure_distribution
@@ -78,9 +80,11 @@ def meanfield_task(surface: dict, material: dict, velocity: float, mean_pressure
                      "dimension": psd.dimension, "correction": correction,
                      "weighting": res.inputs["weighting"], "interface": interface,
                      "dissipation": res.inputs["dissipation"],
+                     "geometry": res.inputs["geometry"],
                      "psd": psd.source})
     return ds
 
 
 #: Version of this task's answers (read by the sweep cache key).
-meanfield_task.cache_version = "2"   # 2: the patch spectrum on continuous 1D spectra
+meanfield_task.cache_version = "3"   # 2: the patch spectrum on continuous 1D spectra;
+#                                      3: the strip cascade on sine series

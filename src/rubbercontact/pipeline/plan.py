@@ -154,7 +154,8 @@ def meanfield_call(cfg: RunConfig, model: str, surface: dict, material: Generali
                             "velocity": v, "mean_pressure": p, "nu": cfg.material.nu,
                             "interface_law": law, "correction": mf.correction,
                             "gamma": mf.gamma, "weighting": mf.weighting,
-                            "interface": mf.interface, "dissipation": mf.dissipation}
+                            "interface": mf.interface, "dissipation": mf.dissipation,
+                            "geometry": mf.geometry}
 
 
 def full_fem_task(cfg: RunConfig, surface: SineSeries, material: GeneralizedMaxwell,

@@ -1,0 +1,368 @@
+r"""The 1D contact of a sine series as a cascade of Westergaard strips (``geometry="strips"``).
+
+Persson's diffusion (:mod:`.contact`) gives every mode a Gaussian pressure step. In 1D the
+exact answer for one wave is known (Westergaard; :mod:`.patches`): a sine ``Δ cos qx`` under
+the mean pressure ``p̄ < p* = qΔE_r/2`` touches on strips of the fraction
+``r = (2/π) arcsin √(p̄/p*)`` of its wavelength, with the pressure
+
+.. math:: p(θ) = 2p^*\cos(θ/2)\sqrt{\sin^2(α/2) − \sin^2(θ/2)},\qquad α = πr.
+
+This module builds the contact of a sine series from these strips, longest wave first, and
+takes the area, the pressure and the friction from the same strips. No constant is fitted.
+
+Pressure variance of one wave
+-----------------------------
+With ``x = p̄/p*`` and ``β = α/2 = arcsin √x`` the mean square of ``p(θ)`` over a period is
+``(4p*²/π)[x(β + sin 2β/2) − (β − sin 4β/4)/4]`` (substitute ``s = sin(θ/2)``), so the
+pressure variance is that minus ``p̄²`` (:func:`westergaard_variance`): ``p*²/2`` in full
+contact (the mode's ``s_i``), ``(2π²/3) r³ p*²`` for narrow strips (Hertz).
+
+A sliding strip is stiffer
+--------------------------
+A strip of half-width ``a`` is loaded and unloaded while the rubber slides over it, in the
+time ``2a/v``: we take that time as half a period of the excitation, so the strip's modulus
+is ``|E_r(ω)|`` at ``ω = πv/(2a) = qv/(2r)`` (the mode's own ``qv`` once ``r ≥ ½``). Its
+fraction solves ``r = (2/π) arcsin √(p̄/(e(r) p*))`` with ``e = |E_r(qv/min(1, 2r))|/
+|E_r(qv)|`` (:func:`sliding_fraction`; at ``v = 0`` Westergaard's). On one sliding sine this
+is the BEM's area (tests/test_meanfield_strips.py).
+
+The cascade
+-----------
+The contact is carried as weighted samples of the local pressure (weight: the share of the
+nominal length), each with the half-width ``a`` and the crest curvature ``κ`` of the strip it
+lies in (none before any strip forms). A wave ``i`` (``κ_i = q_i²Δ_i``, random phase ``φ``
+at the crest) acts on a strip in two ways:
+
+* it bends the crest. A line contact of half-width ``a`` on a symmetric gap ``h(x)`` carries
+  the load ``(E_r/2)∫ x h'(x)/√(a² − x²) dx`` (Johnson, *Contact Mechanics*, §2.8); for
+  ``h = κx²/2 − Δ_i cos(q_i x + φ)`` that is ``(πE_r a²/4) κ_eff`` with
+  ``κ_eff = κ + κ_i cos φ · 2J1(q_i a)/(q_i a)`` (:func:`bending_share`: 1 for a strip much
+  narrower than the wave, 0 for a wide one; taken as 0 beyond its first zero). At its load
+  the strip's half-width becomes ``a' = a √(κ/κ_eff(a'))`` and its (Hertzian) pressures
+  scale by ``a/a'`` (:func:`_bend`); the change in the pressure variance dissipates at the
+  harmonics of the new strip. Where ``κ_eff ≤ 0`` the crest splits, and the whole wave
+  forms strips as below;
+* the rest of the wave, of amplitude ``(1 − 2J1(q_i a)/(q_i a)) Δ_i``, forms its own strips
+  at the local pressure, Westergaard's (scale separation, Archard's picture with the exact
+  sine at each step); its pressure variance is added at the loss of the strips' harmonics
+  (:func:`~.patches.patch_loss` at the strips' fraction).
+
+The bending is what a mean-field theory driven by ``G`` alone cannot have: waves an
+octave apart make compound crests whose area depends on the spectrum's breadth.
+
+Exact limits: in full contact every sample stays in contact, each wave adds ``p*²/2`` at the
+mode's loss, ``μ = Σ q²Δ² Im E_r(qv)/(4σ0)``; an elastic rubber has no loss, ``μ = 0``; one
+wave is Westergaard's sine. The small-load area of a line contact is not linear in load
+(for one sine it grows as ``√p̄``), so this geometry applies to sine series, where it is the
+exact 1D limit; continuous spectra keep the diffusion (:mod:`.contact`).
+"""
+
+from __future__ import annotations
+
+from dataclasses import dataclass
+
+import numpy as np
+from scipy.special import j1, jn_zeros
+
+from ..materials.maxwell import GeneralizedMaxwell
+from .patches import patch_loss
+
+#: Samples across a strip (midpoint rule in the strip's angle) and crest phases ``φ``.
+STRIP_SAMPLES = 32
+PHASES = 16
+#: Rebinning of the samples after each wave: log bins in pressure and in half-width.
+PRESSURE_BINS = 200
+WIDTH_BINS = 30
+#: Log grids on which a wave's strip fraction (in ``p̄/p*``) and loss (in ``r``) are read.
+TABLE_POINTS = 300
+SMALLEST_RATIO = 1e-12
+SMALLEST_FRACTION = 1e-7
+#: Fixed-point iterations of a bent strip's half-width; first zero of J1.
+BENDING_ITERATIONS = 8
+BESSEL_ZERO = float(jn_zeros(1, 1)[0])
+#: Half-width standing for "no strip yet" [mm].
+NO_STRIP = 1e9
+
+
+def westergaard_variance(pressure_ratio) -> np.ndarray:
+    """Pressure variance of one sine over its period, in units of ``p*²`` [-], at
+    ``x = p̄/p*`` (module docstring; ``1/2`` at ``x ≥ 1``, full contact)."""
+    x = np.clip(np.asarray(pressure_ratio, float), 0.0, 1.0)
+    beta = np.arcsin(np.sqrt(x))
+    mean_square = 4.0 / np.pi * (x * (beta + 0.5 * np.sin(2 * beta))
+                                 - 0.25 * (beta - 0.25 * np.sin(4 * beta)))
+    return np.where(np.asarray(pressure_ratio) >= 1.0, 0.5, mean_square - x**2)
+
+
+@dataclass(frozen=True)
+class SlidingStrip:
+    """Strips of one sliding sine at the load ratios ``x = p̄/p*(qv)``.
+
+    Attributes
+    ----------
+    fraction
+        ``r`` [-]: the share of the wavelength in contact (1: full contact).
+    stiffening
+        ``e = |E_r(qv/min(1, 2r))| / |E_r(qv)|`` [-]: the strip's modulus over the mode's.
+    """
+
+    fraction: np.ndarray
+    stiffening: np.ndarray
+
+
+def _modulus_ratio(material: GeneralizedMaxwell, wavenumber: float, speed: float,
+                   fraction: np.ndarray) -> np.ndarray:
+    omega = wavenumber * speed
+    own = abs(complex(material.complex_modulus(omega)))
+    return np.abs(material.complex_modulus(omega / np.minimum(1.0, 2.0 * fraction))) / own
+
+
+def sliding_fraction(pressure_ratio, wavenumber: float, material: GeneralizedMaxwell,
+                     velocity: float, nu: float = 0.5, iterations: int = 60) -> SlidingStrip:
+    """Solve ``r = (2/π) arcsin √(x/e(r))`` for each ``x`` (bisection in ``ln r``;
+    module docstring). ``wavenumber`` [rad/mm], ``velocity`` [mm/s]."""
+    x = np.asarray(pressure_ratio, float)
+    speed = abs(float(velocity))
+    if speed == 0.0:
+        r = 2.0 / np.pi * np.arcsin(np.sqrt(np.clip(x, 0.0, 1.0)))
+        return SlidingStrip(r, np.ones_like(r))
+    lo = np.full(x.shape, np.log(SMALLEST_FRACTION))
+    hi = np.zeros(x.shape)
+    for _ in range(int(iterations)):
+        mid = 0.5 * (lo + hi)
+        e = _modulus_ratio(material, wavenumber, speed, np.exp(mid))
+        above = 2.0 / np.pi * np.arcsin(np.sqrt(np.clip(x / e, 0.0, 1.0))) > np.exp(mid)
+        lo, hi = np.where(above, mid, lo), np.where(above, hi, mid)
+    r = np.where(x >= 1.0, 1.0, np.exp(0.5 * (lo + hi)))
+    return SlidingStrip(r, _modulus_ratio(material, wavenumber, speed, r))
+
+
+@dataclass(frozen=True)
+class WaveTables:
+    """One wave at one speed: its strips against ``x`` and its strips' loss against ``r``."""
+
+    wavenumber: float
+    amplitude: float
+    p_star: float                 # qΔ|E_r(qv)|/2 [MPa]
+    ratios: np.ndarray            # x grid
+    strips: SlidingStrip          # on the x grid
+    fractions: np.ndarray         # r grid
+    loss: np.ndarray              # Σ h_n(r)(−2 Im[1/E_r(nqv)]) on the r grid [1/MPa]
+    own_loss: float               # −2 Im[1/E_r(qv)] [1/MPa]: the loss in full contact
+
+    @property
+    def curvature(self) -> float:
+        """Crest curvature ``q²Δ`` [1/mm]."""
+        return self.wavenumber**2 * self.amplitude
+
+    def at(self, ratio: np.ndarray) -> SlidingStrip:
+        """Strips at the load ratios ``ratio`` (log interpolation; full contact at ≥ 1)."""
+        full = ratio >= 1.0
+        lx = np.log(np.clip(ratio, self.ratios[0], 1.0))
+        lg = np.log(self.ratios)
+        r = np.where(full, 1.0, np.exp(np.interp(lx, lg, np.log(self.strips.fraction))))
+        e = np.where(full, 1.0, np.interp(lx, lg, self.strips.stiffening))
+        return SlidingStrip(r, e)
+
+    def loss_at(self, fraction: np.ndarray) -> np.ndarray:
+        """The strips' loss [1/MPa] at the fractions (clipped to the grid; the mode's own,
+        exactly, in full contact)."""
+        lr = np.log(np.clip(fraction, self.fractions[0], 1.0))
+        return np.where(fraction >= 1.0, self.own_loss,
+                        np.interp(lr, np.log(self.fractions), self.loss))
+
+
+def wave_tables(wavenumber: float, amplitude: float, material: GeneralizedMaxwell,
+                velocity: float, nu: float) -> WaveTables:
+    """Tabulate :func:`sliding_fraction` and :func:`~.patches.patch_loss` for one wave."""
+    modulus = complex(material.complex_modulus(wavenumber * abs(velocity))) / (1.0 - nu**2)
+    ratios = np.geomspace(SMALLEST_RATIO, 1.0, TABLE_POINTS)
+    fractions = np.geomspace(SMALLEST_FRACTION, 1.0, TABLE_POINTS)
+    loss = patch_loss(fractions, np.full(fractions.size, wavenumber), material, velocity, nu)
+    own = -2.0 * (1.0 / modulus).imag * np.sign(velocity)      # E(−ω) = conj E(ω)
+    return WaveTables(wavenumber, amplitude, wavenumber * amplitude * abs(modulus) / 2,
+                      ratios, sliding_fraction(ratios, wavenumber, material, velocity, nu),
+                      fractions, loss, float(own))
+
+
+@dataclass(frozen=True)
+class Samples:
+    """The contact as weighted samples (all arrays of one length).
+
+    Attributes
+    ----------
+    pressure
+        Local pressure [MPa].
+    weight
+        Share of the nominal length [-] (their sum is the contact fraction).
+    half_width
+        Half-width ``a`` [mm] of the strip the sample lies in (:data:`NO_STRIP`: none yet).
+    curvature
+        Curvature ``κ`` [1/mm] of that strip's crest.
+    """
+
+    pressure: np.ndarray
+    weight: np.ndarray
+    half_width: np.ndarray
+    curvature: np.ndarray
+
+    def subset(self, mask: np.ndarray) -> Samples:
+        return Samples(self.pressure[mask], self.weight[mask], self.half_width[mask],
+                       self.curvature[mask])
+
+
+def _scaled(s: Samples, share: np.ndarray) -> Samples:
+    return Samples(s.pressure, s.weight * share, s.half_width, s.curvature)
+
+
+def _join(parts: list[Samples]) -> Samples:
+    return Samples(*(np.concatenate([getattr(p, name) for p in parts]) for name in
+                     ("pressure", "weight", "half_width", "curvature")))
+
+
+@dataclass(frozen=True)
+class WaveStep:
+    """The contact after one wave and the friction stress [MPa] that wave added."""
+
+    samples: Samples
+    friction_stress: float
+
+
+def _form_strips(s: Samples, wave: WaveTables, residual: np.ndarray) -> WaveStep:
+    """The wave, of amplitude ``residual · Δ_i`` here, forms its strips at each sample's
+    local pressure (module docstring)."""
+    p_star0 = wave.p_star * np.maximum(residual, 1e-300)
+    st = wave.at(s.pressure / p_star0)
+    p_star = p_star0 * st.stiffening
+    var = westergaard_variance(s.pressure / p_star) * p_star**2
+    fstress = float(np.sum(s.weight * var * wave.loss_at(st.fraction)))
+    full = st.fraction >= 1.0
+    t = (np.arange(STRIP_SAMPLES) + 0.5) / STRIP_SAMPLES
+    rep = np.ones(STRIP_SAMPLES)
+    p_full = s.pressure[full, None] + p_star[full, None] * np.cos(np.pi * t)
+    alpha = np.pi * st.fraction[~full, None]
+    theta = alpha * t
+    p_part = 2 * p_star[~full, None] * np.cos(theta / 2) * np.sqrt(
+        np.maximum(np.sin(alpha / 2) ** 2 - np.sin(theta / 2) ** 2, 0.0))
+    lam = 2 * np.pi / wave.wavenumber
+    kept = Samples(p_full.ravel(), np.outer(s.weight[full], rep / STRIP_SAMPLES).ravel(),
+                   np.outer(s.half_width[full], rep).ravel(),
+                   np.outer(s.curvature[full], rep).ravel())
+    formed = Samples(p_part.ravel(),
+                     np.outer(s.weight[~full] * st.fraction[~full], rep / STRIP_SAMPLES).ravel(),
+                     np.outer(st.fraction[~full] * lam / 2, rep).ravel(),
+                     np.outer(wave.curvature * residual[~full], rep).ravel())
+    return WaveStep(_join([kept, formed]), fstress)
+
+
+def bending_share(wavenumber: float, half_width) -> np.ndarray:
+    """``2J1(qa)/(qa)`` up to its first zero, 0 beyond [-]: the share of a wave that bends a
+    strip of half-width ``a`` [mm] (module docstring)."""
+    z = wavenumber * np.asarray(half_width, float)
+    safe = np.where((z > 0) & (z < BESSEL_ZERO), z, 1.0)
+    return np.where(z < BESSEL_ZERO, np.where(z > 0, 2 * j1(safe) / safe, 1.0), 0.0)
+
+
+@dataclass(frozen=True)
+class Bending:
+    """The crests a wave bends, and the samples on which the crest splits instead."""
+
+    bent: Samples
+    split: Samples
+    friction_stress: float
+
+
+def _bend(s: Samples, wave: WaveTables) -> Bending:
+    """The wave bends the crests of the strips (module docstring): the half-width solves
+    ``a'² κ_eff(a') = a² κ``, ``κ_eff = κ + κ_i cos φ · bending_share(q_i, a')``."""
+    phi = 2 * np.pi * (np.arange(PHASES) + 0.5) / PHASES
+    kappa0, a0 = s.curvature[:, None], s.half_width[:, None]
+    half = np.broadcast_to(a0, (a0.size, PHASES))
+    for _ in range(BENDING_ITERATIONS):
+        kappa = kappa0 + wave.curvature * np.cos(phi) * bending_share(wave.wavenumber, half)
+        ok = kappa > 0
+        half = a0 * np.sqrt(kappa0 / np.where(ok, kappa, kappa0))
+    scale = half / a0
+    weight = s.weight[:, None] / PHASES
+    d_var = weight * s.pressure[:, None] ** 2 * (1.0 / scale - 1.0)
+    lam = 2 * np.pi / wave.wavenumber
+    fstress = float(np.sum(d_var[ok] * wave.loss_at(np.minimum(2 * half[ok] / lam, 1.0))))
+    bent = Samples((s.pressure[:, None] / scale)[ok], (weight * scale)[ok], half[ok],
+                   kappa[ok])
+    split = Samples(s.pressure, s.weight * np.mean(~ok, axis=1), s.half_width, s.curvature)
+    return Bending(bent, split, fstress)
+
+
+def _rebin(s: Samples) -> Samples:
+    """Merge samples on a log grid of pressure × half-width (load and weight conserved);
+    the samples in no strip yet get a width bin of their own."""
+    s = s.subset((s.weight > 0) & (s.pressure > 0))
+    top = s.pressure.max()
+    ip = np.clip(np.searchsorted(np.geomspace(top * 1e-9, top * (1 + 1e-9), PRESSURE_BINS + 1),
+                                 s.pressure) - 1, 0, PRESSURE_BINS - 1)
+    la = np.log(s.half_width)
+    stripped = s.half_width < NO_STRIP
+    ia = np.full(la.shape, WIDTH_BINS)
+    if stripped.any():
+        edges = np.linspace(la[stripped].min() - 1e-9, la[stripped].max() + 1e-9,
+                            WIDTH_BINS + 1)
+        ia[stripped] = np.clip(np.searchsorted(edges, la[stripped]) - 1, 0, WIDTH_BINS - 1)
+    idx = ip * (WIDTH_BINS + 1) + ia
+    n = PRESSURE_BINS * (WIDTH_BINS + 1)
+    w = np.bincount(idx, s.weight, n)
+    m = w > 0
+
+    def mean(values):
+        return np.bincount(idx, s.weight * values, n)[m] / w[m]
+
+    return Samples(mean(s.pressure), w[m], np.exp(mean(la)), np.exp(mean(np.log(s.curvature))))
+
+
+@dataclass(frozen=True)
+class StripContact:
+    """Contact and friction of a sine series by the strip cascade.
+
+    Attributes
+    ----------
+    contact_fraction
+        ``A/A0`` [-] after every wave (longest first), shape ``(n_waves,)``.
+    friction_stress
+        Each wave's part of ``μσ0`` [MPa], shape ``(n_waves,)``.
+    samples
+        The final contact (local pressures and their weights).
+    """
+
+    contact_fraction: np.ndarray
+    friction_stress: np.ndarray
+    samples: Samples
+
+
+def strip_contact(wavenumbers, amplitudes, material: GeneralizedMaxwell, velocity: float,
+                  mean_pressure: float, nu: float = 0.5) -> StripContact:
+    """The strip cascade (module docstring) of the waves ``Δ_i cos(q_i x + φ_i)``.
+
+    Parameters
+    ----------
+    wavenumbers, amplitudes
+        ``q_i`` [rad/mm] and ``Δ_i`` [mm]; taken longest wave first.
+    material, velocity, mean_pressure, nu
+        Rubber, speed [mm/s], ``σ0`` [MPa] and Poisson's ratio.
+    """
+    q, amp = np.asarray(wavenumbers, float), np.asarray(amplitudes, float)
+    order = np.argsort(q)
+    s = Samples(np.array([float(mean_pressure)]), np.ones(1), np.full(1, NO_STRIP), np.ones(1))
+    area, fstress = [], []
+    for i in order:
+        wave = wave_tables(q[i], amp[i], material, velocity, nu)
+        stripped = s.half_width < NO_STRIP
+        bend = _bend(s.subset(stripped), wave)
+        bent = _rebin(bend.bent) if bend.bent.weight.size else bend.bent
+        rest = _join([s.subset(~stripped), bend.split])
+        step_bent = _form_strips(bent, wave, 1.0 - bending_share(q[i], bent.half_width))
+        step_rest = _form_strips(rest, wave, np.ones(rest.weight.size))
+        s = _rebin(_join([step_bent.samples, step_rest.samples]))
+        area.append(float(s.weight.sum()))
+        fstress.append(bend.friction_stress + step_bent.friction_stress
+                       + step_rest.friction_stress)
+    inverse = np.argsort(order)
+    return StripContact(np.array(area)[inverse], np.array(fstress)[inverse], s)
