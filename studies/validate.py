@@ -146,14 +146,31 @@ def run_case(case, cfg, outdir: Path, used_keys: set[str] | None = None):
 
 def _assemble(header: list[str], outdir: Path, report: Path) -> None:
     """VALIDATION.md = header + 'What changed' + every case report (or a line saying it is
-    missing)."""
+    missing) + the mean-field study's summary."""
     parts = [(outdir / c / "report.md").read_text() if (outdir / c / "report.md").exists()
              else render("validation", "missing_case", case=c) + "\n" for c in EXAMPLES]
     changed = []
     if TRANSIENT_SECTION3.exists() and (outdir / "section3" / "report.md").exists():
         changed = what_changed(TRANSIENT_SECTION3.read_text(), parts[list(EXAMPLES).index(
             "section3")])
-    report.write_text("\n".join(header + changed) + "\n" + "\n".join(parts))
+    report.write_text("\n".join(header + changed) + "\n" + "\n".join(parts)
+                      + meanfield_summary(outdir / "meanfield.md"))
+
+
+def meanfield_summary(path: Path) -> str:
+    """The mean-field study's headline section (its own report, ``python -m studies
+    meanfield``, against the VHS BEM), as a VALIDATION.md section; empty without it."""
+    if not path.exists():
+        return ""
+    text = path.read_text()
+    head = "## Validation (the default model)"
+    if head not in text:
+        return ""
+    body = text.split(head, 1)[1].split("\n## ", 1)[0].strip()
+    return ("\n## Mean-field (Persson) model against the VHS BEM\n\n"
+            "From the mean-field study (`python -m studies meanfield`, "
+            "[docs/validation/meanfield.md](docs/validation/meanfield.md), which has the "
+            "self-affine, 2D and meanfield-hybrid cases and the cost).\n\n" + body + "\n")
 
 
 def _header(args, commit: str) -> list[str]:
