@@ -169,7 +169,7 @@ def meanfield_summary(path: Path) -> str:
     body = text.split(head, 1)[1].split("\n## ", 1)[0].strip()
     return ("\n## Mean-field (Persson) model against the VHS BEM\n\n"
             "From the mean-field study (`python -m studies meanfield`, "
-            "[docs/validation/meanfield.md](docs/validation/meanfield.md), which has the "
+            "docs/validation/meanfield.md, which has the "
             "self-affine, 2D and meanfield-hybrid cases and the cost).\n\n" + body + "\n")
 
 
