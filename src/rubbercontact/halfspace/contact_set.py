@@ -36,6 +36,7 @@ from __future__ import annotations
 from dataclasses import dataclass
 
 import numpy as np
+from scipy.linalg import lapack
 
 from . import kernels as kn
 from .krylov import gmres
@@ -117,8 +118,6 @@ def mixed_precision_solve(a: np.ndarray, b: np.ndarray) -> np.ndarray:
     ill-conditioned for single precision: the refinement contracts by ``cond(a) ε₃₂`` per
     step) the float64 LU solves it.
     """
-    from scipy.linalg import lapack
-
     n = b.size
     lu, piv, info = lapack.sgetrf(a.astype(np.float32))
     if info == 0:

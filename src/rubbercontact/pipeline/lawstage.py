@@ -146,20 +146,23 @@ def add_vhs(law: xr.Dataset, hs: SineSeries, material: GeneralizedMaxwell, cfg: 
     from ..sweep import Task
     from .assemble import failure_message
 
-    tasks = [Task(function="rubbercontact.hybrid.tasks:halfspace_task",
+    # one task per speed over the law's pressures, as the models' half-space tasks
+    tasks = [Task(function="rubbercontact.hybrid.tasks:halfspace_loads_task",
                   kwargs={"surface": hs.as_dict(), "period": hs.period,
                           "material": task_material(material), "velocity": float(v),
-                          "mean_pressure": float(p), "n": min(cfg.halfspace.n, 4096),
-                          "nu": cfg.material.nu, "law": cfg.halfspace.law,
-                          "tol": cfg.halfspace.tol},
-                  label=f"vhs on z_hs v={v:g} p={p:.4g}")
-             for v in law["velocity"].values for p in law["pressure"].values]
+                          "mean_pressures": [float(p) for p in law["pressure"].values],
+                          "n": min(cfg.halfspace.n, 4096), "nu": cfg.material.nu,
+                          "law": cfg.halfspace.law, "tol": cfg.halfspace.tol},
+                  label=f"vhs on z_hs v={v:g}")
+             for v in law["velocity"].values]
     res = runner(tasks)
     mu = np.full((law.sizes["velocity"], law.sizes["pressure"]), np.nan)
     area = np.full_like(mu, np.nan)
     for k, r in enumerate(res):
         if failure_message(r) is None:
-            mu.flat[k], area.flat[k] = float(r["friction"]), float(r["contact_fraction"])
+            ok = r["status"].values == "ok"
+            mu[k, ok] = r["friction"].values[ok]
+            area[k, ok] = r["contact_fraction"].values[ok]
     law = law.copy()
     law["vhs_friction"] = (("velocity", "pressure"), mu,
                            {"units": "1", "long_name": "VHS friction on z_hs alone"})
