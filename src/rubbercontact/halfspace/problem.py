@@ -99,6 +99,8 @@ class Problem:
     matvecs: int = 0
     _pre: np.ndarray | None = None
     _column: np.ndarray | None = None
+    #: ``(set's index bytes, float32 LU factor)`` of the last dense contact-set solve
+    _dense_lu: tuple | None = None
 
     @property
     def size(self) -> int:
