@@ -77,7 +77,9 @@ def markdown(new: dict, old: dict | None, head: str, baseline: str | None) -> st
     lines = ["# Half-space part of a 15-speed friction curve "
              "(`benchmarks/bench_halfspace_sweep.py`)", "", head, "",
              "Table 2 asphalt, 15 speeds 1e-3 … 1e4 mm/s × 5 loads 0.05 … 0.4 MPa × "
-             "8 realizations, n = 8192: 600 VHS and 600 hybrid solves, the hybrid's law read "
+             "8 realizations, n = 8192 (the hybrid's low-slope solve on its own grid where "
+             "the code has one: 4096 by rubbercontact.hybrid.grid): 600 VHS and 600 hybrid "
+             "solves, the hybrid's law read "
              "from a results file (no FEM), empty cache. Task time: the solves' own wall "
              "time summed over tasks (one thread each); process CPU: the whole run's CPU "
              "time (with one worker the tasks run in this process). The two codes run one "
