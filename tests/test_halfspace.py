@@ -438,3 +438,42 @@ def test_mixed_precision_solve_falls_back_when_single_precision_cannot_converge(
     b = a @ np.ones(10)
     # the fallback is numpy's float64 LU itself: the same numbers, bit for bit
     np.testing.assert_array_equal(mixed_precision_solve(a, b), np.linalg.solve(a, b))
+
+
+def test_refined_solve_from_a_nearby_factor_is_the_direct_solution():
+    """The refinement from another matrix's float32 LU (same contact set, another local
+    compliance c) reaches the float64 solution; from a far matrix it factorises anew."""
+    from scipy.linalg import lapack
+
+    from rubbercontact.halfspace.contact_set import refined_solve
+
+    rng = np.random.default_rng(4)
+    m = 200
+    base = rng.normal(size=(m, m)) / np.sqrt(m) + 3.0 * np.eye(m)
+    b = rng.normal(size=m)
+    old = base + np.diag(rng.uniform(0.0, 0.1, m))           # c before the Newton step
+    new = base + np.diag(rng.uniform(0.0, 0.1, m))           # c after it
+    lu_old = lapack.sgetrf(old.astype(np.float32))[:2]
+    exact = np.linalg.solve(new, b)
+    x, factor = refined_solve(new, b, lu_old)
+    assert factor is lu_old                                  # no new factorisation
+    np.testing.assert_allclose(x, exact, rtol=0, atol=1e-12 * np.abs(exact).max())
+    far = lapack.sgetrf((base + 50.0 * np.eye(m)).astype(np.float32))[:2]
+    x, factor = refined_solve(new, b, far)
+    assert factor is not far
+    np.testing.assert_allclose(x, exact, rtol=0, atol=1e-12 * np.abs(exact).max())
+
+
+@pytest.mark.parametrize("velocity, pressure", [(10.0, 0.05), (1e-3, 0.4)])
+def test_reused_dense_factors_give_the_fresh_factor_answer(velocity, pressure):
+    """Dense contact-set solves refined from the previous step's LU (same set) against a
+    fresh LU at every step: same contact set, μ, area and ū to the Newton tolerance."""
+    surf = rc.roughness.asphalt_ac8()
+    fresh = SolverOptions(reuse_dense_factorization=False)
+    for law in (None, LennardJonesRepulsion()):
+        a = solve_sliding(surf, None, SBR, velocity, pressure, n=8192, law=law)
+        b = solve_sliding(surf, None, SBR, velocity, pressure, n=8192, law=law, options=fresh)
+        np.testing.assert_array_equal(a.pressure > 0, b.pressure > 0)
+        assert a.friction == pytest.approx(b.friction, rel=1e-7, abs=1e-8)
+        assert a.contact_fraction == pytest.approx(b.contact_fraction, rel=1e-7)
+        assert a.mean_separation == pytest.approx(b.mean_separation, rel=1e-7)

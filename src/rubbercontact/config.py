@@ -53,7 +53,12 @@ class LoadConfig(_Strict):
 
 
 class HalfSpaceConfig(_Strict):
-    n: int = Field(4096, ge=64, le=2**22, description="grid points per period")
+    n: int = Field(4096, ge=64, le=2**22, description="grid points per period (the VHS's)")
+    hybrid_n: int | None = Field(
+        None, ge=64, le=2**22,
+        description="grid points per period of the hybrid's low-slope solve (default: n "
+                    "halved while z_ls's shortest wave keeps the points per wave n gives "
+                    "z's shortest; rubbercontact.hybrid.grid)")
     law: Literal["lennard-jones", "hard-wall"] = "lennard-jones"
     tol: PositiveFloat = Field(1e-8, lt=1, description="relative residual tolerance")
 

@@ -42,7 +42,8 @@ from . import kernels as kn
 from .krylov import gmres
 from .problem import Problem
 
-__all__ = ["LinearSolve", "contact_solve", "mixed_precision_solve", "shifted_preconditioner"]
+__all__ = ["LinearSolve", "contact_solve", "mixed_precision_solve", "refined_solve",
+           "shifted_preconditioner"]
 
 
 @dataclass(frozen=True, eq=False)
@@ -90,7 +91,12 @@ def _shift_weights(c: np.ndarray, shifts: np.ndarray) -> np.ndarray:
 
 def _solve_dense(prob: Problem, idx: np.ndarray, rhs: np.ndarray, total: float,
                  c: np.ndarray | None) -> LinearSolve:
-    """Direct solve of the contact-set system in 1D (bordered dense system on the set)."""
+    """Direct solve of the contact-set system in 1D (bordered dense system on the set).
+
+    With ``options.reuse_dense_factorization``, a solve on the same set as the last one on
+    this problem (consecutive Newton steps once the set has settled: only ``c`` changed)
+    starts the refinement from that solve's LU factor.
+    """
     nb = idx.size
     a = np.empty((nb + 1, nb + 1))
     a[:nb, :nb] = prob.restricted(idx)
@@ -99,13 +105,22 @@ def _solve_dense(prob: Problem, idx: np.ndarray, rhs: np.ndarray, total: float,
     a[:nb, nb] = 1.0
     a[nb, :nb] = 1.0
     a[nb, nb] = 0.0
-    sol = mixed_precision_solve(a, np.append(rhs, total))
+    reuse = prob.options.reuse_dense_factorization
+    key = idx.tobytes() if reuse else None
+    last = prob._dense_lu
+    stale = last[1] if reuse and last is not None and last[0] == key else None
+    sol, factor = refined_solve(a, np.append(rhs, total), stale)
+    prob._dense_lu = (key, factor) if reuse and factor is not None else None
     prob.matvecs += 1
     return LinearSolve(sol[:nb], float(sol[nb]), 1, 0.0)
 
 
 #: Refinement steps of :func:`mixed_precision_solve` before it falls back to float64.
 _REFINE_STEPS = 10
+#: Refinement steps allowed from another matrix's factor (:func:`refined_solve`) before a
+#: fresh one; each must shrink the residual at least this many times.
+_STALE_STEPS = 12
+_STALE_CONTRACTION = 4.0
 
 
 def mixed_precision_solve(a: np.ndarray, b: np.ndarray) -> np.ndarray:
@@ -118,19 +133,56 @@ def mixed_precision_solve(a: np.ndarray, b: np.ndarray) -> np.ndarray:
     ill-conditioned for single precision: the refinement contracts by ``cond(a) ε₃₂`` per
     step) the float64 LU solves it.
     """
+    return refined_solve(a, b)[0]
+
+
+def refined_solve(a: np.ndarray, b: np.ndarray, stale: tuple | None = None
+                  ) -> tuple[np.ndarray, tuple | None]:
+    """:func:`mixed_precision_solve`, optionally from the LU factor of a nearby matrix.
+
+    Parameters
+    ----------
+    a, b
+        The system (float64).
+    stale
+        ``(lu, piv)`` of LAPACK's ``sgetrf`` for another matrix of the same size (the same
+        contact set with another local compliance ``c``): the refinement is first run with
+        it (``x += LU_old⁻¹ (b − a x)``, each step at least ``_STALE_CONTRACTION`` times
+        smaller in residual, at most ``_STALE_STEPS``) to the same backward-error test;
+        only when it does not contract is ``a`` factorised.
+
+    Returns
+    -------
+    x, factor
+        The solution, and the float32 factor it was refined with (``None`` if the float64
+        fallback solved it).
+    """
     n = b.size
+    bound = float(np.linalg.norm(a)) * np.finfo(float).eps * np.sqrt(n)
+    if stale is not None and stale[0].shape[0] == n:
+        lu, piv = stale
+        x = lapack.sgetrs(lu, piv, b.astype(np.float32))[0].astype(float)
+        prev = np.inf
+        for _ in range(_STALE_STEPS):
+            r = b - a @ x
+            rn = float(np.abs(r).max())
+            if not np.isfinite(rn) or rn * _STALE_CONTRACTION > prev:
+                break
+            if rn <= float(np.abs(x).max()) * bound:
+                return x, stale
+            prev = rn
+            x += lapack.sgetrs(lu, piv, r.astype(np.float32))[0]
     lu, piv, info = lapack.sgetrf(a.astype(np.float32))
     if info == 0:
-        bound = float(np.linalg.norm(a)) * np.finfo(float).eps * np.sqrt(n)
         x = lapack.sgetrs(lu, piv, b.astype(np.float32))[0].astype(float)
         for _ in range(_REFINE_STEPS):
             r = b - a @ x
             if not np.all(np.isfinite(r)):
                 break
             if float(np.abs(r).max()) <= float(np.abs(x).max()) * bound:
-                return x
+                return x, (lu, piv)
             x += lapack.sgetrs(lu, piv, r.astype(np.float32))[0]
-    return np.linalg.solve(a, b)
+    return np.linalg.solve(a, b), None
 
 
 def _to_hermitian(kernels: list[np.ndarray]) -> None:

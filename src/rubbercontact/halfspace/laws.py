@@ -267,11 +267,33 @@ class TabulatedLaw(InteractionLaw):
     # -- evaluation ----------------------------------------------------------------
     def _eval(self, u: np.ndarray, stiffness: bool = True) -> tuple[np.ndarray, np.ndarray]:
         """``(σ(u), k(u) = −σ'(u))``; ``k`` is left 0 unless ``stiffness`` (the law is
-        evaluated on the whole grid in every Newton and line-search step)."""
+        evaluated on the whole grid in every Newton and line-search step).
+
+        A table that reaches ``σ = 0`` is evaluated only where ``u`` is below that
+        separation (its support): on a rough surface a few percent of the grid, so the
+        whole-grid work is one comparison and the scatter of the results.
+        """
+        c = self._cache
+        u = np.asarray(u, dtype=float)
+        sig = np.zeros(u.shape)
+        k = np.zeros(u.shape)
+        flat = u.reshape(-1)
+        if np.isfinite(c["u_zero"]):
+            idx = np.flatnonzero(flat < c["u_zero"])
+            if idx.size == 0:
+                return sig, k
+            s_in, k_in = self._eval_flat(flat[idx], stiffness)
+            sig.reshape(-1)[idx] = s_in
+            k.reshape(-1)[idx] = k_in
+            return sig, k
+        s_in, k_in = self._eval_flat(flat, stiffness)
+        return s_in.reshape(u.shape), k_in.reshape(u.shape)
+
+    def _eval_flat(self, u: np.ndarray, stiffness: bool) -> tuple[np.ndarray, np.ndarray]:
+        """:meth:`_eval` on a 1-D array of separations."""
         c = self._cache
         tab_u, tab_s = self.separation, self.pressure_table
         npos = c["npos"]
-        u = np.asarray(u, dtype=float)
         sig = np.zeros(u.shape)
         k = np.zeros(u.shape)
         u0, s0 = tab_u[0], tab_s[0]

@@ -43,12 +43,22 @@ from .problem import Problem, Solution
 __all__ = ["InverseWall", "newton_from", "newton_law", "shift_for_law", "solve_single_law"]
 
 
-def shift_for_law(law: InteractionLaw, u: np.ndarray, sigma0: float) -> float:
-    """Scalar ``s`` with ``<f(u + s)> = σ0`` (bracketed root; ``f`` non-increasing)."""
+def shift_for_law(law: InteractionLaw, u: np.ndarray, sigma0: float,
+                  guess: float | None = None) -> float:
+    """Scalar ``s`` with ``<f(u + s)> = σ0`` (bracketed root; ``f`` non-increasing).
+
+    ``guess``: a shift near the root (the start state's ``ū``): the bracket then grows from
+    ``guess ± 1e-6 span`` by factors of 8 (one pass per growth) instead of starting from
+    ``±span``, ``span`` the range of ``u``; Brent's method then starts close to the root.
+    The tolerance is the same either way (``1e-12 span``).
+    """
     def mean_p(s):
         return float(np.mean(law.pressure(u + s)))
     span = float(np.ptp(u)) + 1e-12
-    lo, hi = -span, span
+    if guess is not None and np.isfinite(guess):
+        lo, hi = _bracket_near(mean_p, sigma0, float(guess), span)
+    else:
+        lo, hi = -span, span
     p_lo = mean_p(lo)
     while p_lo < sigma0 and lo >= -1e6 * span:
         lo -= 2 * (hi - lo)
@@ -66,6 +76,24 @@ def shift_for_law(law: InteractionLaw, u: np.ndarray, sigma0: float) -> float:
     log_s0 = np.log(sigma0)
     return float(brentq(lambda s: np.log(max(mean_p(s), 1e-300)) - log_s0, lo, hi,
                         xtol=1e-12 * span, rtol=1e-12))
+
+
+def _bracket_near(mean_p, sigma0: float, guess: float, span: float) -> tuple[float, float]:
+    """``(lo, hi)`` around ``guess`` with ``<f> >= σ0`` at ``lo`` and ``<= σ0`` at ``hi``,
+    grown by factors of 8 from ``1e-6 span`` (up to ``span``: then the caller widens it)."""
+    d = 1e-6 * span
+    p_g = mean_p(guess)
+    if p_g >= sigma0:           # guess is on the low side of the root: search upwards
+        lo, hi = guess, guess + d
+        while mean_p(hi) > sigma0 and d < span:
+            lo, d = hi, 8 * d
+            hi = guess + d
+        return lo, hi
+    lo, hi = guess - d, guess
+    while mean_p(lo) < sigma0 and d < span:
+        hi, d = lo, 8 * d
+        lo = guess - d
+    return lo, hi
 
 
 def _newton_rtol(tol: float, res: float, loose: bool = True, mixed: bool = False) -> float:
@@ -243,7 +271,7 @@ def newton_from(prob: Problem, law: InteractionLaw, start: Solution, tol: float,
 
     ``mixed``: the inverse-law rows for a Lennard-Jones wall (no effect for other laws).
     """
-    shift = shift_for_law(law, start.w - prob.z, prob.sigma0)
+    shift = shift_for_law(law, start.w - prob.z, prob.sigma0, guess=start.ubar)
     return newton_law(prob, law, tol, max_iter, start.sigma, shift, loose=loose,
                       inverse=lj_inverse(law) if mixed else None)
 

@@ -42,6 +42,10 @@ class SolverOptions:
         1D contact sets of at most this many points solve the contact-set systems directly
         on any grid (the set's block of the circulant ``M``, gathered from one column);
         0: only grids of at most ``dense_max_points`` points.
+    reuse_dense_factorization : bool, default True
+        A dense contact-set solve on the same set as the previous one (on the same
+        problem) refines from the previous solve's single-precision LU before factorising
+        anew (:func:`~rubbercontact.halfspace.contact_set.mixed_precision_solve`).
     coarse_min_points : int or None, default 256
         Smallest grid of the coarse-grid start of the viscoelastic hard wall: a 1D grid of
         ``N >= 4 × coarse_min_points`` points, ``N`` divisible by 4, starts from the solution
@@ -66,6 +70,7 @@ class SolverOptions:
     multi_shift_min_points: int = 32
     dense_max_points: int = 256
     dense_max_set: int = 1024
+    reuse_dense_factorization: bool = True
     coarse_min_points: int | None = 256
     coarse_polish_updates: int = 16
     mixed_newton: bool = True

@@ -113,11 +113,14 @@ def halfspace_loads_task(surface: dict, period: float, material: dict, velocity:
     p = np.asarray(mean_pressures, float)
     points: list[_HalfspacePoint | None] = []
     status = []
+    # the interaction law is the same at every load (its Lennard-Jones member is resolved
+    # per load by the solver): the tabulated law's interpolants are built once
+    built = None if surf.size == 0 else halfspace_law(law, interface_law, velocity)
     for sigma0 in p:
         try:
             points.append(_halfspace_point(surf, period, mat, velocity, float(sigma0), n, nu,
                                            law, interface_law, hs_window, time.perf_counter(),
-                                           tol))
+                                           tol, built))
             status.append("ok")
         except (ConvergenceError, InputError, FloatingPointError,
                 np.linalg.LinAlgError) as err:
@@ -158,8 +161,10 @@ class _HalfspacePoint:
 def _halfspace_point(surf: SineSeries, period: float, material: GeneralizedMaxwell,
                      velocity: float, mean_pressure: float, n: int, nu: float, law: str,
                      interface_law: dict | None, hs_window: float | None,
-                     t0: float, tol: float = 1e-8) -> _HalfspacePoint:
-    """Solve one load; the flat low-slope surface by its scalar equation."""
+                     t0: float, tol: float = 1e-8,
+                     built_law=None) -> _HalfspacePoint:
+    """Solve one load; the flat low-slope surface by its scalar equation. ``built_law``:
+    :func:`halfspace_law` of ``law`` and ``interface_law``, if already built."""
     from .. import halfspace
 
     if surf.size == 0:
@@ -167,7 +172,9 @@ def _halfspace_point(surf: SineSeries, period: float, material: GeneralizedMaxwe
             raise InputError("surface: empty (flat) surface without an interface law")
         return _flat_interface_solve(interface_law, mean_pressure, velocity, law, t0)
     res = halfspace.solve_sliding(surf, period, material, velocity,
-                                  mean_pressure, law=halfspace_law(law, interface_law, velocity),
+                                  mean_pressure,
+                                  law=(built_law if built_law is not None
+                                       else halfspace_law(law, interface_law, velocity)),
                                   n=n, nu=nu, tol=tol)
     values = {
         "friction": res.friction, "friction_ls": res.friction_ls,

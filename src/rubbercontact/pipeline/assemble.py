@@ -164,24 +164,45 @@ def add_fem_steadiness(ds: xr.Dataset, diag: dict, material: GeneralizedMaxwell,
 
 
 def add_profiles(ds: xr.Dataset, slots: list[Slot], results: list) -> xr.Dataset:
-    """Pressure along the surface for realization 0 (paper Fig. 8)."""
-    profiles: dict[str, np.ndarray] = {}
+    """Pressure along the surface for realization 0 (paper Fig. 8).
+
+    The profiles share the finest half-space grid (the VHS's): a solve on a coarser grid
+    (the hybrid's low-slope solve, :mod:`rubbercontact.hybrid.grid`) is interpolated to it
+    linearly and periodically (its own points are among the fine ones when its size
+    divides the fine grid's, and keep their values); ``grid_points`` in the variable's
+    attributes is the size of the grid it was solved on.
+    """
+    rows: dict[str, list] = {}
+    fine = None
     for slot, res in zip(slots, results, strict=True):
         if (failure_message(res) or slot.ir != 0 or "pressure_profile" not in res
                 or slot.model == "fem"):
             continue
-        arr = profiles.setdefault(slot.model, np.full((ds.sizes["velocity"],
-                                                       ds.sizes["pressure"], res.sizes["x"]),
-                                                      np.nan))
-        arr[slot.iv, slice(None) if slot.ip is None else slot.ip] = \
-            res["pressure_profile"].values
-        ds = ds.assign_coords(x=("x", res["x"].values, {"units": "mm"}))
+        rows.setdefault(slot.model, []).append((slot, res["x"].values,
+                                                res["pressure_profile"].values))
+        if fine is None or res.sizes["x"] > fine.size:
+            fine = res["x"].values
         if "heights" not in ds and slot.model == "vhs":
+            ds = ds.assign_coords(x=("x", res["x"].values, {"units": "mm"}))
             ds["heights"] = ("x", res["heights_profile"].values, {"units": "mm"})
-    for m, arr in profiles.items():
+    if fine is None:
+        return ds
+    if "x" not in ds.coords:
+        ds = ds.assign_coords(x=("x", fine, {"units": "mm"}))
+    fine = ds["x"].values
+    for m, items in rows.items():
+        arr = np.full((ds.sizes["velocity"], ds.sizes["pressure"], fine.size), np.nan)
+        points = items[0][1].size
+        for slot, x, prof in items:
+            if x.size != fine.size:
+                length = (x[1] - x[0]) * x.size          # uniform grid from x = 0
+                prof = np.stack([np.interp(fine, x, row, period=length)
+                                 for row in np.atleast_2d(prof)]).reshape(
+                    prof.shape[:-1] + (fine.size,))
+            arr[slot.iv, slice(None) if slot.ip is None else slot.ip] = prof
         ds[f"pressure_profile_{m}"] = (("velocity", "pressure", "x"), arr,
-                                       {"units": "MPa", "long_name": f"{m} contact pressure, "
-                                                                     f"realization 0"})
+                                       {"units": "MPa", "grid_points": points,
+                                        "long_name": f"{m} contact pressure, realization 0"})
     return ds
 
 

@@ -15,6 +15,7 @@ from typing import TYPE_CHECKING, NamedTuple
 import numpy as np
 
 from ..config import RunConfig
+from ..hybrid.grid import low_slope_points
 from ..materials import GeneralizedMaxwell
 from ..roughness import SineSeries
 from .setup import (
@@ -96,11 +97,16 @@ def halfspace_kwargs(cfg: RunConfig, model: str, real: SineSeries, low: SineSeri
                      has_high: bool, setup: RunSetup, material: GeneralizedMaxwell,
                      v: float, pressures: np.ndarray, table, keep: bool) -> dict:
     """Keyword arguments of one half-space task at every load (VHS, or the hybrid's
-    low-slope solve)."""
+    low-slope solve, on ``halfspace.hybrid_n`` points or the grid of
+    :func:`~rubbercontact.hybrid.grid.low_slope_points`)."""
     hsc = cfg.halfspace
     surf = real if (model == "vhs" or not has_high) else low
+    n = hsc.n
+    if model in HYBRID_MODELS and has_high:
+        # the low-slope solve on its own grid (rubbercontact.hybrid.grid)
+        n = hsc.hybrid_n or low_slope_points(hsc.n, real, low)
     kw = {"surface": surf.as_dict(), "period": setup.period, "material": task_material(material),
-          "velocity": v, "mean_pressures": [float(p) for p in pressures], "n": hsc.n,
+          "velocity": v, "mean_pressures": [float(p) for p in pressures], "n": n,
           "nu": cfg.material.nu, "law": hsc.law, "tol": hsc.tol,
           "interface_law": table if model in HYBRID_MODELS else None, "keep_profile": keep}
     if model == "hybrid-windowed" and has_high:
