@@ -460,3 +460,62 @@ def test_gmres_that_stagnates_gives_no_direction_after_one_restart_cycle():
     lin = _direction(SimpleNamespace(jvp=lambda e, v: d * v), ev, pre, "face", 1e-8, opts)
     assert lin is not None and lin.residual <= 1e-8
     assert np.allclose(d * lin.x, b, rtol=0, atol=1e-6 * np.linalg.norm(b))
+
+
+def test_single_precision_preconditioner_is_close_and_falls_back_to_double():
+    # A 2D Laplacian (well conditioned for float32: 5e3) solves in single precision to
+    # float32's rounding times its condition; a graded diagonal spanning 1e12 (beyond
+    # float32's range of exactly representable ratios at the check's 5 %) must be
+    # refactorized in double precision and then solve to double accuracy.
+    import scipy.sparse as sp
+
+    from rubbercontact.fem.solver import SINGLE_RESIDUAL, factorize_general
+
+    n = 40
+    lap1 = sp.diags([-1.0, 2.0, -1.0], [-1, 0, 1], shape=(n, n))
+    K = (sp.kron(lap1, sp.eye(n)) + sp.kron(sp.eye(n), lap1)).tocsr()
+    b = np.random.default_rng(0).normal(size=n * n)
+    f = factorize_general(K, single=True)
+    x = f.solve(b)
+    assert f.single and x.dtype == np.float64
+    rel = np.linalg.norm(K @ x - b) / np.linalg.norm(b)
+    assert 1e-12 < rel <= 1e3 * np.finfo(np.float32).eps
+    exact = factorize_general(K).solve(b)
+    assert np.linalg.norm(K @ exact - b) / np.linalg.norm(b) < 1e-12
+
+    # float32 underflows the smallest pivots (1e-50): the single factor is refused
+    D = sp.diags(np.logspace(0, -50, n * n)).tocsr()
+    g = factorize_general(D, single=True)
+    y = g.solve(np.ones(n * n))
+    assert not g.single
+    assert np.linalg.norm(D @ y - 1.0) / np.sqrt(n * n) <= 1e-12 < SINGLE_RESIDUAL
+
+
+def test_a_newton_step_does_not_lift_a_touching_cell_off_the_surface():
+    # r(U) = d (U − 1) with the surface pushing only while U < 0.75: the full Newton step
+    # (U = 1) decreases the residual but leaves no contact to carry the load, so from a
+    # touching state the line search takes α = 1/2; from a state without contact (the
+    # undeformed cell above the surface) the full step is taken.
+    from types import SimpleNamespace
+
+    from rubbercontact.fem.newton_krylov import Counters, _newton_step
+    from rubbercontact.fem.options import SteadyOptions
+
+    d = np.array([1.0, 2.0, 3.0])
+
+    def evaluate(U, shift, load, gauge):
+        r = d * (U - 1.0)
+        force = np.array([[0.0, 1.0]]) if U[0] < 0.75 else np.zeros((1, 2))
+        return SimpleNamespace(U=U, shift=shift, load=load, r=r, admissible=True,
+                               norm=float(np.linalg.norm(r)),
+                               contact=SimpleNamespace(force=force))
+
+    cell = SimpleNamespace(evaluate=evaluate, jvp=lambda ev, v: d * v)
+    pre = SimpleNamespace(solve=lambda b, gauge: b)
+    opts = SteadyOptions()
+    touching = evaluate(np.zeros(3), 0.0, 1.0, "face")
+    step = _newton_step(cell, touching, pre, "face", 1e-8, opts, Counters())
+    assert step.alpha == 0.5 and np.any(step.trial.contact.force)
+    above = SimpleNamespace(**{**vars(touching), "contact": SimpleNamespace(
+        force=np.zeros((1, 2)))})
+    assert _newton_step(cell, above, pre, "face", 1e-8, opts, Counters()).alpha == 1.0

@@ -129,6 +129,11 @@ def _factor(cell: SteadyCell, ev: SteadyEvaluation, counters: Counters):
     return pre
 
 
+def _touches(ev: SteadyEvaluation) -> bool:
+    """Whether the surface pushes on the face at ``ev`` (any contact force)."""
+    return bool(np.any(ev.contact.force))
+
+
 @dataclass(frozen=True, eq=False)
 class NewtonStep:
     """An accepted damped Newton step: ``U + alpha · lin.x`` evaluated as ``trial``."""
@@ -186,10 +191,15 @@ def _newton_step(cell: SteadyCell, ev: SteadyEvaluation, pre, gauge: str, eta: f
     if not np.all(np.isfinite(lin.x)):
         return LINE_SEARCH_FAILED
     merit0 = float(np.linalg.norm(pre.solve(ev.r, gauge)))
+    carried = _touches(ev)
     alpha = 1.0
     for _ in range(12):
         trial = _evaluate(cell, ev.U + alpha * lin.x, ev.shift, ev.load, gauge, counters)
-        if trial.admissible:
+        # A step must not lift the cell off the surface: without contact the plate's load
+        # has no reaction and the next tangent is singular (GMRES stagnates and the whole
+        # load step is cut). The linearized penalty overshoots exactly so when only one or
+        # two face points touch (the first steps of a press).
+        if trial.admissible and (_touches(trial) or not carried):
             merit = float(np.linalg.norm(pre.solve(trial.r, gauge)))
             # Also bound the growth of the force residual: a step that lowers the merit
             # while moving face points deep into the surface costs several damped

@@ -110,7 +110,8 @@ class GaugedFactor:
         k_t = np.asarray(K[:, [t]].todense()).ravel() * keep
         matrix = (D @ K @ D + sp.diags(1.0 - keep)).tocsr()
         matrix.sort_indices()
-        self.lu = factorize_general(matrix)
+        # single precision: only GMRES's preconditioner and the line search's merit use it
+        self.lu = factorize_general(matrix, single=True)
         self.t, self.c = t, c
         self.z = self.lu.solve(k_t)
         self.cz = float(c @ self.z)
