@@ -28,6 +28,7 @@ LADDER = (8, 3)                   # (waves, seed): the ladder worst at 500 mm/s
 SPEEDS = (1.0, 500.0)
 TARGET, N, REALIZATIONS, SEED = 0.02, 16384, 8, 1
 TAIL_OCTAVES = 6                  # bands above the cut-off, one octave each
+TRUNCATED = (1, 2, 3, 4, 6, 8)    # the ladder's longest waves kept, at 500 mm/s
 
 
 def band_edges(q: np.ndarray) -> np.ndarray:
@@ -69,6 +70,71 @@ def run_bands(rows_path: Path, done: set, key) -> None:
         row.update(p=p, R=REALIZATIONS, surface=surf.as_dict(), bem_mu=mus, bem_A=areas,
                    band_diss=diss.tolist(), band_var=var.tolist())
         append_row(rows_path, row)
+
+
+def run_truncated(rows_path: Path, done: set, key) -> None:
+    """The ladder's longest ``k`` waves (:data:`TRUNCATED`) at 500 mm/s and the full ladder's
+    load: the BEM's pressure variance by band as the shorter waves are added."""
+    m, seed = LADDER
+    full = random_ladder(m, seed)
+    order = np.argsort(full.wavenumbers)
+    v = SPEEDS[-1]
+    p = load_for_area(mf.PSD.from_sines(full), SBR, v, TARGET)
+    for k in TRUNCATED:
+        row = {"kind": "bands_truncated", "case": f"random {m} waves (seed {seed})", "v": v,
+               "target": TARGET, "n": N, "seed": k}
+        if key(row) in done:
+            continue
+        idx = np.sort(order[:k])
+        surf = rc.roughness.SineSeries(np.asarray(full.wavelengths)[idx],
+                                       np.asarray(full.amplitudes)[idx])
+        edges = band_edges(np.sort(full.wavenumbers))
+        var, areas = np.zeros(edges.size - 1), []
+        for r in surf.realizations(REALIZATIONS, SEED):
+            res = rc.halfspace.solve_sliding(r, full.period, SBR, v, p, n=N)
+            areas.append(res.contact_fraction)
+            sk = np.fft.rfft(res.pressure) / N
+            kk = 2 * np.pi * np.arange(sk.size) / full.period
+            power = np.where(kk > 0, 2 * np.abs(sk) ** 2, 0.0)
+            power[-1] /= 2
+            var += np.bincount(np.digitize(kk, edges) - 1, power,
+                               edges.size - 1) / REALIZATIONS
+        row.update(p=p, R=REALIZATIONS, surface=surf.as_dict(), bem_A=areas,
+                   band_var=var.tolist())
+        append_row(rows_path, row)
+
+
+def truncated_table(rows) -> tuple[str, dict]:
+    """The pressure variance in the bands of the three longest waves as the ladder's shorter
+    waves are added: the BEM's against the strips' (which book it when the wave is added)."""
+    sel = sorted((r for r in rows if r["kind"] == "bands_truncated"), key=lambda r: r["seed"])
+    if not sel:
+        return "", {}
+    m, seed = LADDER
+    full = random_ladder(m, seed)
+    q = np.sort(full.wavenumbers)
+    edges = band_edges(q)
+    lines = ["| waves kept (longest first) | BEM A | strips A | "
+             + " | ".join(f"{2 * np.pi / q[b]:g} mm band: BEM var/σ0² | strips" for b in range(3))
+             + " |", "|---" * 9 + "|"]
+    first = last = None
+    for r in sel:
+        p = r["p"]
+        surf = rc.roughness.SineSeries(r["surface"]["wavelengths"], r["surface"]["amplitudes"])
+        strip = strip_bands(surf, r["v"], p, edges, unit=True) / p**2
+        area = strip_contact(surf.wavenumbers, surf.amplitudes, SBR, r["v"], p)
+        bem = np.asarray(r["band_var"]) / p**2
+        cells = [f"{r['seed']}", f"{np.mean(r['bem_A']):.4f}",
+                 f"{area.contact_fraction[np.argmax(surf.wavenumbers)]:.4f}"]
+        for b in range(1, 4):
+            cells += [f"{bem[b]:.2f}", f"{strip[b]:.2f}"]
+        lines.append("| " + " | ".join(cells) + " |")
+        first = first if first is not None else (bem[1:4].sum(), strip[1:4].sum())
+        last = (bem[1:4].sum(), strip[1:4].sum())
+    return "\n".join(lines), {"trunc_bem_first": f"{first[0]:.2f}",
+                               "trunc_strips_first": f"{first[1]:.2f}",
+                               "trunc_bem_last": f"{last[0]:.2f}",
+                               "trunc_strips_last": f"{last[1]:.2f}"}
 
 
 @contextmanager
