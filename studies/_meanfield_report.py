@@ -11,17 +11,17 @@ import numpy as np
 
 import rubbercontact as rc
 from rubbercontact import meanfield as mf
-from rubbercontact.meanfield.patches import westergaard_fraction
 from rubbercontact.roughness import SineSeries
 
+from ._meanfield_bands import bands_table, truncated_table
 from ._meanfield_cases import (
     DIFFUSION,
     SPEEDS,
     make_map,
     self_affine_profile,
-    westergaard_p_star,
 )
 from ._meanfield_diagnosis import broadband_table, diagnosis
+from ._meanfield_sine import sine_table
 from ._templates import render
 
 SBR = rc.materials.sbr()
@@ -174,60 +174,6 @@ def _area_bias(points) -> dict:
     return {"small_lo": f(small.min()), "small_hi": f(small.max()), "large_lo": f(large.min()),
             "large_hi": f(large.max()), "slow_ratio": f(slow.mean()), "fast_ratio": f(fast.mean()),
             "mu_slow": _pct(mu_slow.mean()), "mu_fast": _pct(mu_fast.mean())}
-
-
-def _westergaard_friction(x: float, p_star: float, q: float, v: float) -> float:
-    """First-order friction of one sine: Westergaard's pressure variance times the patch
-    spectrum's loss, over ``σ0 = x p*`` (:mod:`rubbercontact.meanfield.patches`)."""
-    from rubbercontact.meanfield import patches
-
-    r = float(patches.westergaard_fraction(x))
-    theta = 2 * np.pi * (np.arange(2**16) + 0.5) / 2**16 - np.pi
-    var = np.var(patches.westergaard_pressure(theta, r)) * p_star**2
-    return float(var * patches.patch_loss(np.array([r]), np.array([q]), SBR, v, 0.5)[0]
-                 / (x * p_star))
-
-
-def _sine_table(rows) -> tuple[str, dict]:
-    lines = ["| v [mm/s] | σ0/p* | BEM A | Westergaard A | strips A (default) | diffusion A "
-             "| BEM μ | Westergaard + patch spectrum μ | error | strips μ (default) | error "
-             "| diffusion μ, mode | error | diffusion μ, patch r = A | error |",
-             "|---" * 15 + "|"]
-    errs: dict[str, list] = {"west": [], "mode": [], "patch": [], "strips": [],
-                             "strips_A": []}
-    for r in sorted((r for r in rows if r["kind"] == "sine"), key=lambda r: (r["v"],
-                                                                           r["target"])):
-        surf = _series(r["surface"])
-        psd, x, v = mf.PSD.from_sines(surf), r["target"], r["v"]
-        mode, patch = (mf.solve(psd, SBR, v, r["p"], options=mf.MeanFieldOptions(
-            dissipation=d, geometry="diffusion")) for d in ("mode", "patch"))
-        strips = mf.solve(psd, SBR, v, r["p"])
-        mu, area = r["bem_mu"][0], r["bem_A"][0]
-        west = float(westergaard_fraction(x))
-        cols = [f"{v:g}", f"{x:g}", f"{area:.4f}", f"{west:.4f}",
-                f"{strips.contact_fraction:.4f}", f"{mode.contact_fraction:.4f}"]
-        if v == 0:
-            lines.append("| " + " | ".join(cols + ["0"] + ["–"] * 8) + " |")
-            continue
-        errs["strips_A"].append((v, strips.contact_fraction / area - 1))
-        wmu = _westergaard_friction(x, westergaard_p_star(surf, SBR, v),
-                                    float(surf.wavenumbers[0]), v)
-        for key, val in (("west", wmu), ("mode", mode.friction), ("patch", patch.friction),
-                         ("strips", strips.friction)):
-            errs[key].append((v, val / mu - 1))
-        cols += [f"{mu:.4f}", f"{wmu:.4f}", _pct(wmu / mu - 1), f"{strips.friction:.4f}",
-                 _pct(strips.friction / mu - 1), f"{mode.friction:.4f}",
-                 _pct(mode.friction / mu - 1), f"{patch.friction:.4f}",
-                 _pct(patch.friction / mu - 1)]
-        lines.append("| " + " | ".join(cols) + " |")
-
-    def span(key, slow):
-        e = np.array([x for v, x in errs[key] if (v <= 1.0) == slow])
-        return _rng(e) if e.size else "–"
-
-    sliding = {k: _rng(np.array([x for _, x in errs[k]])) for k in ("strips", "strips_A")}
-    return "\n".join(lines), {**{f"{k}_{t}": span(k, t == "slow") for k in errs
-                                for t in ("slow", "fast")}, **sliding}
 
 
 def _self_affine_table(points) -> tuple[str, dict]:
@@ -476,7 +422,9 @@ def report(rows, *, figures: Path, date: str, commit: str, wall: float, variants
     two_d, errs_2d = _two_d_table(rows)
     spec, spec_fields = _spectrum_table(rows)
     sa_table, sa_fields = _self_affine_table(points)
-    sine_table, sine_fields = _sine_table(rows)
+    sine_tab, sine_fields = sine_table(rows)
+    bands, bands_fields = bands_table(rows)
+    trunc, trunc_fields = truncated_table(rows)
     scale, oracle, separation, log_area, diag_fields = diagnosis(rows)
     broad, broad_fields = broadband_table(rows)
     names = _figures(points, hyb, rows, figures)
@@ -484,9 +432,9 @@ def report(rows, *, figures: Path, date: str, commit: str, wall: float, variants
     n_1d = sum(r["kind"] == "1d" for r in rows)
     out = [render("meanfield", "title"), "",
            render("meanfield", "intro", date=date, commit=commit, points=n_1d,
-                  wall=f"{wall / 60:.1f}", **share_fields), "",
+                  wall=f"{wall / 60:.1f}", **share_fields, **bands_fields), "",
            render("meanfield", "theory"), "", render("meanfield", "strips"), "",
-           render("meanfield", "sine", **sine_fields), "", sine_table, "",
+           render("meanfield", "sine", **sine_fields), "", sine_tab, "",
            render("meanfield", "choices"), "", _choices_table(rows, variants), "",
            render("meanfield", "validation", n_random=len(rnd), **share_fields), "",
            _validation_table(points, old), "", shares, "",
@@ -500,6 +448,8 @@ def report(rows, *, figures: Path, date: str, commit: str, wall: float, variants
            render("meanfield", "diag_separation"), "", separation, "",
            render("meanfield", "diag_log"), "", log_area, "",
            render("meanfield", "few_waves"), "",
+           render("meanfield", "bands", **bands_fields), "", bands, "",
+           render("meanfield", "bands_truncated", **trunc_fields), "", trunc, "",
            render("meanfield", "self_affine", t20=sa_fields["t20"], t18=sa_fields["t18"]), "",
            sa_table, "",
            render("meanfield", "broadband", sa_default=sa_fields["sa_default"],

@@ -18,6 +18,8 @@ and for the defaults:
 3. ``meanfield-hybrid`` against the windowed hybrid (``hybrid.windowing``) with the same
    stand-in law, the VHS linear law of the high-slope wave (no FEM).
 4. A 2D isotropic self-affine map against the 2D BEM.
+5. Where the strips' friction is off at 500 mm/s: the BEM's and the strips' dissipation and
+   pressure variance by wavenumber band on one ladder (:mod:`._meanfield_bands`).
 
 Each case appends one JSON line to ``--rows`` (BEM results, the loads and the surfaces);
 finished cases are skipped on a rerun. The report is rendered from the rows with the
@@ -43,6 +45,7 @@ import rubbercontact as rc
 from rubbercontact import meanfield as mf
 from rubbercontact.roughness import SineSeries
 
+from ._meanfield_bands import run_bands, run_truncated
 from ._meanfield_cases import (
     AREAS,
     HYBRID_AREAS,
@@ -318,7 +321,7 @@ def main(argv: list[str] | None = None) -> int:
     ap.add_argument("--report", type=Path, default=OUT / "meanfield.md")
     ap.add_argument("--parts",
                     default="sine,separation,1d,hybrid,2d,pressure,spectrum,speed,"
-                            "broadband,selfaffine")
+                            "broadband,selfaffine,bands")
     ap.add_argument("--selfaffine-sizes", default=str(2**20),
                     help="grid sizes of the 4-decade profile's reference solves (comma list)")
     ap.add_argument("--report-only", action="store_true")
@@ -346,6 +349,9 @@ def main(argv: list[str] | None = None) -> int:
             run_speed(args.rows, done)
         if "broadband" in parts:
             run_broadband(args.rows, done)
+        if "bands" in parts:
+            run_bands(args.rows, done, _key)
+            run_truncated(args.rows, done, _key)
         if "selfaffine" in parts:
             sizes = tuple(int(s) for s in args.selfaffine_sizes.split(",") if s)
             run_self_affine(args.rows, done, sizes)

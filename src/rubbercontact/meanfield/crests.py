@@ -1,0 +1,138 @@
+r"""A strip's crest under a wave: the compound crest and the modulus of a sliding strip.
+
+Used by the strip cascade (:mod:`.strips`). A line contact of half-width ``a`` centred at
+``c`` on the gap ``g(x)`` (plane strain, modulus ``E_r``) has bounded pressure at both edges
+when it is in moment balance and then carries the load (Johnson, *Contact Mechanics*, §2.8)
+
+.. math:: ∫_{−a}^{a} \frac{g'(c + ξ)}{\sqrt{a^2 − ξ^2}} dξ = 0,\qquad
+          W = \frac{E_r}{2}∫_{−a}^{a} \frac{ξ\, g'(c + ξ)}{\sqrt{a^2 − ξ^2}} dξ.
+
+For the crest of a strip, ``g = κx²/2 − Δ cos(qx + φ)`` (the parent's parabola and a
+shorter wave), with ``ψ = qc + φ``:
+
+* moment balance: ``κc + qΔ J0(qa) sin ψ = 0``, i.e. ``c`` is a stationary point of
+  ``G(c) = κc²/2 − Δ J0(qa) cos(qc + φ)``, the gap seen through the Chebyshev weight
+  (at ``a → 0`` the compound gap itself). The contact sits on the highest compound crest:
+  the lowest minimum of ``G`` (:func:`crest_phase`, among the three crests nearest the
+  parent's, where the parabola stands for the parent);
+* load: ``W = (πE_r a²/4) κ_eff``, ``κ_eff = κ + q²Δ cos ψ · 2J1(qa)/(qa)``
+  (:func:`bending_share`).
+
+A sliding strip is loaded in the time ``2a/v``; its modulus is ``|E_r|`` at
+``ω = max(πv/(2a), qv)`` (:class:`StripModulus`, the rule of
+:func:`~.strips.sliding_fraction`). The wave's part of the gap is pressed at its own
+frequency where the strip is wider than the wave, so its term in ``κ_eff`` carries the ratio
+of the two moduli (1 for a strip narrower than the wave).
+"""
+
+from __future__ import annotations
+
+from functools import lru_cache
+
+import numpy as np
+from scipy.special import j1, jn_zeros
+
+from ..materials.maxwell import GeneralizedMaxwell
+
+#: Crest phases ``φ`` of a wave against a strip (midpoints of equal steps); the cascade's.
+PHASES = 16
+#: Smallest strip fraction of the cascade (the modulus table reaches its frequency).
+SMALLEST_FRACTION = 1e-7
+#: First zero of J1.
+BESSEL_ZERO = float(jn_zeros(1, 1)[0])
+#: The compound crest (:func:`crest_cosine`): Newton steps, range and points of its table.
+CREST_NEWTON = 8
+CREST_RANGE = (1e-4, 1e4)
+CREST_POINTS = 2000
+#: Points per decade of frequency of a strip's modulus table (:class:`StripModulus`).
+MODULUS_PER_DECADE = 100
+
+
+class StripModulus:
+    """``|E_r|`` [MPa] of a sliding strip at the frequency of its contact time,
+    ``ω = max(πv/(2a), qv)`` (``q`` the wave that formed it; :func:`sliding_fraction`), read
+    off a log grid in ``ω`` (:data:`MODULUS_PER_DECADE` points per decade)."""
+
+    def __init__(self, material: GeneralizedMaxwell, velocity: float, nu: float,
+                 q_min: float, q_max: float):
+        self.speed = abs(float(velocity))
+        if self.speed == 0.0:
+            return
+        # from the longest wave's own frequency to that of its narrowest strip,
+        # a = SMALLEST_FRACTION · π/q_max: ω = q_max v/(2 SMALLEST_FRACTION)
+        lo = np.log10(q_min * self.speed) - 1.0
+        hi = np.log10(q_max * self.speed / (2 * SMALLEST_FRACTION)) + 1.0
+        self.grid = np.linspace(lo, hi, int((hi - lo) * MODULUS_PER_DECADE) + 2)
+        self.table = np.abs(material.complex_modulus(10.0**self.grid)) / (1.0 - nu**2)
+
+    def __call__(self, half_width, wavenumber) -> np.ndarray:
+        """``|E_r(max(πv/(2a), qv))|`` at the half-widths ``a`` [mm] of strips formed by
+        waves of wavenumber ``q`` [rad/mm] (1 at ``v = 0``: only ratios are used)."""
+        if self.speed == 0.0:
+            return np.ones(np.broadcast(half_width, wavenumber).shape)
+        omega = np.maximum(np.pi * self.speed / (2 * np.asarray(half_width)),
+                           np.asarray(wavenumber) * self.speed)
+        return np.interp(np.log10(omega), self.grid, self.table)
+
+
+def bending_share(wavenumber: float, half_width) -> np.ndarray:
+    """``2J1(qa)/(qa)`` up to its first zero, 0 beyond [-]: the share of a wave that bends a
+    strip of half-width ``a`` [mm] (module docstring)."""
+    z = wavenumber * np.asarray(half_width, float)
+    safe = np.where((z > 0) & (z < BESSEL_ZERO), z, 1.0)
+    return np.where(z < BESSEL_ZERO, np.where(z > 0, 2 * j1(safe) / safe, 1.0), 0.0)
+
+
+def crest_phase(curvature, amplitude, wavenumber: float, phase) -> np.ndarray:
+    """The wave's phase ``ψ = qc + φ`` at the centre ``c`` of a strip on the compound crest.
+
+    ``c`` minimises ``G(c) = κc²/2 − A cos(qc + φ)`` (the gap seen through the strip's
+    Chebyshev weight, ``A = Δ J0(qa)``: ``G'(c) = 0`` is the strip's moment balance, module
+    docstring) among the three crests of ``A cos`` nearest the parent's (Newton from each).
+    ``curvature`` ``κ`` [1/mm], ``amplitude`` ``A`` [mm], ``wavenumber`` [rad/mm], ``phase``
+    ``φ`` [rad]; arrays broadcast.
+    """
+    kappa, amp, phase = np.broadcast_arrays(np.asarray(curvature, float),
+                                            np.asarray(amplitude, float),
+                                            np.asarray(phase, float))
+    base = np.where(amp >= 0, 0.0, np.pi)
+    best_g = np.full(kappa.shape, np.inf)
+    best_psi = np.array(phase, float)
+    for k in (-1, 0, 1):
+        c = (base + 2 * np.pi * k - phase) / wavenumber
+        for _ in range(CREST_NEWTON):
+            g1 = kappa * c + wavenumber * amp * np.sin(wavenumber * c + phase)
+            g2 = kappa + wavenumber**2 * amp * np.cos(wavenumber * c + phase)
+            c = c - np.where(g2 > 0, g1 / np.where(g2 > 0, g2, 1.0), 0.0)
+        g = 0.5 * kappa * c**2 - amp * np.cos(wavenumber * c + phase)
+        better = g < best_g
+        best_g = np.where(better, g, best_g)
+        best_psi = np.where(better, wavenumber * c + phase, best_psi)
+    return best_psi
+
+
+@lru_cache(maxsize=1)
+def _crest_table() -> tuple[np.ndarray, np.ndarray]:
+    """``cos ψ`` of :func:`crest_phase` on a log grid of ``b = q²A/κ > 0`` × the
+    :data:`PHASES` crest phases (``G/A`` depends on ``b`` and ``φ`` alone)."""
+    lb = np.linspace(np.log(CREST_RANGE[0]), np.log(CREST_RANGE[1]), CREST_POINTS)
+    phi = 2 * np.pi * (np.arange(PHASES) + 0.5) / PHASES
+    psi = crest_phase(1.0, np.exp(lb)[:, None], 1.0, phi[None, :])
+    return lb, np.cos(psi)
+
+
+def crest_cosine(curvature, amplitude, wavenumber: float) -> np.ndarray:
+    """``cos ψ`` of :func:`crest_phase` at the :data:`PHASES` crest phases, read off
+    :func:`_crest_table`. ``curvature`` [1/mm] and ``amplitude`` [mm] broadcast to
+    ``(samples, PHASES)``, the last axis the phases; for ``A < 0`` the phase is shifted by
+    ``π`` and ``cos ψ`` changes sign."""
+    lb, table = _crest_table()
+    b = wavenumber**2 * np.asarray(amplitude, float) / np.asarray(curvature, float)
+    b = np.broadcast_to(b, np.broadcast(b, np.empty(PHASES)).shape)
+    x = np.log(np.clip(np.abs(b), np.exp(lb[0]), np.exp(lb[-1])))
+    out = np.empty(b.shape)
+    for col in range(PHASES):
+        flip = (col + PHASES // 2) % PHASES
+        out[..., col] = np.where(b[..., col] >= 0, np.interp(x[..., col], lb, table[:, col]),
+                                 -np.interp(x[..., col], lb, table[:, flip]))
+    return out

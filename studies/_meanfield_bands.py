@@ -1,0 +1,225 @@
+"""Where the strips' friction goes wrong at 500 mm/s: the dissipation by wavenumber band.
+
+The exact identity ``μσ0 = Σ_k var σ_k · (−2 Im[1/E_r(kv)])`` (1D) splits the BEM's friction
+into octave bands centred on the waves of a ladder and the bands above its cut-off; the
+strip cascade's friction splits the same way (the loss set to zero outside a band). Part
+``bands`` of studies/meanfield.py: the random 8-wave ladder (seed 3), the load of the
+diffusion's 2 %, at 1 and 500 mm/s, 8 realizations (the study's 1D rows' BEM).
+"""
+
+from __future__ import annotations
+
+from contextlib import contextmanager
+from dataclasses import replace
+from pathlib import Path
+
+import numpy as np
+
+import rubbercontact as rc
+from rubbercontact import meanfield as mf
+from rubbercontact.meanfield import patches, strips
+from rubbercontact.meanfield.strips import strip_contact
+
+from ._meanfield_cases import load_for_area, random_ladder
+from ._rows import append_row
+
+SBR = rc.materials.sbr()
+LADDER = (8, 3)                   # (waves, seed): the ladder worst at 500 mm/s
+SPEEDS = (1.0, 500.0)
+TARGET, N, REALIZATIONS, SEED = 0.02, 16384, 8, 1
+TAIL_OCTAVES = 6                  # bands above the cut-off, one octave each
+TRUNCATED = (1, 2, 3, 4, 6, 8)    # the ladder's longest waves kept, at 500 mm/s
+
+
+def band_edges(q: np.ndarray) -> np.ndarray:
+    """Octave bands centred on the sorted wavenumbers ``q`` [rad/mm], then
+    :data:`TAIL_OCTAVES` octaves above the last band; open at 0 and ∞."""
+    return np.concatenate([[0.0], q * 2**-0.5, q[-1] * 2**0.5 * 2.0 ** np.arange(TAIL_OCTAVES),
+                           [np.inf]])
+
+
+def _loss(k: np.ndarray, v: float) -> np.ndarray:
+    """``−2 Im[1/E_r(kv)]`` [1/MPa] (ν = 0.5), 0 at ``k = 0``."""
+    out = -2.0 * np.imag(1.0 / (SBR.complex_modulus(k * v) / 0.75))
+    return np.where(k > 0, out, 0.0)
+
+
+def run_bands(rows_path: Path, done: set, key) -> None:
+    """BEM pressure spectra pooled in the bands (dissipation and variance per band)."""
+    m, seed = LADDER
+    surf = random_ladder(m, seed)
+    edges = band_edges(np.sort(surf.wavenumbers))
+    for v in SPEEDS:
+        row = {"kind": "bands", "case": f"random {m} waves (seed {seed})", "v": v,
+               "target": TARGET, "n": N}
+        if key(row) in done:
+            continue
+        p = load_for_area(mf.PSD.from_sines(surf), SBR, v, TARGET)
+        diss, var, mus, areas = np.zeros(edges.size - 1), np.zeros(edges.size - 1), [], []
+        for r in surf.realizations(REALIZATIONS, SEED):
+            res = rc.halfspace.solve_sliding(r, surf.period, SBR, v, p, n=N)
+            mus.append(res.friction)
+            areas.append(res.contact_fraction)
+            sk = np.fft.rfft(res.pressure) / N
+            k = 2 * np.pi * np.arange(sk.size) / surf.period
+            power = np.where(k > 0, 2 * np.abs(sk) ** 2, 0.0)
+            power[-1] /= 2                                   # Nyquist has no twin
+            idx = np.digitize(k, edges) - 1
+            var += np.bincount(idx, power, edges.size - 1) / REALIZATIONS
+            diss += np.bincount(idx, power * _loss(k, v), edges.size - 1) / p / REALIZATIONS
+        row.update(p=p, R=REALIZATIONS, surface=surf.as_dict(), bem_mu=mus, bem_A=areas,
+                   band_diss=diss.tolist(), band_var=var.tolist())
+        append_row(rows_path, row)
+
+
+def run_truncated(rows_path: Path, done: set, key) -> None:
+    """The ladder's longest ``k`` waves (:data:`TRUNCATED`) at 500 mm/s and the full ladder's
+    load: the BEM's pressure variance by band as the shorter waves are added."""
+    m, seed = LADDER
+    full = random_ladder(m, seed)
+    order = np.argsort(full.wavenumbers)
+    v = SPEEDS[-1]
+    p = load_for_area(mf.PSD.from_sines(full), SBR, v, TARGET)
+    for k in TRUNCATED:
+        row = {"kind": "bands_truncated", "case": f"random {m} waves (seed {seed})", "v": v,
+               "target": TARGET, "n": N, "seed": k}
+        if key(row) in done:
+            continue
+        idx = np.sort(order[:k])
+        surf = rc.roughness.SineSeries(np.asarray(full.wavelengths)[idx],
+                                       np.asarray(full.amplitudes)[idx])
+        edges = band_edges(np.sort(full.wavenumbers))
+        var, areas = np.zeros(edges.size - 1), []
+        for r in surf.realizations(REALIZATIONS, SEED):
+            res = rc.halfspace.solve_sliding(r, full.period, SBR, v, p, n=N)
+            areas.append(res.contact_fraction)
+            sk = np.fft.rfft(res.pressure) / N
+            kk = 2 * np.pi * np.arange(sk.size) / full.period
+            power = np.where(kk > 0, 2 * np.abs(sk) ** 2, 0.0)
+            power[-1] /= 2
+            var += np.bincount(np.digitize(kk, edges) - 1, power,
+                               edges.size - 1) / REALIZATIONS
+        row.update(p=p, R=REALIZATIONS, surface=surf.as_dict(), bem_A=areas,
+                   band_var=var.tolist())
+        append_row(rows_path, row)
+
+
+def truncated_table(rows) -> tuple[str, dict]:
+    """The pressure variance in the bands of the three longest waves as the ladder's shorter
+    waves are added: the BEM's against the strips' (which book it when the wave is added)."""
+    sel = sorted((r for r in rows if r["kind"] == "bands_truncated"), key=lambda r: r["seed"])
+    if not sel:
+        return "", {}
+    m, seed = LADDER
+    full = random_ladder(m, seed)
+    q = np.sort(full.wavenumbers)
+    edges = band_edges(q)
+    lines = ["| waves kept (longest first) | BEM A | strips A | "
+             + " | ".join(f"{2 * np.pi / q[b]:g} mm band: BEM var/σ0² | strips" for b in range(3))
+             + " |", "|---" * 9 + "|"]
+    first = last = None
+    for r in sel:
+        p = r["p"]
+        surf = rc.roughness.SineSeries(r["surface"]["wavelengths"], r["surface"]["amplitudes"])
+        strip = strip_bands(surf, r["v"], p, edges, unit=True) / p**2
+        area = strip_contact(surf.wavenumbers, surf.amplitudes, SBR, r["v"], p)
+        bem = np.asarray(r["band_var"]) / p**2
+        cells = [f"{r['seed']}", f"{np.mean(r['bem_A']):.4f}",
+                 f"{area.contact_fraction[np.argmax(surf.wavenumbers)]:.4f}"]
+        for b in range(1, 4):
+            cells += [f"{bem[b]:.2f}", f"{strip[b]:.2f}"]
+        lines.append("| " + " | ".join(cells) + " |")
+        first = first if first is not None else (bem[1:4].sum(), strip[1:4].sum())
+        last = (bem[1:4].sum(), strip[1:4].sum())
+    return "\n".join(lines), {"trunc_bem_first": f"{first[0]:.2f}",
+                               "trunc_strips_first": f"{first[1]:.2f}",
+                               "trunc_bem_last": f"{last[0]:.2f}",
+                               "trunc_strips_last": f"{last[1]:.2f}"}
+
+
+@contextmanager
+def _band_loss(v: float, lo: float, hi: float, unit: bool):
+    """Within the block the strip cascade's loss is zero outside the wavenumbers ``[lo, hi)``
+    (and 1 inside with ``unit``: the pressure variance instead of the friction). The
+    geometry reads ``|E_r|`` only, so it is unchanged; the friction is linear in the loss, so
+    the bands add up to the cascade's friction."""
+    original_loss, original_tables = patches._loss_interpolant, strips.wave_tables
+
+    def loss(material, nu, omega):
+        inside = (omega >= lo * abs(v)) & (omega < hi * abs(v))
+        return (1.0 if unit else original_loss(material, nu, omega)) * inside
+
+    def tables(q, amplitude, material, velocity, nu):
+        t = original_tables(q, amplitude, material, velocity, nu)
+        return replace(t, own_loss=(1.0 if unit else t.own_loss) * float(lo <= q < hi))
+
+    patches._loss_interpolant, strips.wave_tables = loss, tables
+    try:
+        yield
+    finally:
+        patches._loss_interpolant, strips.wave_tables = original_loss, original_tables
+
+
+def strip_bands(surf, v: float, p: float, edges: np.ndarray, unit: bool = False
+                ) -> np.ndarray:
+    """The strip cascade's friction (or, with ``unit``, pressure variance [MPa²]) in each
+    band of ``edges`` [rad/mm]."""
+    out = []
+    for lo, hi in zip(edges[:-1], edges[1:], strict=True):
+        with _band_loss(v, lo, hi, unit):
+            out.append(float(strip_contact(surf.wavenumbers, surf.amplitudes, SBR, v,
+                                           p).friction_stress.sum()) / (1.0 if unit else p))
+    return np.array(out)
+
+
+def bands_table(rows) -> tuple[str, dict]:
+    """Per band (centred on a wave, then above the cut-off): the loss, the BEM's and the
+    strips' friction and pressure variance, at each speed of the ``bands`` rows."""
+    sel = sorted((r for r in rows if r["kind"] == "bands"), key=lambda r: r["v"])
+    if not sel:
+        return "", {}
+    surf = rc.roughness.SineSeries(sel[0]["surface"]["wavelengths"],
+                                   sel[0]["surface"]["amplitudes"])
+    order = np.argsort(surf.wavenumbers)
+    q = surf.wavenumbers[order]
+    m2 = np.asarray(surf.rms_slopes())[order]
+    edges = band_edges(q)
+    head = "| band | " + " | ".join(
+        f"{r['v']:g} mm/s: loss [1/MPa] | BEM μ | strips μ | BEM var/σ0² | strips var/σ0²"
+        for r in sel) + " |"
+    lines = [head, "|" + "---|" * (1 + 5 * len(sel))]
+    cols, fields = [], {}
+    centres = np.sqrt(edges[1:-2] * edges[2:-1])
+    for r in sel:
+        v, p = r["v"], r["p"]
+        c = {"mu": strip_bands(surf, v, p, edges), "var": strip_bands(surf, v, p, edges,
+                                                                     unit=True) / p**2,
+             "bem_mu": np.asarray(r["band_diss"]), "bem_var": np.asarray(r["band_var"]) / p**2,
+             "loss": _loss(np.concatenate([q, centres[q.size:]]), v)}
+        cols.append(c)
+        tag = "slow" if v <= 1.0 else "fast"
+        long = slice(1, 4)                     # the bands of the three longest waves
+        tail = slice(q.size + 1, None)
+        fields.update({
+            f"bands_mu_{tag}": f"{c['bem_mu'].sum():.3f}",
+            f"bands_strips_{tag}": f"{c['mu'].sum():.3f}",
+            f"bands_long_var_{tag}": f"{c['var'][long].sum() / c['bem_var'][long].sum():.1f}",
+            f"bands_long_mu_{tag}": f"{c['mu'][long].sum() / c['bem_mu'][long].sum():.1f}",
+            f"bands_tail_var_{tag}": f"{c['bem_var'][tail].sum() / c['bem_var'].sum():.0%}",
+            f"bands_tail_strips_{tag}": f"{c['var'][tail].sum() / c['var'].sum():.0%}",
+            f"bands_total_var_{tag}": f"{c['var'].sum() / c['bem_var'].sum():.2f}"})
+    for b in range(1, edges.size - 1):
+        label = (f"{2 * np.pi / q[b - 1]:g} mm (m2 = {m2[b - 1]:.2f})" if b <= q.size
+                 else f"above the cut-off, × {2 ** (b - q.size)}")
+        cells = [label]
+        for c in cols:
+            cells += [f"{c['loss'][b - 1]:.3f}" if b - 1 < c["loss"].size else "",
+                      f"{c['bem_mu'][b]:.3f}", f"{c['mu'][b]:.3f}",
+                      f"{c['bem_var'][b]:.2f}", f"{c['var'][b]:.2f}"]
+        lines.append("| " + " | ".join(cells) + " |")
+    cells = ["total"]
+    for c in cols:
+        cells += ["", f"{c['bem_mu'].sum():.3f}", f"{c['mu'].sum():.3f}",
+                  f"{c['bem_var'].sum():.2f}", f"{c['var'].sum():.2f}"]
+    lines.append("| " + " | ".join(cells) + " |")
+    return "\n".join(lines), fields
