@@ -104,6 +104,9 @@ def report(rows: list[dict], surfaces: dict) -> str:
                 elif r["solver"] == "steady":
                     cells_.append(f"μ {r['friction']:.3f}, A {r['contact_fraction']:.3f}, "
                                   f"{r['cpu_s']:.0f} s")
+                elif r["solver"].startswith("transient"):
+                    cells_.append(f"fell back: transient μ {r['friction']:.3f}, "
+                                  f"A {r['contact_fraction']:.3f}, {r['cpu_s']:.0f} s")
                 else:
                     cells_.append(f"{r['solver']}: {r['status'][:80]}")
             lines.append(f"| {p:g} | " + " | ".join(cells_) + " |")
