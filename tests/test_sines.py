@@ -70,3 +70,13 @@ def test_exact_hdc_of_sampled_series():
 def test_bad_sine_series(args, field):
     with pytest.raises(InputError, match=field):
         rc.roughness.SineSeries(*args)
+
+
+def test_sampled_grid_is_the_series_on_uniform_points_and_kept():
+    s = rc.roughness.SineSeries([0.25, 1.0], [0.01, 0.03], [0.3, 1.1])
+    z, dz = s.sampled(1.0, 64)
+    x = np.arange(64) / 64
+    np.testing.assert_array_equal(z, s.heights(x))
+    np.testing.assert_array_equal(dz, s.slopes(x))
+    assert not z.flags.writeable and s.sampled(1.0, 64)[0] is z
+    assert s.sampled(1.0, 128)[0].size == 128

@@ -180,27 +180,6 @@ def _commensurate(name: str, period: float, wavelengths: np.ndarray) -> None:
                          f"integer multiple of the wavelengths {offending} mm")
 
 
-#: The last SineSeries sampling, ``[(key, heights, slopes)]``: a task solves one surface at
-#: several loads, and sampling 8 waves on 8192 points is ~5 % of a VHS solve.
-_LAST_SAMPLING: list = []
-
-
-def _sampled(surface: SineSeries, length: float, n: int,
-             x: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
-    """``z(x)`` and ``∂z/∂x`` of a SineSeries on the grid, reused while the same surface,
-    period and grid come back (read-only arrays: the solver copies what it changes)."""
-    key = (surface.wavelengths.tobytes(), surface.amplitudes.tobytes(),
-           surface.phases.tobytes(), float(length), int(n))
-    last = _LAST_SAMPLING[0] if _LAST_SAMPLING else None   # one read: safe with threads
-    if last is not None and last[0] == key:
-        return last[1], last[2]
-    heights, slopes = surface.heights(x), surface.slopes(x)
-    heights.flags.writeable = False
-    slopes.flags.writeable = False
-    _LAST_SAMPLING[:] = [(key, heights, slopes)]
-    return heights, slopes
-
-
 def sample_surface(surface, period, n: int) -> Grid:
     """Sample a SineSeries on ``n`` points, or check sampled heights; see ``solve_sliding``."""
     if isinstance(surface, SineSeries):
@@ -218,7 +197,7 @@ def sample_surface(surface, period, n: int) -> Grid:
             raise InputError(f"n: {n} points over {length} mm give fewer than 4 points per "
                              f"shortest wavelength {surface.wavelengths[0]} mm")
         x = np.arange(n) * (length / n)
-        heights, slopes = _sampled(surface, length, n, x)
+        heights, slopes = surface.sampled(length, n)
         return Grid((n,), (length,), heights, slopes, x, None)
     z = finite_array("surface", surface, ndim=(1, 2), min_size=MIN_POINTS)
     if min(z.shape) < MIN_POINTS:

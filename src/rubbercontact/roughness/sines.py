@@ -8,7 +8,7 @@ multiple of every other wavelength, which keeps the profile periodic.
 
 from __future__ import annotations
 
-from dataclasses import dataclass
+from dataclasses import dataclass, field
 
 import numpy as np
 
@@ -36,6 +36,8 @@ class SineSeries:
     wavelengths: np.ndarray
     amplitudes: np.ndarray
     phases: np.ndarray | None = None
+    #: :meth:`sampled` grids of this series, by ``(length, n)`` (the series is immutable)
+    _samples: dict = field(default_factory=dict, init=False, repr=False)
 
     def __post_init__(self) -> None:
         lam = finite_array("wavelengths", self.wavelengths, ndim=1, min_size=0)
@@ -148,6 +150,21 @@ class SineSeries:
         x = np.asarray(x, dtype=float)
         arg = x[..., None] * self.wavenumbers + self.phases
         return (self.amplitudes * self.wavenumbers * np.cos(arg)).sum(axis=-1)
+
+    def sampled(self, length: float, n: int) -> tuple[np.ndarray, np.ndarray]:
+        """``(z, dz/dx)`` on ``n`` uniform points ``x_j = j length / n`` [mm], read-only.
+
+        Kept on the series: a half-space task solves one surface at several loads, and
+        sampling 8 waves on 8192 points costs about 5 % of a VHS solve.
+        """
+        key = (float(length), int(n))
+        if key not in self._samples:
+            x = np.arange(int(n)) * (float(length) / int(n))
+            z, dz = self.heights(x), self.slopes(x)
+            z.setflags(write=False)
+            dz.setflags(write=False)
+            self._samples[key] = (z, dz)
+        return self._samples[key]
 
     def curvatures(self, x) -> np.ndarray:
         """Exact ``d²z/dx²`` [1/mm] at ``x`` [mm]."""
