@@ -6,7 +6,8 @@ shift laws (:class:`WLF`, :class:`Arrhenius`) and master curves from isothermal 
 (:func:`master_curve`).
 """
 
-from .dma import DMAData, DMAWarning, dma_from_material, read_dma
+from .dma import read_dma
+from .dmadata import DMAData, DMAWarning, dma_from_material
 from .fit import FitReport, PronyFit, fit_prony
 from .master import MasterCurve, master_curve
 from .maxwell import GeneralizedMaxwell, sbr

@@ -33,7 +33,7 @@ import numpy as np
 from scipy.optimize import least_squares, nnls
 
 from ..errors import InputError
-from .dma import DMAData, DMAWarning
+from .dmadata import DMAData, DMAWarning
 from .maxwell import GeneralizedMaxwell
 
 __all__ = ["FitReport", "PronyFit", "fit_prony", "DENSITIES"]

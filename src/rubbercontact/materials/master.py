@@ -23,7 +23,7 @@ import numpy as np
 from scipy.optimize import least_squares, minimize_scalar
 
 from ..errors import InputError
-from .dma import DMAData
+from .dmadata import DMAData
 from .shift import GAS_CONSTANT, WLF, ZERO_CELSIUS, Arrhenius, ShiftLaw
 
 __all__ = ["MasterCurve", "master_curve"]
