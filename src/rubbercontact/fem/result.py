@@ -5,7 +5,8 @@ Definitions
 * ``v > 0``: the rubber moves in +x relative to the surface (the surface moves in −x
   under the rubber at rest). Friction ``μ = −F_x/(p̄ L0)`` with ``F_x`` the horizontal
   contact force on the rubber; it is ``> 0``.
-* Contact fraction: fraction of the projected length where the face is in contact.
+* Contact fraction: share of the period ``L0`` over which the face is in contact, each
+  abscissa counted once (so at most 1 also where the face folds over itself).
 * Mean separation ``ū = (1/L0) ∮ y dx`` under the deformed face, from the mean plane of
   ``z`` (``<z> = 0``).
 * Bulk shear: the face's mean horizontal lag behind the plate over the cell height.
