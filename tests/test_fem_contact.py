@@ -259,6 +259,8 @@ def test_westergaard_elastic_indentation():
     sag = h**2 * (2 * np.pi / lam) ** 2 * amp / 8
     assert out.stats.max_penetration < 1.2 * prof.pressure.max() * h / (100 * E) + sag
     assert out.stats.max_penetration < 5e-3 * amp
+    # nothing passed through the face: the result says its numbers stand
+    assert out.stats.as_dict()["impaled"] is False
 
 
 @pytest.mark.parametrize("nx", [50, 100])
@@ -353,13 +355,17 @@ def test_impaled_face_is_reported():
     from rubbercontact.errors import ConvergenceError
 
     surf = rc.roughness.section3().realizations(1, seed=2021)[0]
+    out = None
     with pytest.warns(RuntimeWarning, match="impaled"):
         try:
-            rc.fem.sliding_test(surf, rc.materials.sbr(), 0.35, 10.0, mesh=(32, 24),
-                                periods=1, min_periods=1, contact_points=1,
-                                solver="transient")
+            out = rc.fem.sliding_test(surf, rc.materials.sbr(), 0.35, 10.0, mesh=(32, 24),
+                                      periods=1, min_periods=1, contact_points=1,
+                                      solver="transient")
         except ConvergenceError:
             pass
+    if out is not None:   # and the result carries it, with a contact fraction <= 1
+        assert out.stats.impaled
+        assert 0.0 <= out.contact_fraction <= 1.0
 
 
 @pytest.mark.slow
@@ -377,4 +383,5 @@ def test_segment_contact_keeps_the_asperities_out():
                                   solver="transient")
     h = surf.period / 32
     assert out.stats.max_segment_penetration < 0.2 * h
+    assert not out.stats.impaled
     assert out.friction > 0

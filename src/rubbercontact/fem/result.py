@@ -47,8 +47,8 @@ def impaled_message(penetration: float, width: float, mean_pressure: float,
     """The warning of a face that an asperity passed through between two nodes."""
     return (f"FEM sliding test (p̄ = {mean_pressure:g} MPa, v = {velocity:g} mm/s): the face "
             f"is impaled, the surface passes through it between nodes by {penetration:.3g} mm "
-            f"({penetration / width:.1f} element widths); the friction is not meaningful: "
-            f"refine the mesh")
+            f"({penetration / width:.1f} element widths); the friction and the contact "
+            f"fraction are not meaningful: refine the mesh")
 
 
 @dataclass(frozen=True)
@@ -89,6 +89,11 @@ class SolverStats:
         period averages agreed).
     bulk_shear
         ``|mean face x-displacement − plate| / H`` at the end.
+    impaled
+        The surface passed through the face between two nodes by more than
+        :data:`SEGMENT_PENETRATION_LIMIT` element widths (while sliding, for the
+        transient test; the warning :func:`impaled_message`): friction and contact
+        fraction are not meaningful.
 
     Notes
     -----
@@ -114,6 +119,7 @@ class SolverStats:
     max_segment_penetration: float  # [mm], between nodes (see contact.segment_penetration)
     bulk_shear: float = np.nan
     status: str = "ok"
+    impaled: bool = False
     krylov_iterations: int = 0
     continuation_steps: int = 0
     tried: tuple[str, ...] = ()
