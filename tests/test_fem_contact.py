@@ -100,6 +100,64 @@ def test_contact_fraction_interpolates_edges():
     assert contact_fraction(x, gap, 1.0) == pytest.approx(0.3)
 
 
+# A face folded over itself (Z-fold, as on an impaled or inverted face): it runs forward
+# 0 -> 0.7, back 0.7 -> 0.3 lifted off the surface in the middle (gap +1 at x = 0.5),
+# forward again 0.3 -> 0.95. Linear gaps: contact over [0, 0.7] ∪ [0.6, 0.7] ∪ [0.3, 0.4]
+# ∪ [0.3, 0.925] ∪ [0.975, 1] = [0, 0.925] ∪ [0.975, 1], a share of 0.95 of the period.
+_FOLD_X = np.array([0.0, 0.7, 0.5, 0.3, 0.9, 0.95])
+_FOLD_GAP = np.array([-1.0, -1.0, 1.0, -1.0, -1.0, 1.0])
+
+
+def test_contact_fraction_counts_a_folded_face_once():
+    x, gap = _FOLD_X, _FOLD_GAP
+    # the former count, the signed sum of the projections in contact, counted [0.3, 0.7]
+    # twice (both forward layers) and gave 1.15 > 1
+    x1 = np.append(x[1:], x[0] + 1.0)
+    g1 = np.roll(gap, -1)
+    with np.errstate(divide="ignore", invalid="ignore"):
+        part = np.where(gap < 0, gap / (gap - g1), g1 / (g1 - gap))
+    frac = np.where((gap < 0) & (g1 < 0), 1.0, np.where((gap < 0) != (g1 < 0), part, 0.0))
+    assert np.sum(frac * (x1 - x)) == pytest.approx(1.15)
+    assert contact_fraction(x, gap, 1.0) == pytest.approx(0.95, abs=1e-12)
+
+
+@pytest.mark.parametrize("start", [0, 2, 3, 5])
+@pytest.mark.parametrize("offset", [0.0, 0.37, -2.6])
+def test_contact_fraction_of_a_fold_across_the_period_seam(start, offset):
+    # the same face listed from another point, moved by whole and partial periods: the
+    # fold now straddles the seam x[0] + width and the count wraps it onto the period
+    x = np.concatenate([_FOLD_X[start:], _FOLD_X[:start] + 1.0]) + offset
+    gap = np.roll(_FOLD_GAP, -start)
+    assert contact_fraction(x, gap, 1.0) == pytest.approx(0.95, abs=1e-12)
+
+
+@pytest.mark.parametrize("x", [np.arange(10) * 0.1 + 0.123, _FOLD_X, _FOLD_X[::-1] - 3.0])
+def test_contact_fraction_of_full_and_no_contact(x):
+    # exactly 1 and 0, also for a folded face and one listed backwards
+    assert contact_fraction(x, -np.ones(x.size), 1.0) == 1.0
+    assert contact_fraction(x, np.ones(x.size), 1.0) == 0.0
+    assert contact_fraction(x, np.zeros(x.size), 1.0) == 0.0   # touching is g < 0
+
+
+def test_face_contact_fraction_of_a_folded_face():
+    # The fold as a face of nodes on a (nearly) flat surface, through evaluate_contact's
+    # contact points and the chord-sag tolerance: the node heights ±0.1 give the same
+    # crossings as the gaps ±1 above, and the share 0.95.
+    from rubbercontact.fem.contact import face_contact_fraction
+
+    surf = rc.roughness.SineSeries([1.0], [1e-9], [0.0])
+    pos = np.column_stack([_FOLD_X, 0.1 * _FOLD_GAP])
+    seg = np.full(pos.shape[0], 1.0 / pos.shape[0])
+    for points in (1, 4):
+        cs = evaluate_contact(surf, 0.0, pos, 1.0, seg, 1e3, points)
+        assert face_contact_fraction(surf, 0.0, cs, 1.0) == pytest.approx(0.95, abs=1e-6)
+    flat = np.column_stack([np.arange(8) / 8, np.full(8, -0.1)])
+    cs = evaluate_contact(surf, 0.0, flat, 1.0, np.full(8, 1 / 8), 1e3, 4)
+    assert face_contact_fraction(surf, 0.0, cs, 1.0) == 1.0
+    cs = evaluate_contact(surf, 0.0, flat + [0.0, 0.2], 1.0, np.full(8, 1 / 8), 1e3, 4)
+    assert face_contact_fraction(surf, 0.0, cs, 1.0) == 0.0
+
+
 def _small_cell(surface, material, nx=24, ny=18, dt=1e-4):
     L0 = surface.period
     y0 = float(surface.heights(np.arange(nx) * L0 / nx).max()) - 1e-3 * L0 / nx
@@ -201,6 +259,8 @@ def test_westergaard_elastic_indentation():
     sag = h**2 * (2 * np.pi / lam) ** 2 * amp / 8
     assert out.stats.max_penetration < 1.2 * prof.pressure.max() * h / (100 * E) + sag
     assert out.stats.max_penetration < 5e-3 * amp
+    # nothing passed through the face: the result says its numbers stand
+    assert out.stats.as_dict()["impaled"] is False
 
 
 @pytest.mark.parametrize("nx", [50, 100])
@@ -295,13 +355,17 @@ def test_impaled_face_is_reported():
     from rubbercontact.errors import ConvergenceError
 
     surf = rc.roughness.section3().realizations(1, seed=2021)[0]
+    out = None
     with pytest.warns(RuntimeWarning, match="impaled"):
         try:
-            rc.fem.sliding_test(surf, rc.materials.sbr(), 0.35, 10.0, mesh=(32, 24),
-                                periods=1, min_periods=1, contact_points=1,
-                                solver="transient")
+            out = rc.fem.sliding_test(surf, rc.materials.sbr(), 0.35, 10.0, mesh=(32, 24),
+                                      periods=1, min_periods=1, contact_points=1,
+                                      solver="transient")
         except ConvergenceError:
             pass
+    if out is not None:   # and the result carries it, with a contact fraction <= 1
+        assert out.stats.impaled
+        assert 0.0 <= out.contact_fraction <= 1.0
 
 
 @pytest.mark.slow
@@ -319,4 +383,5 @@ def test_segment_contact_keeps_the_asperities_out():
                                   solver="transient")
     h = surf.period / 32
     assert out.stats.max_segment_penetration < 0.2 * h
+    assert not out.stats.impaled
     assert out.friction > 0

@@ -227,22 +227,80 @@ def face_contact_fraction(surface: SineSeries, shift: float, cs: ContactState,
 
 
 def contact_fraction(x: np.ndarray, gap: np.ndarray, width: float) -> float:
-    """Fraction of the projected length in contact, gap interpolated linearly between nodes.
+    """Share of the period covered by the face's contact, gap interpolated linearly.
 
-    ``x`` are the current abscissae of the periodic face nodes (in order), ``gap`` their
-    gaps (negative = in contact); the segment from the last node to the first is closed
-    with ``x[0] + width``.
+    The contact set is the set of abscissae, modulo the period, over which some part of
+    the face is in contact; its length over ``width`` is the contact fraction, in
+    ``[0, 1]`` by construction. On a face that runs forward in x this is the projected
+    length in contact.
+
+    Parameters
+    ----------
+    x
+        Current abscissae of the points of the periodic face, in order along it ``(k,)``
+        [mm]; the face is closed from the last point to ``x[0] + width``.
+    gap
+        Their gaps ``(k,)`` [mm], negative = in contact; between two points the gap is
+        interpolated linearly.
+    width
+        Period of the face ``L0`` [mm].
+
+    Returns
+    -------
+    float
+        Contact fraction [-].
+
+    Notes
+    -----
+    A face folded back over itself (sub-segments that run in −x, as on an impaled or
+    inverted face) covers some abscissae two or three times. A signed sum of the contact
+    projections ``Σ frac Δx`` then counts the forward layers' contact twice where the
+    backward layer between them is off the surface (above 1 when that layer is off over
+    more than the forward layers leave out), and subtracts a backward layer in contact:
+    it is the projected length only of a face without folds. The union counts every
+    abscissa once, whatever the face does.
     """
-    x1 = np.append(x[1:], x[0] + width)
-    g0, g1 = gap, np.roll(gap, -1)
-    dx = x1 - x
-    both = (g0 < 0) & (g1 < 0)
-    one = (g0 < 0) != (g1 < 0)
-    frac = np.where(both, 1.0, 0.0)
+    x = np.asarray(x, dtype=float)
+    gap = np.asarray(gap, dtype=float)
+    if x.size == 0:
+        return 0.0
+    # Abscissae from the first point, the closing point at exactly ``width``: an unfolded
+    # face's contact intervals then lie in [0, width], so full contact tiles it exactly.
+    u = np.append(x - x[0], width)
+    g = np.append(gap, gap[0])
+    u0, u1, g0, g1 = u[:-1], u[1:], g[:-1], g[1:]
+    c0, c1 = g0 < 0, g1 < 0
+    touch = c0 | c1
+    if not np.any(touch):
+        return 0.0
     with np.errstate(divide="ignore", invalid="ignore"):
-        part = np.where(g0 < 0, g0 / (g0 - g1), g1 / (g1 - g0))
-    frac = np.where(one, part, frac)
-    return float(np.sum(frac * dx) / width)
+        t = g0 / (g0 - g1)      # zero of the gap; in [0, 1] where exactly one end touches
+    cross = u0 + t * (u1 - u0)
+    a = np.where(c0, u0, cross)[touch]
+    b = np.where(c1, u1, cross)[touch]
+    return _covered_share(np.minimum(a, b), np.maximum(a, b), width)
+
+
+def _covered_share(lo: np.ndarray, hi: np.ndarray, width: float) -> float:
+    """Length of the union of the intervals ``[lo, hi]`` [mm] modulo ``width`` [mm], over
+    ``width`` [-]."""
+    if np.any(hi - lo >= width):
+        return 1.0
+    # onto [0, width); an interval that then reaches past ``width`` is split at the seam
+    k = np.floor(lo / width) * width      # 0 (exactly) for the intervals already inside
+    lo, hi = lo - k, hi - k
+    over = hi > width
+    starts = np.concatenate([lo, np.zeros(np.count_nonzero(over))])
+    ends = np.concatenate([np.minimum(hi, width), hi[over] - width])
+    order = np.argsort(starts, kind="stable")
+    starts, ends = starts[order], ends[order]
+    reach = np.maximum.accumulate(ends)
+    # The uncovered length is a sum of non-negative holes, so the share is <= 1 exactly
+    # (and exactly 1 when intervals sharing their end points tile the period).
+    holes = (starts[0] + np.sum(np.maximum(starts[1:] - reach[:-1], 0.0))
+             + (width - reach[-1]))
+    # the floor only catches rounding of holes that sum to the whole period
+    return float(max(1.0 - holes / width, 0.0))
 
 
 def mean_separation(x: np.ndarray, y: np.ndarray, width: float) -> float:

@@ -5,7 +5,8 @@ Definitions
 * ``v > 0``: the rubber moves in +x relative to the surface (the surface moves in −x
   under the rubber at rest). Friction ``μ = −F_x/(p̄ L0)`` with ``F_x`` the horizontal
   contact force on the rubber; it is ``> 0``.
-* Contact fraction: fraction of the projected length where the face is in contact.
+* Contact fraction: share of the period ``L0`` over which the face is in contact, each
+  abscissa counted once (so at most 1 also where the face folds over itself).
 * Mean separation ``ū = (1/L0) ∮ y dx`` under the deformed face, from the mean plane of
   ``z`` (``<z> = 0``).
 * Bulk shear: the face's mean horizontal lag behind the plate over the cell height.
@@ -46,8 +47,8 @@ def impaled_message(penetration: float, width: float, mean_pressure: float,
     """The warning of a face that an asperity passed through between two nodes."""
     return (f"FEM sliding test (p̄ = {mean_pressure:g} MPa, v = {velocity:g} mm/s): the face "
             f"is impaled, the surface passes through it between nodes by {penetration:.3g} mm "
-            f"({penetration / width:.1f} element widths); the friction is not meaningful: "
-            f"refine the mesh")
+            f"({penetration / width:.1f} element widths); the friction and the contact "
+            f"fraction are not meaningful: refine the mesh")
 
 
 @dataclass(frozen=True)
@@ -88,6 +89,11 @@ class SolverStats:
         period averages agreed).
     bulk_shear
         ``|mean face x-displacement − plate| / H`` at the end.
+    impaled
+        The surface passed through the face between two nodes by more than
+        :data:`SEGMENT_PENETRATION_LIMIT` element widths (while sliding, for the
+        transient test; the warning :func:`impaled_message`): friction and contact
+        fraction are not meaningful.
 
     Notes
     -----
@@ -113,6 +119,7 @@ class SolverStats:
     max_segment_penetration: float  # [mm], between nodes (see contact.segment_penetration)
     bulk_shear: float = np.nan
     status: str = "ok"
+    impaled: bool = False
     krylov_iterations: int = 0
     continuation_steps: int = 0
     tried: tuple[str, ...] = ()

@@ -203,7 +203,8 @@ def steady_result(sol: SteadySolution, surface, material, p: float, v: float,
         warnings.warn(bulk_shear_message(bulk_shear, p, v, "steady"), RuntimeWarning,
                       stacklevel=4)
     seg_pen = segment_penetration(surface, sol.shift, pos, L0)
-    if seg_pen > SEGMENT_PENETRATION_LIMIT * setup.cell.hx:
+    impaled = seg_pen > SEGMENT_PENETRATION_LIMIT * setup.cell.hx
+    if impaled:
         warnings.warn(impaled_message(seg_pen, setup.cell.hx, p, v), RuntimeWarning,
                       stacklevel=4)
     c = sol.counters
@@ -212,7 +213,7 @@ def steady_result(sol: SteadySolution, surface, material, p: float, v: float,
         factorizations=c.factorizations, wall_time=wall, assembly_time=c.assembly_time,
         solve_time=c.factorization_time + c.krylov_time, n_unknowns=model.n, steady=True,
         max_penetration=float(np.max(-cs.gap[cs.active], initial=0.0)),
-        max_segment_penetration=seg_pen,
+        max_segment_penetration=seg_pen, impaled=bool(impaled),
         bulk_shear=bulk_shear, krylov_iterations=c.krylov_iterations,
         continuation_steps=c.continuation_steps, tried=tuple(sol.path),
         surface_offset=float(np.mod(sol.shift, setup.cell.hx)),

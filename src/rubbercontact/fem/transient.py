@@ -298,6 +298,7 @@ class TransientTest:
             assembly_time=c.assembly_time, solve_time=c.solve_time, n_unknowns=self.model.n,
             steady=bool(self.steady), max_penetration=self.info["max_pen"],
             max_segment_penetration=self.info["max_seg_pen"], bulk_shear=bulk_shear,
+            impaled=bool(self.info["impaled"]),
             surface_offset=float(self.opts.surface_offset), steps=self.info["steps"],
             cutbacks=self.info["cutbacks"], line_search_cuts=c.line_search_cuts,
             periods=self.n_periods, period_change=float(self.period_change),
