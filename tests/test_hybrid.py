@@ -136,6 +136,72 @@ def test_screen_monotone_excludes_and_names_the_offending_points():
     assert np.all(same["status"].values == "ok")
 
 
+def test_impaled_law_point_is_dropped_with_a_warning_and_kept_in_the_table():
+    # An impaled face says "ok" but its friction and contact fraction are meaningless (the
+    # 10 MPa steep cell: A = 1.07, mu = 1.98): the law must leave it out, say which point
+    # and what to do in one line, and keep its numbers and flag in the table.
+    import warnings
+
+    from rubbercontact.hybrid.law import IMPALED_STATUS, law_top
+
+    hs = rc.roughness.high_slope_wave()
+    pts = [(0.016, 0.1, 0.02, 0.3), (0.012, 0.3, 0.2, 1.0), (0.011, 1.07, 19.8, 10.0)]
+    res = [_fake_fem_result(*pt).assign(impaled=float(pt[3] == 10.0)) for pt in pts]
+    with pytest.warns(LawWarning) as caught:
+        law = assemble_law(res, np.array([pt[3] for pt in pts]), np.array([10.0]), hs,
+                           rc.materials.sbr(), {})
+    msgs = [str(w.message) for w in caught if issubclass(w.category, LawWarning)]
+    assert len(msgs) == 1 and "\n" not in msgs[0]
+    assert msgs[0].startswith("law: FEM point(s) p=10 MPa, v=10 mm/s dropped from the law: "
+                              "the rubber face is impaled")
+    assert "refine the cell (fem.mesh) or lower the load (law.pressures)" in msgs[0]
+    assert list(law["status"].values[0]) == ["ok", "ok", IMPALED_STATUS]
+    np.testing.assert_array_equal(law["impaled"].values[0], [0, 0, 1])
+    assert float(law["contact_fraction"][0, 2]) == 1.07     # kept for inspection
+    # the readers of the law skip it silently (it was named once, above)
+    with warnings.catch_warnings():
+        warnings.simplefilter("error")
+        t = law_at_velocity(screen_monotone(law), 10.0)
+    assert t["pressure"][:2] == [1.0, 0.3]
+    assert law_top(law, 10.0) == 1.0
+
+
+def test_impaled_point_of_a_speed_path_is_dropped_and_its_flag_reaches_the_results(tmp_path):
+    # The pipeline's law by continuation in speed takes the same exclusion, and the flag
+    # is carried into the results (law_impaled) and back (law_from_results).
+    from rubbercontact.hybrid.law import IMPALED_STATUS, law_from_results
+    from rubbercontact.pipeline.assemble import add_law
+    from rubbercontact.pipeline.lawstage import fem_law
+
+    cfg = rc.config.parse_config(_config(tmp_path, velocities=[1.0, 10.0],
+                                         law={"pressures": [0.3, 1.0],
+                                              "speed_path": "continuation"}))
+    v = [1.0, 10.0]
+
+    def path(p):
+        u = {0.3: 0.016, 1.0: 0.012}[p]
+        return xr.Dataset({"mean_separation": ("velocity", [u, u]),
+                           "contact_fraction": ("velocity", [0.1, 0.3]),
+                           "shear_stress": ("velocity", [0.02 * p, 0.2 * p]),
+                           "friction": ("velocity", [0.02, 0.2]),
+                           "wall_time": ("velocity", [1.0, 1.0]),
+                           "impaled": ("velocity", [0, int(p == 1.0)]),
+                           "status": ("velocity", ["ok", "ok"])},
+                          coords={"velocity": v})
+
+    def runner(tasks, **kw):
+        return [path(t.kwargs["mean_pressure"]) for t in tasks]
+
+    with pytest.warns(LawWarning, match=r"p=1 MPa, v=10 mm/s dropped from the law"):
+        law = fem_law(cfg, rc.roughness.high_slope_wave(), rc.materials.sbr(),
+                      np.array([0.3, 1.0]), np.array(v), runner)
+    assert law["status"].values.tolist() == [["ok", "ok"], ["ok", IMPALED_STATUS]]
+    ds = add_law(xr.Dataset(), law)
+    np.testing.assert_array_equal(ds["law_impaled"].values, [[0, 0], [0, 1]])
+    back = law_from_results(ds)
+    assert back["status"].values[1, 1] == IMPALED_STATUS and back["impaled"].values[1, 1] == 1
+
+
 def test_elastic_high_slope_law_gives_zero_mu_hs(tmp_path):
     # Elastic rubber: no hysteresis at any scale, so the FEM law carries dtau_hs = 0 (FEM
     # symmetry gives ~1e-13 MPa) and mu_hs = <dtau_hs(u)>/sigma0 must vanish; the elastic
@@ -508,6 +574,7 @@ def test_fem_task_records_its_sliding_time():
     assert out["sliding_time"].attrs["units"] == "s" and out.attrs["solver"] == "transient"
     out = fem_task(surf.as_dict(), mat, 10.0, 0.3, options={"mesh": [16, 8]})
     assert np.isinf(float(out["sliding_time"])) and out.attrs["solver"] == "steady"
+    assert float(out["impaled"]) == 0          # the flag the law screens on (screen_impaled)
 
 
 def _law_run_config(tmp_path, name, **over):

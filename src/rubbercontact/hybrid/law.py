@@ -32,11 +32,13 @@ from ..materials import GeneralizedMaxwell
 from ..roughness import SineSeries
 from .lawio import LAW_VARIABLES, as_law, check_law_matches, law_from_results
 from .lawtable import (
+    IMPALED_STATUS,
     LawWarning,
     check_coverage,
     law_at_velocity,
     law_top,
     max_height,
+    screen_impaled,
     screen_monotone,
     tabulated_law_from_dict,
 )
@@ -50,11 +52,12 @@ from .steadiness import (
     sheared_cells_message,
 )
 
-__all__ = ["effective_law", "assemble_law", "LawWarning", "STEADINESS_VARIABLES",
-           "STEADINESS_UNITS", "CREEP_SETTLED_TIMES", "creep_unsettled_message",
-           "sheared_cells_message", "describe_unsteady", "LAW_VARIABLES", "law_from_results",
-           "as_law", "check_law_matches", "max_height", "screen_monotone", "law_at_velocity",
-           "linear_law", "continue_with_linear_shape", "tabulated_law_from_dict", "law_top",
+__all__ = ["effective_law", "assemble_law", "LawWarning", "IMPALED_STATUS",
+           "STEADINESS_VARIABLES", "STEADINESS_UNITS", "CREEP_SETTLED_TIMES",
+           "creep_unsettled_message", "sheared_cells_message", "describe_unsteady",
+           "LAW_VARIABLES", "law_from_results", "as_law", "check_law_matches", "max_height",
+           "screen_impaled", "screen_monotone", "law_at_velocity", "linear_law",
+           "continue_with_linear_shape", "tabulated_law_from_dict", "law_top",
            "check_coverage"]
 
 
@@ -89,7 +92,8 @@ def effective_law(hs_surface: SineSeries, material: GeneralizedMaxwell,
     -------
     xarray.Dataset
         Variables ``mean_separation`` [mm], ``contact_fraction`` [-], ``shear_stress``
-        [MPa], ``friction`` [-], ``status`` (``"ok"`` or the failure message), dims
+        [MPa], ``friction`` [-], ``status`` (``"ok"``, the failure message, or
+        ``"excluded: impaled ..."``, see :func:`screen_impaled`), ``impaled`` (1/0), dims
         ``(velocity, pressure)``; the surface, material and FEM options in ``attrs``.
     """
     from ..fem import make_options
@@ -124,12 +128,17 @@ def _default_runner(tasks):
 
 def assemble_law(results, pressures, velocities, hs_surface: SineSeries,
                  material: GeneralizedMaxwell, fem_options: dict) -> xr.Dataset:
-    """Stack per-test datasets (row-major over velocity, pressure) into the law table."""
+    """Stack per-test datasets (row-major over velocity, pressure) into the law table.
+
+    Points whose FEM test reported an impaled face are excluded there
+    (:func:`screen_impaled`), with their numbers and flag kept in the table.
+    """
     names = ("mean_separation", "contact_fraction", "shear_stress", "friction", "wall_time")
     shape = (len(velocities), len(pressures))
     data = {k: np.full(shape, np.nan) for k in names}
     status = np.full(shape, "ok", dtype=object)
     diag = {k: np.full(shape, np.nan) for k in STEADINESS_VARIABLES}
+    impaled = np.full(shape, np.nan)
     for idx, ds in enumerate(results):
         i, j = divmod(idx, len(pressures))
         if not isinstance(ds, xr.Dataset):
@@ -140,6 +149,8 @@ def assemble_law(results, pressures, velocities, hs_surface: SineSeries,
         for k in diag:
             if k in ds:     # results cached before the period changes existed lack them
                 diag[k][i, j] = float(ds[k])
+        if "impaled" in ds:     # results cached before the flag existed lack it
+            impaled[i, j] = float(ds["impaled"])
     units = {"mean_separation": "mm", "contact_fraction": "1", "shear_stress": "MPa",
              "friction": "1", "wall_time": "s"}
     law = xr.Dataset(
@@ -151,6 +162,9 @@ def assemble_law(results, pressures, velocities, hs_surface: SineSeries,
     for k, text in STEADINESS_VARIABLES.items():
         law[k] = (("velocity", "pressure"), diag[k],
                   {"units": STEADINESS_UNITS.get(k, "1"), "long_name": text})
+    law["impaled"] = (("velocity", "pressure"), impaled,
+                      {"units": "1", "long_name": "the FEM test's rubber face was impaled "
+                                                  "(1/0; NaN: failed or not recorded)"})
     def label(i, j):
         return f"v={velocities[i]:g} p={pressures[j]:g}"
 
@@ -179,4 +193,6 @@ def assemble_law(results, pressures, velocities, hs_surface: SineSeries,
         "material": json.dumps(material.as_dict()),
         "fem_options": json.dumps(fem_options),
     })
-    return law
+    # the only exclusion made here: an impaled point says "ok" but its numbers are
+    # meaningless, so no reader of the table may take it for a law point
+    return screen_impaled(law, stacklevel=4)

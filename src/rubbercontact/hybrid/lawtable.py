@@ -1,6 +1,7 @@
 """A law table screened and read per speed, as the half-space solver applies it.
 
-:func:`screen_monotone` excludes the FEM points that break the law's monotonicity,
+:func:`screen_impaled` excludes the FEM points whose rubber face was impaled,
+:func:`screen_monotone` the FEM points that break the law's monotonicity,
 :func:`law_at_velocity` gives the law at one speed as plain data (with the zero-load
 anchor at :func:`max_height`), :func:`tabulated_law_from_dict` turns that into the
 solver's :class:`~rubbercontact.halfspace.TabulatedLaw`, and :func:`check_coverage` warns
@@ -19,7 +20,13 @@ from ..roughness import SineSeries
 
 
 class LawWarning(UserWarning):
-    """The law table has failed, unsteady or non-monotone points, or is being extrapolated."""
+    """The law table has failed, unsteady, impaled or non-monotone points, or is being
+    extrapolated."""
+
+
+#: Status of a law point whose FEM test reported an impaled face (:func:`screen_impaled`).
+IMPALED_STATUS = ("excluded: impaled (the surface passes through the rubber face between "
+                  "nodes; its friction and contact fraction are not meaningful)")
 
 
 def max_height(surface: SineSeries, n: int = 8192) -> float:
@@ -35,6 +42,47 @@ def max_height(surface: SineSeries, n: int = 8192) -> float:
     if surface.slopes(a) > 0 > surface.slopes(b):
         return float(surface.heights(brentq(surface.slopes, a, b, xtol=1e-14)))
     return float(z[k])
+
+
+def screen_impaled(law: xr.Dataset, stacklevel: int = 2) -> xr.Dataset:
+    """Exclude the FEM points whose rubber face was impaled, and say which.
+
+    An impaled face (:attr:`rubbercontact.fem.SolverStats.impaled`: an asperity passed
+    through it between two nodes) keeps the status ``"ok"`` in the FEM result, but its
+    friction and contact fraction are not meaningful, so it must not enter the law. Each
+    such point that is still ``"ok"`` gets the status :data:`IMPALED_STATUS` (which every
+    reader of the law skips, as the failed and non-monotone points) and keeps its numbers
+    and its ``impaled`` flag in the table; one :class:`LawWarning` names them.
+
+    Parameters
+    ----------
+    law
+        Law table (dims ``velocity, pressure``); without an ``impaled`` variable (FEM
+        results cached before the flag existed) it is returned unchanged.
+    stacklevel
+        Of the warning, as for :func:`warnings.warn`.
+
+    Returns
+    -------
+    xarray.Dataset
+        ``law``, a copy with the updated ``status`` when a point was excluded.
+    """
+    if "impaled" not in law:
+        return law
+    status = law["status"].values.astype(object)
+    hit = (law["impaled"].values == 1) & (status == "ok")
+    if not hit.any():
+        return law
+    law = law.copy(deep=True)
+    status[hit] = IMPALED_STATUS
+    law["status"] = (law["status"].dims, status.astype(str))
+    v, p = law["velocity"].values, law["pressure"].values
+    where = "; ".join(f"p={p[j]:g} MPa, v={v[i]:g} mm/s" for i, j in np.argwhere(hit))
+    warnings.warn(f"law: FEM point(s) {where} dropped from the law: the rubber face is "
+                  f"impaled there, so friction and contact fraction are not meaningful (kept "
+                  f"in the table, status 'excluded: impaled'); refine the cell (fem.mesh) or "
+                  f"lower the load (law.pressures)", LawWarning, stacklevel=stacklevel + 1)
+    return law
 
 
 def screen_monotone(law: xr.Dataset) -> xr.Dataset:
@@ -116,7 +164,7 @@ def law_at_velocity(law: xr.Dataset, velocity: float) -> dict:
     row = law.isel(velocity=int(match[0]))
     status = row["status"].values.astype(str)
     ok = (status == "ok") & np.isfinite(row["mean_separation"].values)
-    # excluded points were named by screen_monotone already
+    # excluded points were named by screen_impaled or screen_monotone already
     failed = ~ok & ~np.char.startswith(status, "excluded")
     if failed.any():
         bad = row["pressure"].values[failed].tolist()

@@ -339,7 +339,7 @@ def _fem_scalars(out, surf: SineSeries, velocity: float, mean_pressure: float,
         "period_area_change": st.period_area_change,
         "max_segment_penetration": st.max_segment_penetration,
         "bulk_shear": st.bulk_shear, "surface_offset": st.surface_offset,
-        "sliding_time": sliding_time,
+        "sliding_time": sliding_time, "impaled": int(st.impaled),
     }
 
 
