@@ -166,6 +166,21 @@ def test_impaled_law_point_is_dropped_with_a_warning_and_kept_in_the_table():
     assert law_top(law, 10.0) == 1.0
 
 
+def test_law_point_cached_before_the_flag_with_contact_above_one_is_dropped():
+    # A result cached before the impaled flag existed has no flag; the old count gave a
+    # contact fraction above 1 only on a folded (impaled) face, and the current count
+    # cannot exceed 1, so such a point is excluded too; points at or below 1 are kept.
+    from rubbercontact.hybrid.law import IMPALED_STATUS
+
+    hs = rc.roughness.high_slope_wave()
+    pts = [(0.016, 0.1, 0.02, 0.3), (0.012, 1.0, 0.2, 1.0), (0.011, 1.07, 19.8, 10.0)]
+    res = [_fake_fem_result(*pt) for pt in pts]
+    with pytest.warns(LawWarning, match=r"p=10 MPa, v=10 mm/s dropped"):
+        law = assemble_law(res, np.array([pt[3] for pt in pts]), np.array([10.0]), hs,
+                           rc.materials.sbr(), {})
+    assert list(law["status"].values[0]) == ["ok", "ok", IMPALED_STATUS]
+
+
 def test_impaled_point_of_a_speed_path_is_dropped_and_its_flag_reaches_the_results(tmp_path):
     # The pipeline's law by continuation in speed takes the same exclusion, and the flag
     # is carried into the results (law_impaled) and back (law_from_results).

@@ -57,8 +57,9 @@ def screen_impaled(law: xr.Dataset, stacklevel: int = 2) -> xr.Dataset:
     Parameters
     ----------
     law
-        Law table (dims ``velocity, pressure``); without an ``impaled`` variable (FEM
-        results cached before the flag existed) it is returned unchanged.
+        Law table (dims ``velocity, pressure``). FEM results cached before the flag
+        existed have no ``impaled`` value; of those, a point with a contact fraction above
+        1 (the old count on a folded face) is excluded too.
     stacklevel
         Of the warning, as for :func:`warnings.warn`.
 
@@ -67,10 +68,11 @@ def screen_impaled(law: xr.Dataset, stacklevel: int = 2) -> xr.Dataset:
     xarray.Dataset
         ``law``, a copy with the updated ``status`` when a point was excluded.
     """
-    if "impaled" not in law:
-        return law
     status = law["status"].values.astype(object)
-    hit = (law["impaled"].values == 1) & (status == "ok")
+    # A contact fraction above 1 is what the count before f64f81b gave on a folded
+    # (impaled) face; such a result, cached before the flag existed, is caught by it.
+    flagged = law["impaled"].values == 1 if "impaled" in law else np.zeros(status.shape, bool)
+    hit = (flagged | (law["contact_fraction"].values > 1.0)) & (status == "ok")
     if not hit.any():
         return law
     law = law.copy(deep=True)
