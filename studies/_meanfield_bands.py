@@ -29,6 +29,20 @@ SPEEDS = (1.0, 500.0)
 TARGET, N, REALIZATIONS, SEED = 0.02, 16384, 8, 1
 TAIL_OCTAVES = 6                  # bands above the cut-off, one octave each
 TRUNCATED = (1, 2, 3, 4, 6, 8)    # the ladder's longest waves kept, at 500 mm/s
+#: Two waves, the longest 4 mm (rms slope 0.3 each): wavelength ratios, speeds [mm/s] and the
+#: diffusion's contact fractions at which the long strips' layer is checked.
+LAYER_RATIOS, LAYER_SPEEDS, LAYER_TARGETS = (16.0, 4.0), (1.0, 50.0), (0.06, 0.2)
+
+
+def two_waves(ratio: float) -> rc.roughness.SineSeries:
+    """A 4 mm wave and one ``ratio`` times shorter, rms slope 0.3 each."""
+    lam = np.array([4.0, 4.0 / ratio])
+    return rc.roughness.SineSeries(lam, 0.3 * np.sqrt(2) * lam / (2 * np.pi))
+
+
+def _below(surf) -> float:
+    """The band edge between the two waves, ``√(q1 q2)`` [rad/mm]."""
+    return float(np.sqrt(np.prod(surf.wavenumbers)))
 
 
 def band_edges(q: np.ndarray) -> np.ndarray:
@@ -102,6 +116,54 @@ def run_truncated(rows_path: Path, done: set, key) -> None:
         row.update(p=p, R=REALIZATIONS, surface=surf.as_dict(), bem_A=areas,
                    band_var=var.tolist())
         append_row(rows_path, row)
+
+
+def run_layer(rows_path: Path, done: set, key) -> None:
+    """The BEM's pressure variance below the shorter wave's band on :func:`two_waves`: what
+    the long wave's strips carry once they sit on the short wave's strips."""
+    for ratio in LAYER_RATIOS:
+        surf = two_waves(ratio)
+        for v in LAYER_SPEEDS:
+            for target in LAYER_TARGETS:
+                row = {"kind": "layer", "case": f"2 waves, ratio {ratio:g}", "v": v,
+                       "target": target, "n": N}
+                if key(row) in done:
+                    continue
+                p = load_for_area(mf.PSD.from_sines(surf), SBR, v, target)
+                var, areas = [], []
+                for r in surf.realizations(REALIZATIONS, SEED):
+                    res = rc.halfspace.solve_sliding(r, surf.period, SBR, v, p, n=N)
+                    areas.append(res.contact_fraction)
+                    sk = np.fft.rfft(res.pressure) / N
+                    k = 2 * np.pi * np.arange(sk.size) / surf.period
+                    var.append(float(2 * np.sum(np.abs(sk[(k > 0) & (k < _below(surf))])**2)))
+                row.update(p=p, R=REALIZATIONS, surface=surf.as_dict(), bem_A=areas,
+                           bem_var_long=var)
+                append_row(rows_path, row)
+
+
+def layer_table(rows) -> tuple[str, dict]:
+    """BEM against strips: the variance below the shorter wave's band on two waves."""
+    sel = [r for r in rows if r["kind"] == "layer"]
+    if not sel:
+        return "", {"layer_err": "–"}
+    lines = ["| profile | v [mm/s] | σ0 [MPa] | BEM A | strips A | BEM var/σ0² below the "
+             "short wave's band (± s.e.) | strips | error |", "|---" * 8 + "|"]
+    errs = []
+    for r in sel:
+        surf = rc.roughness.SineSeries(r["surface"]["wavelengths"], r["surface"]["amplitudes"])
+        p, var = r["p"], np.asarray(r["bem_var_long"]) / r["p"] ** 2
+        edges = np.array([0.0, _below(surf), np.inf])
+        strips = strip_bands(surf, r["v"], p, edges, unit=True)[0] / p**2
+        area = strip_contact(surf.wavenumbers, surf.amplitudes, SBR, r["v"], p)
+        errs.append(strips / var.mean() - 1)
+        lines.append(f"| {r['case']} | {r['v']:g} | {p:.4g} | {np.mean(r['bem_A']):.4f} | "
+                     f"{area.samples.weight.sum():.4f} | {var.mean():.3f} ± "
+                     f"{var.std(ddof=1) / np.sqrt(var.size):.3f} | {strips:.3f} | "
+                     f"{errs[-1]:+.0%} |".replace("%", " %"))
+    e = np.array(errs) * 100
+    return "\n".join(lines), {"layer_err": f"{e.mean():+.0f} % [{e.min():+.0f} %, "
+                                            f"{e.max():+.0f} %]"}
 
 
 def truncated_table(rows) -> tuple[str, dict]:

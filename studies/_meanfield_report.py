@@ -13,7 +13,7 @@ import rubbercontact as rc
 from rubbercontact import meanfield as mf
 from rubbercontact.roughness import SineSeries
 
-from ._meanfield_bands import bands_table, truncated_table
+from ._meanfield_bands import bands_table, layer_table, truncated_table
 from ._meanfield_cases import (
     DIFFUSION,
     SPEEDS,
@@ -425,6 +425,7 @@ def report(rows, *, figures: Path, date: str, commit: str, wall: float, variants
     sine_tab, sine_fields = sine_table(rows)
     bands, bands_fields = bands_table(rows)
     trunc, trunc_fields = truncated_table(rows)
+    layer, layer_fields = layer_table(rows)
     scale, oracle, separation, log_area, diag_fields = diagnosis(rows)
     broad, broad_fields = broadband_table(rows)
     names = _figures(points, hyb, rows, figures)
@@ -450,6 +451,7 @@ def report(rows, *, figures: Path, date: str, commit: str, wall: float, variants
            render("meanfield", "few_waves"), "",
            render("meanfield", "bands", **bands_fields), "", bands, "",
            render("meanfield", "bands_truncated", **trunc_fields), "", trunc, "",
+           render("meanfield", "layer", **layer_fields), "", layer, "",
            render("meanfield", "self_affine", t20=sa_fields["t20"], t18=sa_fields["t18"]), "",
            sa_table, "",
            render("meanfield", "broadband", sa_default=sa_fields["sa_default"],

@@ -63,7 +63,7 @@ The shorter waves' strips are a compliant layer
 Where a wave forms strips inside a strip, the longer strip no longer presses on a smooth
 half-space but on the wave's partial contact, a compliant layer: one sine under the mean
 pressure ``p̄ = x p*`` keeps the mean gap ``ū = Δ(1 − x + x ln x)`` (Westergaard; exact, the
-BEM's to 1e-8, tests/test_meanfield_strips.py), so its tangent compliance is
+BEM's to its grid, tests/test_meanfield_strips.py), so its tangent compliance is
 ``C = −dū/dp̄ = 2 ln(1/x)/(q E_r)`` [mm/MPa], ``E_r`` the modulus of its sliding strips. A
 line contact of half-width ``a`` on curvature ``κ`` needs ``p0 = E_r a κ/2`` on the
 half-space and ``κa²/(2C)`` on a Winkler layer; in series, at its load,
@@ -71,10 +71,8 @@ half-space and ``κa²/(2C)`` on a Winkler layer; in series, at its load,
 waves formed inside the strip (exact on the half-space; 15 % below Winkler's load where the
 layer dominates). The strip widens at fixed load (:func:`_soften`, at most to its period);
 its pressures scale by ``a/a'``, and the variance it loses comes off its own wave's loss.
-The longer strips then carry less of the variance in their own bands: on two waves 16
-apart the strips' variance below the shorter wave's band is within 3–7 % of the BEM's
-(it was 7–9 % high); on octave ladders it moves the friction at 500 mm/s toward the BEM
-(docs/validation/meanfield.md).
+The longer strips then carry less of the variance in their own bands, as in the BEM
+(docs/validation/meanfield.md measures it on two waves and on the ladders).
 
 Exact limits: in full contact every sample stays in contact, each wave adds ``p*²/2`` at the
 mode's loss, ``μ = Σ q²Δ² Im E_r(qv)/(4σ0)``; an elastic rubber has no loss, ``μ = 0``; one
