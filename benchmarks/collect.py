@@ -13,7 +13,8 @@ PARTS = [("halfspace.md", "Half-space (BEM) solver"),
          ("halfspace_sweep.md", "Half-space part of a 15-speed curve, against a baseline"),
          ("make_run.md", "make run from an empty cache"),
          ("prony_fit.md", "Prony fit of DMA data against pyvisco"),
-         ("meanfield.md", "Mean-field model")]
+         ("meanfield.md", "Mean-field model"),
+         ("strips.md", "Mean-field strip cascade, against a baseline")]
 
 
 def main() -> None:

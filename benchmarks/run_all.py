@@ -19,7 +19,8 @@ def main() -> int:
     for script, args in (("bench_halfspace.py", ["--output", str(HERE / "halfspace.md")]),
                          ("bench_steady.py", ["--output", str(HERE / "steady.md")]),
                          ("bench_fem.py", []),
-                         ("bench_meanfield.py", ["--output", str(HERE / "meanfield.md")])):
+                         ("bench_meanfield.py", ["--output", str(HERE / "meanfield.md")]),
+                         ("bench_strips.py", ["--output", str(HERE / "strips.md")])):
         path = HERE / script
         if not path.exists():
             print(f"skip {script} (not present)")
