@@ -58,26 +58,41 @@ def _loss(k: np.ndarray, v: float) -> np.ndarray:
     return np.where(k > 0, out, 0.0)
 
 
+def pressure_power(pressure: np.ndarray, period: float) -> tuple[np.ndarray, np.ndarray]:
+    """Wavenumbers [rad/mm] and the pressure variance [MPa²] of each (one-sided) Fourier
+    mode of a periodic 1D pressure; the mean (``k = 0``) carries none."""
+    n = pressure.size
+    sk = np.fft.rfft(pressure) / n
+    k = 2 * np.pi * np.arange(sk.size) / period
+    power = np.where(k > 0, 2 * np.abs(sk) ** 2, 0.0)
+    if n % 2 == 0:
+        power[-1] /= 2                                       # Nyquist has no twin
+    return k, power
+
+
+def _bem_solves(surf, row: dict) -> tuple[float, list]:
+    """The load of the diffusion's ``row["target"]`` contact fraction at ``row["v"]`` and
+    the BEM's solves of :data:`REALIZATIONS` random-phase realizations there."""
+    p = load_for_area(mf.PSD.from_sines(surf), SBR, row["v"], row["target"])
+    return p, [rc.halfspace.solve_sliding(r, surf.period, SBR, row["v"], p, n=N)
+               for r in surf.realizations(REALIZATIONS, SEED)]
+
+
 def run_bands(rows_path: Path, done: set, key) -> None:
     """BEM pressure spectra pooled in the bands (dissipation and variance per band)."""
     m, seed = LADDER
     surf = random_ladder(m, seed)
     edges = band_edges(np.sort(surf.wavenumbers))
-    for v in SPEEDS:
-        row = {"kind": "bands", "case": f"random {m} waves (seed {seed})", "v": v,
-               "target": TARGET, "n": N}
-        if key(row) in done:
-            continue
-        p = load_for_area(mf.PSD.from_sines(surf), SBR, v, TARGET)
+    rows = [{"kind": "bands", "case": f"random {m} waves (seed {seed})", "v": v,
+             "target": TARGET, "n": N} for v in SPEEDS]
+    for row in (r for r in rows if key(r) not in done):
+        v = row["v"]
+        p, solves = _bem_solves(surf, row)
         diss, var, mus, areas = np.zeros(edges.size - 1), np.zeros(edges.size - 1), [], []
-        for r in surf.realizations(REALIZATIONS, SEED):
-            res = rc.halfspace.solve_sliding(r, surf.period, SBR, v, p, n=N)
+        for res in solves:
             mus.append(res.friction)
             areas.append(res.contact_fraction)
-            sk = np.fft.rfft(res.pressure) / N
-            k = 2 * np.pi * np.arange(sk.size) / surf.period
-            power = np.where(k > 0, 2 * np.abs(sk) ** 2, 0.0)
-            power[-1] /= 2                                   # Nyquist has no twin
+            k, power = pressure_power(res.pressure, surf.period)
             idx = np.digitize(k, edges) - 1
             var += np.bincount(idx, power, edges.size - 1) / REALIZATIONS
             diss += np.bincount(idx, power * _loss(k, v), edges.size - 1) / p / REALIZATIONS
@@ -107,10 +122,7 @@ def run_truncated(rows_path: Path, done: set, key) -> None:
         for r in surf.realizations(REALIZATIONS, SEED):
             res = rc.halfspace.solve_sliding(r, full.period, SBR, v, p, n=N)
             areas.append(res.contact_fraction)
-            sk = np.fft.rfft(res.pressure) / N
-            kk = 2 * np.pi * np.arange(sk.size) / full.period
-            power = np.where(kk > 0, 2 * np.abs(sk) ** 2, 0.0)
-            power[-1] /= 2
+            kk, power = pressure_power(res.pressure, full.period)
             var += np.bincount(np.digitize(kk, edges) - 1, power,
                                edges.size - 1) / REALIZATIONS
         row.update(p=p, R=REALIZATIONS, surface=surf.as_dict(), bem_A=areas,
@@ -123,23 +135,15 @@ def run_layer(rows_path: Path, done: set, key) -> None:
     the long wave's strips carry once they sit on the short wave's strips."""
     for ratio in LAYER_RATIOS:
         surf = two_waves(ratio)
-        for v in LAYER_SPEEDS:
-            for target in LAYER_TARGETS:
-                row = {"kind": "layer", "case": f"2 waves, ratio {ratio:g}", "v": v,
-                       "target": target, "n": N}
-                if key(row) in done:
-                    continue
-                p = load_for_area(mf.PSD.from_sines(surf), SBR, v, target)
-                var, areas = [], []
-                for r in surf.realizations(REALIZATIONS, SEED):
-                    res = rc.halfspace.solve_sliding(r, surf.period, SBR, v, p, n=N)
-                    areas.append(res.contact_fraction)
-                    sk = np.fft.rfft(res.pressure) / N
-                    k = 2 * np.pi * np.arange(sk.size) / surf.period
-                    var.append(float(2 * np.sum(np.abs(sk[(k > 0) & (k < _below(surf))])**2)))
-                row.update(p=p, R=REALIZATIONS, surface=surf.as_dict(), bem_A=areas,
-                           bem_var_long=var)
-                append_row(rows_path, row)
+        rows = [{"kind": "layer", "case": f"2 waves, ratio {ratio:g}", "v": v,
+                 "target": target, "n": N} for v in LAYER_SPEEDS for target in LAYER_TARGETS]
+        for row in (r for r in rows if key(r) not in done):
+            p, solves = _bem_solves(surf, row)
+            var = [float(np.sum(power[k < _below(surf)])) for k, power in
+                   (pressure_power(res.pressure, surf.period) for res in solves)]
+            row.update(p=p, R=REALIZATIONS, surface=surf.as_dict(),
+                       bem_A=[res.contact_fraction for res in solves], bem_var_long=var)
+            append_row(rows_path, row)
 
 
 def layer_table(rows) -> tuple[str, dict]:
