@@ -130,9 +130,12 @@ def crest_cosine(curvature, amplitude, wavenumber: float) -> np.ndarray:
     b = wavenumber**2 * np.asarray(amplitude, float) / np.asarray(curvature, float)
     b = np.broadcast_to(b, np.broadcast(b, np.empty(PHASES)).shape)
     x = np.log(np.clip(np.abs(b), np.exp(lb[0]), np.exp(lb[-1])))
-    out = np.empty(b.shape)
-    for col in range(PHASES):
-        flip = (col + PHASES // 2) % PHASES
-        out[..., col] = np.where(b[..., col] >= 0, np.interp(x[..., col], lb, table[:, col]),
-                                 -np.interp(x[..., col], lb, table[:, flip]))
-    return out
+    # one linear interpolation on the uniform grid ``lb`` for every phase column at once
+    # (the same numbers as np.interp column by column)
+    step = lb[1] - lb[0]
+    k = np.clip(((x - lb[0]) / step).astype(int), 0, lb.size - 2)
+    t = (x - lb[k]) / step
+    col = np.broadcast_to(np.arange(PHASES), b.shape)
+    col = np.where(b >= 0, col, (col + PHASES // 2) % PHASES)   # A < 0: shifted by π
+    value = (1 - t) * table[k, col] + t * table[k + 1, col]
+    return np.where(b >= 0, value, -value)
