@@ -146,6 +146,53 @@ def run_layer(rows_path: Path, done: set, key) -> None:
             append_row(rows_path, row)
 
 
+def contact_patches(pressure: np.ndarray, period: float) -> np.ndarray:
+    """Widths [mm] of the contact intervals of a periodic 1D pressure (``> 0``)."""
+    c = np.asarray(pressure) > 0
+    if c.all() or not c.any():
+        return np.array([period]) if c.all() else np.array([])
+    c = np.roll(c, -int(np.argmin(c)))                  # start in a gap: no wrapped patch
+    edges = np.flatnonzero(np.diff(np.append(c, False).astype(int)))
+    return (edges[1::2] - edges[::2]) * period / c.size
+
+
+def run_patches(rows_path: Path, done: set, key) -> None:
+    """The BEM's contact patches on the worst ladder at the diffusion's 2 % load: how many
+    per period and how wide, against the strips' final strips."""
+    m, seed = LADDER
+    surf = random_ladder(m, seed)
+    rows = [{"kind": "patches", "case": f"random {m} waves (seed {seed})", "v": v,
+             "target": TARGET, "n": N} for v in SPEEDS]
+    for row in (r for r in rows if key(r) not in done):
+        p, solves = _bem_solves(surf, row)
+        row.update(p=p, R=REALIZATIONS, surface=surf.as_dict(),
+                   bem_A=[res.contact_fraction for res in solves],
+                   widths=[contact_patches(res.pressure, surf.period).tolist()
+                           for res in solves])
+        append_row(rows_path, row)
+
+
+def patches_table(rows) -> str:
+    """Patches per period and their area-weighted width: the BEM's and the strips'."""
+    sel = sorted((r for r in rows if r["kind"] == "patches"), key=lambda r: r["v"])
+    if not sel:
+        return ""
+    lines = ["| v [mm/s] | σ0 [MPa] | BEM A | strips A | BEM patches per period | strips "
+             "per period | BEM width (area-weighted) [mm] | strips width [mm] |",
+             "|---" * 8 + "|"]
+    for r in sel:
+        surf = rc.roughness.SineSeries(r["surface"]["wavelengths"], r["surface"]["amplitudes"])
+        widths = np.concatenate([np.asarray(w) for w in r["widths"]])
+        smp = strip_contact(surf.wavenumbers, surf.amplitudes, SBR, r["v"], r["p"]).samples
+        full = 2 * smp.half_width
+        lines.append(f"| {r['v']:g} | {r['p']:.4g} | {np.mean(r['bem_A']):.4f} | "
+                     f"{smp.weight.sum():.4f} | {widths.size / len(r['widths']):.1f} | "
+                     f"{np.sum(smp.weight / full) * surf.period:.1f} | "
+                     f"{np.sum(widths**2) / np.sum(widths):.3f} | "
+                     f"{np.sum(smp.weight * full) / smp.weight.sum():.3f} |")
+    return "\n".join(lines)
+
+
 def layer_table(rows) -> tuple[str, dict]:
     """BEM against strips: the variance below the shorter wave's band on two waves."""
     sel = [r for r in rows if r["kind"] == "layer"]

@@ -13,7 +13,7 @@ import rubbercontact as rc
 from rubbercontact import meanfield as mf
 from rubbercontact.roughness import SineSeries
 
-from ._meanfield_bands import bands_table, layer_table, truncated_table
+from ._meanfield_bands import bands_table, layer_table, patches_table, truncated_table
 from ._meanfield_cases import (
     DIFFUSION,
     SPEEDS,
@@ -452,6 +452,7 @@ def report(rows, *, figures: Path, date: str, commit: str, wall: float, variants
            render("meanfield", "bands", **bands_fields), "", bands, "",
            render("meanfield", "bands_truncated", **trunc_fields), "", trunc, "",
            render("meanfield", "layer", **layer_fields), "", layer, "",
+           render("meanfield", "patches"), "", patches_table(rows), "",
            render("meanfield", "self_affine", t20=sa_fields["t20"], t18=sa_fields["t18"]), "",
            sa_table, "",
            render("meanfield", "broadband", sa_default=sa_fields["sa_default"],

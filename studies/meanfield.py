@@ -45,7 +45,7 @@ import rubbercontact as rc
 from rubbercontact import meanfield as mf
 from rubbercontact.roughness import SineSeries
 
-from ._meanfield_bands import run_bands, run_layer, run_truncated
+from ._meanfield_bands import run_bands, run_layer, run_patches, run_truncated
 from ._meanfield_cases import (
     AREAS,
     HYBRID_AREAS,
@@ -353,6 +353,7 @@ def main(argv: list[str] | None = None) -> int:
             run_bands(args.rows, done, _key)
             run_truncated(args.rows, done, _key)
             run_layer(args.rows, done, _key)
+            run_patches(args.rows, done, _key)
         if "selfaffine" in parts:
             sizes = tuple(int(s) for s in args.selfaffine_sizes.split(",") if s)
             run_self_affine(args.rows, done, sizes)

@@ -5,6 +5,7 @@ import subprocess
 import sys
 from pathlib import Path
 
+import numpy as np
 import pytest
 
 ROOT = Path(__file__).resolve().parents[1]
@@ -77,3 +78,18 @@ def test_every_template_block_is_used_by_a_study():
         assert path.stem in literals, f"{path.name} is not rendered by any study"
         unused = sorted(set(blocks(path.stem)) - literals)
         assert not unused, f"{path.name}: blocks {unused} are not rendered by any study"
+
+
+def test_contact_patches_counts_intervals_across_the_period_edge():
+    # studies/_meanfield_bands.contact_patches: intervals of p > 0 on a periodic grid; one
+    # that wraps around the period's edge is one patch, full and no contact are limits.
+    from studies._meanfield_bands import contact_patches
+
+    p = np.zeros(100)
+    p[10:20] = 1.0          # 10 cells
+    p[50:53] = 2.0          # 3 cells
+    p[95:] = p[:2] = 1.0    # 5 + 2 cells across the edge
+    widths = np.sort(contact_patches(p, 10.0))
+    np.testing.assert_allclose(widths, [0.3, 0.7, 1.0])
+    np.testing.assert_allclose(contact_patches(np.ones(8), 2.0), [2.0])
+    assert contact_patches(np.zeros(8), 2.0).size == 0
