@@ -31,7 +31,7 @@ TAIL_OCTAVES = 6                  # bands above the cut-off, one octave each
 TRUNCATED = (1, 2, 3, 4, 6, 8)    # the ladder's longest waves kept, at 500 mm/s
 #: Two waves, the longest 4 mm (rms slope 0.3 each): wavelength ratios, speeds [mm/s] and the
 #: diffusion's contact fractions at which the long strips' layer is checked.
-LAYER_RATIOS, LAYER_SPEEDS, LAYER_TARGETS = (16.0, 4.0), (1.0, 50.0), (0.06, 0.2)
+LAYER_RATIOS, LAYER_SPEEDS, LAYER_TARGETS = (16.0, 4.0, 2.0), (1.0, 50.0), (0.06, 0.2)
 
 
 def two_waves(ratio: float) -> rc.roughness.SineSeries:
