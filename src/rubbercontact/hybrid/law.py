@@ -138,7 +138,6 @@ def assemble_law(results, pressures, velocities, hs_surface: SineSeries,
     data = {k: np.full(shape, np.nan) for k in names}
     status = np.full(shape, "ok", dtype=object)
     diag = {k: np.full(shape, np.nan) for k in STEADINESS_VARIABLES}
-    impaled = np.full(shape, np.nan)
     for idx, ds in enumerate(results):
         i, j = divmod(idx, len(pressures))
         if not isinstance(ds, xr.Dataset):
@@ -147,10 +146,8 @@ def assemble_law(results, pressures, velocities, hs_surface: SineSeries,
         for k in names:
             data[k][i, j] = float(ds[k])
         for k in diag:
-            if k in ds:     # results cached before the period changes existed lack them
+            if k in ds:     # results cached before a diagnostic existed lack it
                 diag[k][i, j] = float(ds[k])
-        if "impaled" in ds:     # results cached before the flag existed lack it
-            impaled[i, j] = float(ds["impaled"])
     units = {"mean_separation": "mm", "contact_fraction": "1", "shear_stress": "MPa",
              "friction": "1", "wall_time": "s"}
     law = xr.Dataset(
@@ -162,9 +159,6 @@ def assemble_law(results, pressures, velocities, hs_surface: SineSeries,
     for k, text in STEADINESS_VARIABLES.items():
         law[k] = (("velocity", "pressure"), diag[k],
                   {"units": STEADINESS_UNITS.get(k, "1"), "long_name": text})
-    law["impaled"] = (("velocity", "pressure"), impaled,
-                      {"units": "1", "long_name": "the FEM test's rubber face was impaled "
-                                                  "(1/0; NaN: failed or not recorded)"})
     def label(i, j):
         return f"v={velocities[i]:g} p={pressures[j]:g}"
 

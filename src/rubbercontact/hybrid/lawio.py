@@ -21,7 +21,7 @@ from .steadiness import STEADINESS_VARIABLES
 #: Variables of a law table as :func:`effective_law` and the pipeline build it; a results
 #: file carries each as ``law_<name>`` on the dims ``(velocity, law_pressure)``.
 LAW_VARIABLES = ("mean_separation", "contact_fraction", "shear_stress", "friction", "status",
-                 "wall_time", *STEADINESS_VARIABLES, "impaled", "vhs_friction",
+                 "wall_time", *STEADINESS_VARIABLES, "vhs_friction",
                  "vhs_contact_fraction")
 _LAW_REQUIRED = ("mean_separation", "contact_fraction", "shear_stress", "status")
 _LAW_PROVENANCE = ("hs_wavelengths_mm", "hs_amplitudes_mm", "hs_phases_rad",

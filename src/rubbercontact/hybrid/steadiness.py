@@ -12,7 +12,8 @@ import numpy as np
 from ..fem.result import BULK_SHEAR_LIMIT, BULK_SHEAR_STUDY
 from ..materials import GeneralizedMaxwell
 
-#: Steadiness diagnostics of an FEM sliding test kept in the law and results tables.
+#: Diagnostics of an FEM sliding test (steadiness, shear, impalement) kept in the law and
+#: results tables.
 STEADINESS_VARIABLES = {
     "steady": "successive sliding periods agreed within the steadiness tolerance "
               "(1/0; NaN: failed or not recorded)",
@@ -22,6 +23,8 @@ STEADINESS_VARIABLES = {
     "sliding_time": "sliding time of the test (NaN: not recorded)",
     "bulk_shear": "mean shear strain of the cell at the end of the test, |mean face "
                   "x-displacement| / H (NaN: not recorded)",
+    "impaled": "the surface passed through the rubber face between nodes, so friction and "
+               "contact fraction are not meaningful (1/0; NaN: failed or not recorded)",
 }
 #: Units of ``STEADINESS_VARIABLES`` other than "1".
 STEADINESS_UNITS = {"sliding_time": "s"}
@@ -77,6 +80,15 @@ def sheared_cells_message(diag: dict, label, what: str,
             f"by more than {limit:g} (mean face displacement / cell height), largest first: "
             f"{where}{', ...' if len(big) > 6 else ''}: the friction stress exceeds E∞/3 there "
             f"({BULK_SHEAR_STUDY})")
+
+
+def impaled_tests(diag: dict, label) -> tuple[int, str]:
+    """The FEM tests of ``diag`` whose rubber face was impaled: their number and
+    ``"label; label; ..."`` (at most 6 named). Tests cached before the flag (NaN) are not
+    counted."""
+    hit = [tuple(i) for i in np.argwhere(np.asarray(diag.get("impaled", np.nan)) == 1.0)]
+    where = "; ".join(label(*idx) for idx in hit[:6]) + ("; ..." if len(hit) > 6 else "")
+    return len(hit), where
 
 
 def describe_unsteady(diag: dict, label) -> tuple[int, str, bool]:

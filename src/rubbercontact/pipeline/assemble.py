@@ -18,6 +18,7 @@ from ..hybrid.law import (
     describe_unsteady,
     sheared_cells_message,
 )
+from ..hybrid.steadiness import impaled_tests
 from ..materials import GeneralizedMaxwell
 from .plan import Slot
 from .setup import SPLIT_MODELS
@@ -72,7 +73,6 @@ def assemble(models: list[str], velocities: np.ndarray, n_real: int, pressures: 
         status[models.index("fem"), :, n_fem:] = f"{NOT_RUN} (fem.realizations = {n_fem})"
     # full-FEM steadiness (1/0; NaN where failed or not recorded)
     fem_diag = {k: np.full(shape[1:], np.nan) for k in STEADINESS_VARIABLES}
-    impaled = np.full(shape[1:], np.nan)          # full FEM: 1 where the face was impaled
     for slot, res in zip(slots, results, strict=True):
         im = models.index(slot.model)
         at = (im, slot.iv, slice(None) if slot.ir is None else slot.ir,
@@ -86,10 +86,8 @@ def assemble(models: list[str], velocities: np.ndarray, n_real: int, pressures: 
             continue
         if slot.model == "fem":
             for k, arr in fem_diag.items():
-                if k in res:     # results cached before the period changes existed lack them
+                if k in res:     # results cached before a diagnostic existed lack it
                     arr[at[1:]] = float(res[k])
-            if "impaled" in res:  # results cached before the flag existed lack it
-                impaled[at[1:]] = float(res["impaled"])
         for k in names:
             if k in res:
                 data[k][at] = float(res[k])
@@ -114,28 +112,6 @@ def assemble(models: list[str], velocities: np.ndarray, n_real: int, pressures: 
                       RuntimeWarning, stacklevel=3)
     if "fem" in models:
         ds = add_fem_steadiness(ds, fem_diag, material, stacklevel=4)
-        ds = add_fem_impaled(ds, impaled, stacklevel=4)
-    return ds
-
-
-def add_fem_impaled(ds: xr.Dataset, impaled: np.ndarray, stacklevel: int = 2) -> xr.Dataset:
-    """Store which full-FEM tests had their rubber face impaled, and say which.
-
-    Their numbers are kept (nothing is lost), but an asperity passing through the face
-    between two nodes makes their friction and contact fraction meaningless.
-    """
-    dims = ("velocity", "realization", "pressure")
-    ds["fem_impaled"] = (dims, impaled, {"units": "1", "long_name": "full FEM: the rubber "
-                                         "face was impaled (1/0; NaN where not recorded)"})
-    hit = np.argwhere(impaled == 1.0)
-    if hit.size:
-        v, p = ds["velocity"].values, ds["pressure"].values
-        where = "; ".join(f"v={v[iv]:g} σ0={p[ip]:g} r={ir}" for iv, ir, ip in hit[:5])
-        more = f" and {len(hit) - 5} more" if len(hit) > 5 else ""
-        warnings.warn(f"{len(hit)} full-FEM test(s) had the rubber face impaled ({where}{more}): "
-                      f"their friction and contact fraction are not meaningful (see "
-                      f"'fem_impaled'); refine the cell (fem.mesh) or lower the load",
-                      RuntimeWarning, stacklevel=stacklevel)
     return ds
 
 
@@ -154,7 +130,8 @@ def _store_loads(data: dict, status: np.ndarray, at: tuple, res: xr.Dataset,
 
 def add_fem_steadiness(ds: xr.Dataset, diag: dict, material: GeneralizedMaxwell,
                        stacklevel: int = 2) -> xr.Dataset:
-    """Store whether each full-FEM test reached steady sliding, and say which did not.
+    """Store the full-FEM tests' diagnostics, and name those that did not reach steady
+    sliding, crept, sheared as a whole or had their face impaled.
 
     An unsteady test keeps its result (the last period's averages), as the FEM itself
     does, but the run says so instead of leaving the warning in a worker's log.
@@ -185,6 +162,13 @@ def add_fem_steadiness(ds: xr.Dataset, diag: dict, material: GeneralizedMaxwell,
     sheared = sheared_cells_message(diag, label, "full FEM")
     if sheared:
         warnings.warn(sheared, RuntimeWarning, stacklevel=stacklevel)
+    n_impaled, where = impaled_tests(diag, label)
+    if n_impaled:
+        # kept (nothing is lost) and still "ok": the run names them instead
+        warnings.warn(f"{n_impaled} full-FEM test(s) had the rubber face impaled ({where}): "
+                      f"their friction and contact fraction are not meaningful (see "
+                      f"'fem_impaled'); refine the cell (fem.mesh) or lower the load",
+                      RuntimeWarning, stacklevel=stacklevel)
     return ds
 
 
