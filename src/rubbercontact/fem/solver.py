@@ -130,9 +130,8 @@ class _GeneralFactor:
 
 
 #: Largest relative residual ``‖K x − r‖/‖r‖`` accepted from a single-precision
-#: factorization before it is redone in double precision. A preconditioner within a few
-#: per cent leaves GMRES's iteration count unchanged; the section 3 press tangents
-#: (120 × 45 graded, penalty contact) give about 3e-3.
+#: factorization before it is redone in double precision: a preconditioner within a few
+#: per cent leaves GMRES's iteration count unchanged (BENCHMARKS.md, steady FEM).
 SINGLE_RESIDUAL = 0.05
 
 

@@ -46,10 +46,8 @@ at the crest) acts on a strip in two ways:
   solves ``a'² κ_eff(a') |E_r(a')| = a² κ |E_r(a)|`` and the (Hertzian) pressures scale by
   ``a/a'`` (:func:`_bend`); the change in the pressure variance dissipates at the
   harmonics of the new strip. Where ``κ_eff ≤ 0`` nonetheless, the crest splits, and the
-  whole wave forms strips as below. (Before, the strip stayed on the parent's crest,
-  ``ψ = φ``, split where ``κ_eff ≤ 0`` and kept its modulus: on two waves 4 times apart at
-  500 mm/s that put the area 30–50 % above the BEM, which has one patch per period on the
-  compound crest; tests/test_meanfield_strips.py);
+  whole wave forms strips as below (docs/validation/meanfield.md compares this with a strip
+  kept on the parent's crest);
 * the rest of the wave, of amplitude ``(1 − 2J1(q_i a)/(q_i a)) Δ_i``, forms its own strips
   at the local pressure, Westergaard's (scale separation, Archard's picture with the exact
   sine at each step); its pressure variance is added at the loss of the strips' harmonics
@@ -68,8 +66,9 @@ BEM's to its grid, tests/test_meanfield_strips.py), so its tangent compliance is
 line contact of half-width ``a`` on curvature ``κ`` needs ``p0 = E_r a κ/2`` on the
 half-space and ``κa²/(2C)`` on a Winkler layer; in series, at its load,
 ``W = (π/4) E_r a² κ/(1 + L E_r/a)`` with ``L`` the layers' compliance summed over the
-waves formed inside the strip (exact on the half-space; 15 % below Winkler's load where the
-layer dominates). The strip widens at fixed load (:func:`_soften`, at most to its period);
+waves formed inside the strip (exact on the half-space; where the layer dominates it gives
+``π a³κ/(4C)`` against the Winkler layer's exact ``2a³κ/(3C)``). The strip widens at fixed
+load (:func:`_soften`, at most to its period);
 its pressures scale by ``a/a'``, and the variance it loses comes off its own wave's loss.
 The longer strips then carry less of the variance in their own bands, as in the BEM
 (docs/validation/meanfield.md measures it on two waves and on the ladders).
@@ -100,8 +99,8 @@ WIDTH_BINS = 30
 #: Log grids on which a wave's strip fraction (in ``p̄/p*``) and loss (in ``r``) are read.
 TABLE_POINTS = 300
 SMALLEST_RATIO = 1e-12
-#: Fixed-point iterations of a bent strip's half-width.
-BENDING_ITERATIONS = 8
+#: Fixed-point iterations of a bent or widened strip's half-width.
+FIXED_POINT_ITERATIONS = 8
 #: Half-width standing for "no strip yet" [mm].
 NO_STRIP = 1e9
 
@@ -223,7 +222,7 @@ class Samples:
         Curvature ``κ`` [1/mm] of that strip's crest.
     wavenumber
         Wavenumber [rad/mm] of the wave that formed the strip (its modulus is read at
-        ``max(πv/(2a), qv)``, :func:`strip_modulus`).
+        ``max(πv/(2a), qv)``, :class:`~.crests.StripModulus`).
     layer
         Compliance ``L`` [mm/MPa] of the shorter waves' strips under the strip (0 before any
         formed there; module docstring).
@@ -299,7 +298,7 @@ def _bend(s: Samples, wave: WaveTables, modulus: StripModulus) -> Bending:
     kappa0, a0, q0 = s.curvature[:, None], s.half_width[:, None], s.wavenumber[:, None]
     stiff0 = kappa0 * modulus(a0, q0)
     half = np.broadcast_to(a0, (a0.size, PHASES))
-    for _ in range(BENDING_ITERATIONS):
+    for _ in range(FIXED_POINT_ITERATIONS):
         e_strip = modulus(half, q0)
         rel = modulus(half, wave.wavenumber) / e_strip
         cos_psi = crest_cosine(kappa0, wave.amplitude * j0(wave.wavenumber * half) * rel,
@@ -344,7 +343,7 @@ def _soften(s: Samples, wave: WaveTables, residual: np.ndarray, modulus: StripMo
     p_star = wave.p_star * np.maximum(residual, 1e-300)
     lam = 2 * np.pi / wave.wavenumber
     half, layer = a0, s.layer
-    for _ in range(BENDING_ITERATIONS):
+    for _ in range(FIXED_POINT_ITERATIONS):
         st = wave.at(s.pressure * a0 / half / p_star)
         e_wave = modulus(np.maximum(st.fraction * lam / 2, 1e-300), wave.wavenumber)
         add = layer_compliance(s.pressure * a0 / half / (p_star * st.stiffening),
