@@ -67,6 +67,14 @@ def random_ladder(waves: int, seed: int, longest: float = 8.0) -> SineSeries:
     return SineSeries(lam, m2 * np.sqrt(2) * lam / (2 * np.pi))
 
 
+def separated_hybrid() -> SineSeries:
+    """Three low-slope waves (4, 2, 1 mm; m2 = 0.3, 0.4, 0.4) and a high-slope wave 16 times
+    shorter than the shortest (m2 = 1.2): the hybrid's scale separation holds."""
+    lam = np.array([4.0, 2.0, 1.0, 1.0 / 16])
+    m2 = np.array([0.3, 0.4, 0.4, 1.2])
+    return SineSeries(lam, m2 * np.sqrt(2) * lam / (2 * np.pi))
+
+
 def load_for_area(psd, material, velocity: float, area: float) -> float:
     """The mean pressure [MPa] at which the diffusion's (Persson's) contact fraction is
     ``area`` (4 significant digits; the loads of the cached rows)."""

@@ -16,7 +16,8 @@ and for the defaults:
 2. A self-affine 1D profile spanning 4 decades (1 µm – 10 mm), the BEM at N = 2^18 on two
    realizations and at N = 2^20 on one (the grid convergence).
 3. ``meanfield-hybrid`` against the windowed hybrid (``hybrid.windowing``) with the same
-   stand-in law, the VHS linear law of the high-slope wave (no FEM).
+   stand-in law, the VHS linear law of the high-slope wave (no FEM), on section 3, Table 2
+   and a surface whose high-slope wave is 16 times shorter than the low-slope ones.
 4. A 2D isotropic self-affine map against the 2D BEM.
 5. Where the strips' friction is off at 500 mm/s: the BEM's and the strips' dissipation and
    pressure variance by wavenumber band on one ladder (:mod:`._meanfield_bands`).
@@ -59,6 +60,7 @@ from ._meanfield_cases import (
     one_sine,
     random_ladder,
     self_affine_profile,
+    separated_hybrid,
     separation_series,
     westergaard_p_star,
 )
@@ -172,7 +174,8 @@ def run_hybrid(rows_path: Path, done: set) -> None:
     from rubbercontact.hybrid.tasks import halfspace_task
 
     for name, surf, n in (("Table 2", rc.roughness.asphalt_ac8(), 16384),
-                          ("section 3", rc.roughness.section3(), 4096)):
+                          ("section 3", rc.roughness.section3(), 4096),
+                          ("separated ×16", separated_hybrid(), 4096)):
         hs, ls = surf.partition(1.0)
         for v in (10.0, 50.0):
             todo = [t for t in HYBRID_AREAS if _key({"kind": "hybrid", "case": name, "v": v,
