@@ -45,7 +45,8 @@ at the crest) acts on a strip in two ways:
   wave's own frequency where the strip is wider than it, so at its load the half-width
   solves ``a'² κ_eff(a') |E_r(a')| = a² κ |E_r(a)|`` and the (Hertzian) pressures scale by
   ``a/a'`` (:func:`_bend`); the change in the pressure variance dissipates at the
-  harmonics of the new strip. Where ``κ_eff ≤ 0`` nonetheless, the crest splits, and the
+  strip's own harmonics, those of its period, with the spectrum of the change of width
+  (:class:`~.patches.WidthLoss`). Where ``κ_eff ≤ 0`` nonetheless, the crest splits, and the
   whole wave forms strips as below (docs/validation/meanfield.md compares this with a strip
   kept on the parent's crest);
 * the rest of the wave, of amplitude ``(1 − 2J1(q_i a)/(q_i a)) Δ_i``, forms its own strips
@@ -69,7 +70,8 @@ half-space and ``κa²/(2C)`` on a Winkler layer; in series, at its load,
 waves formed inside the strip (exact on the half-space; where the layer dominates it gives
 ``π a³κ/(4C)`` against the Winkler layer's exact ``2a³κ/(3C)``). The strip widens at fixed
 load (:func:`_soften`, at most to its period);
-its pressures scale by ``a/a'``, and the variance it loses comes off its own wave's loss.
+its pressures scale by ``a/a'``, and the variance it loses comes off its own harmonics
+(:class:`~.patches.WidthLoss`).
 The longer strips then carry less of the variance in their own bands, as in the BEM
 (docs/validation/meanfield.md measures it on two waves and on the ladders).
 
@@ -89,7 +91,7 @@ from scipy.special import j0
 
 from ..materials.maxwell import GeneralizedMaxwell
 from .crests import PHASES, SMALLEST_FRACTION, StripModulus, bending_share, crest_cosine
-from .patches import patch_loss
+from .patches import WidthLoss, patch_loss
 
 #: Samples across a strip (midpoint rule in the strip's angle).
 STRIP_SAMPLES = 32
@@ -290,11 +292,13 @@ class Bending:
     friction_stress: float
 
 
-def _bend(s: Samples, wave: WaveTables, modulus: StripModulus) -> Bending:
+def _bend(s: Samples, wave: WaveTables, modulus: StripModulus, width_loss: WidthLoss
+          ) -> Bending:
     """The wave bends the crests of the strips (module docstring): at each crest phase the
     half-width solves ``a'² κ_eff(a') |E_r(a')| = a² κ |E_r(a)|``, ``κ_eff = κ + κ_i cos ψ ·
     bending_share(q_i, a') · |E_r(q_i, a')|/|E_r(a')|``, ``ψ`` the wave's phase on the
-    compound crest and the moduli at the contact times (:mod:`.crests`)."""
+    compound crest and the moduli at the contact times (:mod:`.crests`). The variance the
+    narrowing adds dissipates at the strip's own harmonics (:class:`~.patches.WidthLoss`)."""
     kappa0, a0, q0 = s.curvature[:, None], s.half_width[:, None], s.wavenumber[:, None]
     stiff0 = kappa0 * modulus(a0, q0)
     half = np.broadcast_to(a0, (a0.size, PHASES))
@@ -309,8 +313,9 @@ def _bend(s: Samples, wave: WaveTables, modulus: StripModulus) -> Bending:
     scale = half / a0
     weight = s.weight[:, None] / PHASES
     d_var = weight * s.pressure[:, None] ** 2 * (1.0 / scale - 1.0)
-    lam = 2 * np.pi / wave.wavenumber
-    fstress = float(np.sum(d_var[ok] * wave.loss_at(np.minimum(2 * half[ok] / lam, 1.0))))
+    q_strip = np.broadcast_to(q0, half.shape)
+    fstress = float(np.sum(d_var[ok] * width_loss(q_strip[ok], np.broadcast_to(
+        a0, half.shape)[ok], half[ok])))
     bent = Samples((s.pressure[:, None] / scale)[ok], (weight * scale)[ok], half[ok],
                    kappa[ok], np.broadcast_to(q0, half.shape)[ok],
                    np.broadcast_to(s.layer[:, None], half.shape)[ok])
@@ -328,11 +333,11 @@ def layer_compliance(pressure_ratio, wavenumber: float, modulus) -> np.ndarray:
 
 
 def _soften(s: Samples, wave: WaveTables, residual: np.ndarray, modulus: StripModulus,
-            formed: dict[float, WaveTables]) -> WaveStep:
+            width_loss: WidthLoss) -> WaveStep:
     """The strips ``s`` widen on the layer the wave's strips (amplitude ``residual · Δ_i``)
     form under them: at fixed load ``E(a) a²/(1 + L E(a)/a)``, ``L`` the summed layer
-    compliance (module docstring); ``formed`` holds the tables of the longer waves, whose
-    strips' loss the variance they lose comes off."""
+    compliance (module docstring); the variance they lose comes off their own harmonics
+    (:class:`~.patches.WidthLoss`)."""
     stripped = s.half_width < NO_STRIP
     if not stripped.any():
         return WaveStep(s, 0.0)
@@ -353,13 +358,8 @@ def _soften(s: Samples, wave: WaveTables, residual: np.ndarray, modulus: StripMo
         half = np.clip(np.sqrt(load * (1.0 + layer * e / half) / e), a0, widest)
     scale = np.where(stripped, half / a0, 1.0)
     d_var = s.weight * s.pressure**2 * (1.0 / scale - 1.0)
-    keys = np.array(sorted(formed))
-    parent = keys[np.argmin(np.abs(np.log(s.wavenumber[:, None] / keys[None, :])), axis=1)]
-    fstress = 0.0
-    for q0 in np.unique(parent[stripped & (scale > 1.0)]):
-        m = stripped & (scale > 1.0) & (parent == q0)
-        fstress += float(np.sum(d_var[m] * formed[q0].loss_at(np.minimum(a0[m] * q0 / np.pi,
-                                                                           1.0))))
+    m = stripped & (scale > 1.0)
+    fstress = float(np.sum(d_var[m] * width_loss(s.wavenumber[m], a0[m], half[m])))
     widened = Samples(s.pressure / scale, s.weight * scale, np.where(stripped, half, NO_STRIP),
                       s.curvature, s.wavenumber, np.where(stripped, layer, 0.0))
     return WaveStep(widened, fstress)
@@ -426,20 +426,20 @@ def strip_contact(wavenumbers, amplitudes, material: GeneralizedMaxwell, velocit
     s = Samples(np.array([float(mean_pressure)]), np.ones(1), np.full(1, NO_STRIP), np.ones(1),
                 np.ones(1), np.zeros(1))
     modulus = StripModulus(material, velocity, nu, q.min(), q.max())
-    area, fstress, formed = [], [], {}
+    width_loss = WidthLoss(material, velocity, nu, q.min(), q.max())
+    area, fstress = [], []
     for i in order:
         wave = wave_tables(q[i], amp[i], material, velocity, nu)
         stripped = s.half_width < NO_STRIP
-        bend = _bend(s.subset(stripped), wave, modulus)
+        bend = _bend(s.subset(stripped), wave, modulus, width_loss)
         bent = _rebin(bend.bent) if bend.bent.weight.size else bend.bent
         rest = _join([s.subset(~stripped), bend.split])
         residual = 1.0 - bending_share(q[i], bent.half_width)
-        soft_bent = _soften(bent, wave, residual, modulus, formed)
-        soft_rest = _soften(rest, wave, np.ones(rest.weight.size), modulus, formed)
+        soft_bent = _soften(bent, wave, residual, modulus, width_loss)
+        soft_rest = _soften(rest, wave, np.ones(rest.weight.size), modulus, width_loss)
         step_bent = _form_strips(soft_bent.samples, wave, residual)
         step_rest = _form_strips(soft_rest.samples, wave, np.ones(rest.weight.size))
         s = _rebin(_join([step_bent.samples, step_rest.samples]))
-        formed[float(q[i])] = wave
         area.append(float(s.weight.sum()))
         fstress.append(bend.friction_stress + soft_bent.friction_stress
                        + soft_rest.friction_stress + step_bent.friction_stress
