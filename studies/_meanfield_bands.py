@@ -32,6 +32,10 @@ TRUNCATED = (1, 2, 3, 4, 6, 8)    # the ladder's longest waves kept, at 500 mm/s
 #: Two waves, the longest 4 mm (rms slope 0.3 each): wavelength ratios, speeds [mm/s] and the
 #: diffusion's contact fractions at which the long strips' layer is checked.
 LAYER_RATIOS, LAYER_SPEEDS, LAYER_TARGETS = (16.0, 4.0, 2.0), (1.0, 50.0), (0.06, 0.2)
+#: The ladder's three longest waves (8, 4, 2 mm), by pairs and together, at 500 mm/s and
+#: these loads [MPa]: where the cascade's error first appears.
+TRIPLET_SUBSETS, TRIPLET_LOADS = ((8.0, 4.0), (8.0, 2.0), (4.0, 2.0), (8.0, 4.0, 2.0)), \
+    (0.2, 0.4, 0.8)
 
 
 def two_waves(ratio: float) -> rc.roughness.SineSeries:
@@ -336,3 +340,75 @@ def bands_table(rows) -> tuple[str, dict]:
                   f"{c['bem_var'].sum():.2f}", f"{c['var'].sum():.2f}"]
     lines.append("| " + " | ".join(cells) + " |")
     return "\n".join(lines), fields
+
+
+def _triplet_surface(keep) -> rc.roughness.SineSeries:
+    full = random_ladder(*LADDER)
+    lam = np.asarray(full.wavelengths)
+    idx = [int(np.argmin(np.abs(lam - k))) for k in keep]
+    return rc.roughness.SineSeries(lam[idx], np.asarray(full.amplitudes)[idx])
+
+
+def _triplet_edges() -> np.ndarray:
+    return band_edges(2 * np.pi / np.array([8.0, 4.0, 2.0]))
+
+
+def run_triplets(rows_path: Path, done: set, key) -> None:
+    """The BEM on the ladder's three longest waves, by pairs and together (8 mm period),
+    with its pressure variance by band."""
+    v, edges = SPEEDS[-1], _triplet_edges()
+    for keep in TRIPLET_SUBSETS:
+        for p in TRIPLET_LOADS:
+            row = {"kind": "triplet", "case": " + ".join(f"{k:g}" for k in keep) + " mm",
+                   "v": v, "target": p, "n": N}
+            if key(row) in done:
+                continue
+            surf, var, solves = _triplet_surface(keep), np.zeros(edges.size - 1), []
+            for r in surf.realizations(REALIZATIONS, SEED):
+                res = rc.halfspace.solve_sliding(r, 8.0, SBR, v, p, n=N)
+                solves.append(res)
+                kk, power = pressure_power(res.pressure, 8.0)
+                var += np.bincount(np.digitize(kk, edges) - 1, power,
+                                   edges.size - 1) / REALIZATIONS
+            row.update(p=p, R=REALIZATIONS, surface=surf.as_dict(),
+                       bem_mu=[res.friction for res in solves],
+                       bem_A=[res.contact_fraction for res in solves], band_var=var.tolist())
+            append_row(rows_path, row)
+
+
+def triplets_table(rows) -> tuple[str, dict]:
+    """BEM against strips on the pairs and the triplet; the 2 mm band and the octave above
+    on the triplet."""
+    sel = [r for r in rows if r["kind"] == "triplet"]
+    if not sel:
+        return "", {}
+    edges = _triplet_edges()
+    lines = ["| waves | σ0 [MPa] | BEM μ (± s.e.) | strips μ | error | BEM A | strips A | "
+             "2 mm band: BEM var/σ0² | strips | next octave: BEM | strips |",
+             "|---" * 11 + "|"]
+    errs: dict[bool, list] = {True: [], False: []}
+    ratios: list[tuple[float, float]] = []
+    for r in sel:
+        surf = rc.roughness.SineSeries(r["surface"]["wavelengths"], r["surface"]["amplitudes"])
+        res = strip_contact(surf.wavenumbers, surf.amplitudes, SBR, r["v"], r["p"])
+        mu = float(res.friction_stress.sum()) / r["p"]
+        bem = np.asarray(r["bem_mu"])
+        err = mu / bem.mean() - 1
+        three = surf.wavenumbers.size == 3
+        errs[three].append(err)
+        cells = ["–"] * 4
+        if three:
+            strips = strip_bands(surf, r["v"], r["p"], edges, unit=True) / r["p"] ** 2
+            bem_var = np.asarray(r["band_var"]) / r["p"] ** 2
+            cells = [f"{bem_var[3]:.2f}", f"{strips[3]:.2f}", f"{bem_var[4]:.2f}",
+                     f"{strips[4]:.2f}"]
+            ratios.append((strips[3] / bem_var[3], strips[4] / bem_var[4]))
+        lines.append(f"| {r['case']} | {r['p']:g} | {bem.mean():.3f} ± "
+                     f"{bem.std(ddof=1) / np.sqrt(bem.size):.3f} | {mu:.3f} | "
+                     f"{100 * err:+.0f} % | {np.mean(r['bem_A']):.3f} | "
+                     f"{float(res.samples.weight.sum()):.3f} | " + " | ".join(cells) + " |")
+    pct = [f"{100 * min(e):+.0f} to {100 * max(e):+.0f} %" for e in (errs[False], errs[True])]
+    band, above = np.array(ratios).T if ratios else (np.ones(1), np.ones(1))
+    return "\n".join(lines), {"pairs_err": pct[0], "triplet_err": pct[1],
+                              "band2": f"{band.min():.1f}–{band.max():.1f}",
+                              "above2": f"{above.min():.1f}–{above.max():.1f}"}

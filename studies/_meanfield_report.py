@@ -13,7 +13,13 @@ import rubbercontact as rc
 from rubbercontact import meanfield as mf
 from rubbercontact.roughness import SineSeries
 
-from ._meanfield_bands import bands_table, layer_table, patches_table, truncated_table
+from ._meanfield_bands import (
+    bands_table,
+    layer_table,
+    patches_table,
+    triplets_table,
+    truncated_table,
+)
 from ._meanfield_cases import (
     DIFFUSION,
     SPEEDS,
@@ -443,6 +449,7 @@ def report(rows, *, figures: Path, date: str, commit: str, wall: float, variants
     bands, bands_fields = bands_table(rows)
     trunc, trunc_fields = truncated_table(rows)
     layer, layer_fields = layer_table(rows)
+    trip_table, trip_fields = triplets_table(rows)
     scale, oracle, separation, log_area, diag_fields = diagnosis(rows)
     broad, broad_fields = broadband_table(rows)
     names = _figures(points, hyb, rows, figures)
@@ -470,6 +477,7 @@ def report(rows, *, figures: Path, date: str, commit: str, wall: float, variants
            render("meanfield", "bands_truncated", **trunc_fields), "", trunc, "",
            render("meanfield", "layer", **layer_fields), "", layer, "",
            render("meanfield", "patches"), "", patches_table(rows), "",
+           render("meanfield", "triplets", **trip_fields), "", trip_table, "",
            render("meanfield", "self_affine", t20=sa_fields["t20"], t18=sa_fields["t18"]), "",
            sa_table, "",
            render("meanfield", "broadband", sa_default=sa_fields["sa_default"],

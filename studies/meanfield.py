@@ -20,7 +20,8 @@ and for the defaults:
    and a surface whose high-slope wave is 16 times shorter than the low-slope ones.
 4. A 2D isotropic self-affine map against the 2D BEM.
 5. Where the strips' friction is off at 500 mm/s: the BEM's and the strips' dissipation and
-   pressure variance by wavenumber band on one ladder (:mod:`._meanfield_bands`).
+   pressure variance by wavenumber band on one ladder, and on its three longest waves by
+   pairs and together (:mod:`._meanfield_bands`).
 
 Each case appends one JSON line to ``--rows`` (BEM results, the loads and the surfaces);
 finished cases are skipped on a rerun. The report is rendered from the rows with the
@@ -46,7 +47,7 @@ import rubbercontact as rc
 from rubbercontact import meanfield as mf
 from rubbercontact.roughness import SineSeries
 
-from ._meanfield_bands import run_bands, run_layer, run_patches, run_truncated
+from ._meanfield_bands import run_bands, run_layer, run_patches, run_triplets, run_truncated
 from ._meanfield_cases import (
     AREAS,
     HYBRID_AREAS,
@@ -357,6 +358,7 @@ def main(argv: list[str] | None = None) -> int:
             run_truncated(args.rows, done, _key)
             run_layer(args.rows, done, _key)
             run_patches(args.rows, done, _key)
+            run_triplets(args.rows, done, _key)
         if "selfaffine" in parts:
             sizes = tuple(int(s) for s in args.selfaffine_sizes.split(",") if s)
             run_self_affine(args.rows, done, sizes)
