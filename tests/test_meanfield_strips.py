@@ -147,7 +147,7 @@ def test_bent_strip_books_its_variance_at_its_own_harmonics():
     # adds lies at the 8 mm period's harmonics n q₈ (WidthLoss); booked at the bending wave's
     # harmonics 2n q₈, the 4 mm band held twice the BEM's pressure power and the 2 and 1 mm
     # bands 26 % too little. Octave bands centred on the waves; each within 20 % of the BEM
-    # (8 realizations; measured −9 % to +13 %: the strips are Hertzian, the BEM's compound
+    # (8 realizations; measured −19 % to +13 %: the strips are Hertzian, the BEM's compound
     # crests are not).
     surf = SineSeries([8.0, 4.0], [0.2572, 0.1966])
     v, p0 = 1e-4, 0.05

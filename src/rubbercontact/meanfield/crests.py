@@ -18,6 +18,23 @@ shorter wave), with ``ψ = qc + φ``:
 * load: ``W = (πE_r a²/4) κ_eff``, ``κ_eff = κ + q²Δ cos ψ · 2J1(qa)/(qa)``
   (:func:`bending_share`).
 
+The neighbouring crest. Where ``q²Δ J0(qa) > κ`` the compound gap ``G`` has more than one
+minimum; the strip sits on the lowest, and the next one, a height ``ΔG`` higher and ``d``
+away (:func:`neighbour_crest`), comes into contact when the rubber droops onto it. Outside a
+Hertzian line contact of half-width ``a`` on a parabola ``κ`` (plane strain) the separation
+is ``(κ/2)[x√(x² − a²) − a² arccosh(x/a)]``, of slope ``κ√(x² − a²)``, i.e.
+``κx²/2 − (a²κ/2)(ln(2x/a) + ½)`` at ``x ≫ a`` (tests/test_meanfield_crests.py): the
+rubber droops at ``d`` by ``(2W/πE_r)(ln(2d/a) + ½)``, ``2W/πE_r = a²κ/2``. Two contacts
+sharing the load ``W₁ + W₂ = W`` (half-widths ``a_j = a√(W_j/W)``) are compatible when the
+droops differ by the crests' heights,
+
+.. math:: \frac{a^2κ}{2}\Big[\frac{W_1}{W}\Big(\ln\frac{2d}{a_1} + \tfrac12\Big)
+          − \frac{W_2}{W}\Big(\ln\frac{2d}{a_2} + \tfrac12\Big)\Big] = ΔG,
+
+which gives the neighbour's share ``W₂/W`` (:func:`neighbour_share`; 0 if even the whole
+load leaves a gap). Two line contacts carry the load on more area than one (each ``a_j ∝
+√W_j``): this is the area a single compound crest misses at small loads.
+
 A sliding strip is loaded in the time ``2a/v``; its modulus is ``|E_r|`` at
 ``ω = max(πv/(2a), qv)`` (:class:`StripModulus`, the rule of
 :func:`~.strips.sliding_fraction`). The wave's part of the gap is pressed at its own
@@ -27,6 +44,7 @@ of the two moduli (1 for a strip narrower than the wave).
 
 from __future__ import annotations
 
+from dataclasses import dataclass
 from functools import lru_cache
 
 import numpy as np
@@ -46,6 +64,9 @@ CREST_RANGE = (1e-4, 1e4)
 CREST_POINTS = 2000
 #: Points per decade of frequency of a strip's modulus table (:class:`StripModulus`).
 MODULUS_PER_DECADE = 100
+#: Crests searched for the two lowest minima of ``G`` (either side of the parent's), and
+#: the bisection steps of :func:`neighbour_share`.
+NEIGHBOUR_CRESTS, SHARE_BISECTIONS = 2, 40
 
 
 class StripModulus:
@@ -139,3 +160,113 @@ def crest_cosine(curvature, amplitude, wavenumber: float) -> np.ndarray:
     col = np.where(b >= 0, col, (col + PHASES // 2) % PHASES)   # A < 0: shifted by π
     value = (1 - t) * table[k, col] + t * table[k + 1, col]
     return np.where(b >= 0, value, -value)
+
+
+def _two_minima(b: np.ndarray, phase: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
+    """``(ΔG/A, q d)`` between the lowest and the next minimum of ``u²/(2b) − cos(u + φ)``
+    (``u = qc``; NaN where there is one minimum only)."""
+    gs, us = [], []
+    for k in range(-NEIGHBOUR_CRESTS, NEIGHBOUR_CRESTS + 1):
+        u = 2 * np.pi * k - phase
+        for _ in range(CREST_NEWTON):
+            g1 = u / b + np.sin(u + phase)
+            g2 = 1 / b + np.cos(u + phase)
+            u = u - np.where(g2 > 0, g1 / np.where(g2 > 0, g2, 1.0), 0.0)
+        minimum = ((1 / b + np.cos(u + phase) > 0)
+                   & (np.abs(u / b + np.sin(u + phase)) < 1e-8 * (1 + np.abs(u) / b)))
+        gs.append(np.where(minimum, 0.5 * u**2 / b - np.cos(u + phase), np.inf))
+        us.append(u)
+    gs, us = np.array(gs), np.array(us)
+    first = np.argmin(gs, axis=0)
+    g1 = np.take_along_axis(gs, first[None], 0)[0]
+    u1 = np.take_along_axis(us, first[None], 0)[0]
+    apart = np.abs(us - u1) > 0.1                   # Newton may land twice on one minimum
+    g2 = np.min(np.where(apart, gs, np.inf), axis=0)
+    u2 = np.take_along_axis(us, np.argmin(np.where(apart, gs, np.inf), axis=0)[None], 0)[0]
+    ok = np.isfinite(g2)
+    return np.where(ok, g2 - g1, np.nan), np.where(ok, np.abs(u2 - u1), np.nan)
+
+
+@lru_cache(maxsize=1)
+def _neighbour_table() -> tuple[np.ndarray, np.ndarray, np.ndarray]:
+    """``(ln b, ΔG/A, q d)`` of :func:`_two_minima` on the grid of :func:`_crest_table` ×
+    the :data:`PHASES` crest phases."""
+    lb = np.linspace(np.log(CREST_RANGE[0]), np.log(CREST_RANGE[1]), CREST_POINTS)
+    phi = 2 * np.pi * (np.arange(PHASES) + 0.5) / PHASES
+    height, distance = _two_minima(np.exp(lb)[:, None], phi[None, :])
+    return lb, height, distance
+
+
+@dataclass(frozen=True)
+class NeighbourCrest:
+    """The next crest of the compound gap, at each crest phase (NaN: none).
+
+    Attributes
+    ----------
+    height
+        ``ΔG`` [mm]: how much lower it lies than the strip's crest.
+    distance
+        ``d`` [mm] from the strip's centre.
+    """
+
+    height: np.ndarray
+    distance: np.ndarray
+
+
+def neighbour_crest(curvature, amplitude, wavenumber: float) -> NeighbourCrest:
+    """The neighbouring crest (module docstring) at the :data:`PHASES` crest phases, as
+    :func:`crest_cosine` reads the strip's own: ``curvature`` [1/mm] and ``amplitude``
+    (``Δ J0(qa)``, [mm]) broadcast to ``(samples, PHASES)``."""
+    lb, height, distance = _neighbour_table()
+    amp = np.asarray(amplitude, float)
+    b = wavenumber**2 * amp / np.asarray(curvature, float)
+    b = np.broadcast_to(b, np.broadcast(b, np.empty(PHASES)).shape)
+    x = np.log(np.clip(np.abs(b), np.exp(lb[0]), np.exp(lb[-1])))
+    step = lb[1] - lb[0]
+    k = np.clip(((x - lb[0]) / step).astype(int), 0, lb.size - 2)
+    t = (x - lb[k]) / step
+    col = np.broadcast_to(np.arange(PHASES), b.shape)
+    col = np.where(b >= 0, col, (col + PHASES // 2) % PHASES)   # A < 0: shifted by π
+
+    def read(table):
+        lo, hi = table[k, col], table[k + 1, col]
+        # where the second minimum appears between two grid points, the one that has it
+        return np.where(np.isnan(lo), hi, np.where(np.isnan(hi), lo, (1 - t) * lo + t * hi))
+
+    return NeighbourCrest(np.abs(np.broadcast_to(amp, b.shape)) * read(height),
+                          read(distance) / wavenumber)
+
+
+def neighbour_share(height, distance, half_width, curvature) -> np.ndarray:
+    """``W₂/W`` in ``[0, ½]``: the load the neighbouring crest ``height`` [mm] lower and
+    ``distance`` [mm] away takes from a strip of half-width ``a`` [mm] on the curvature
+    ``κ`` [1/mm] (module docstring; 0 where it stays out of contact or is none)."""
+    a, kappa, height, distance = (np.array(x, float) for x in np.broadcast_arrays(
+        half_width, curvature, height, distance))
+    shape = a.shape
+    a, kappa, height, distance = (x.reshape(-1) for x in (a, kappa, height, distance))
+    scale = a**2 * kappa / 2                                    # 2W/(πE_r) [mm]
+    valid = np.isfinite(height) & np.isfinite(distance) & (scale > 0)
+    valid[valid] = distance[valid] > 2 * a[valid]
+    log2d = np.log(2 * distance[valid] / a[valid])
+    # the whole load on the strip leaves the neighbour a gap: no contact
+    touches = valid.copy()
+    touches[valid] = scale[valid] * (log2d + 0.5) > height[valid]
+    out = np.zeros(a.shape)
+    if not touches.any():
+        return out.reshape(shape)
+    sc, dg = scale[touches], height[touches]
+    log2d = np.log(2 * distance[touches] / a[touches])
+
+    def excess(w2):
+        w1 = 1 - w2
+        return sc * (w1 * (log2d - 0.5 * np.log(w1) + 0.5)
+                     - w2 * (log2d - 0.5 * np.log(w2) + 0.5)) - dg
+
+    lo, hi = np.full(sc.shape, 1e-12), np.full(sc.shape, 0.5)
+    for _ in range(SHARE_BISECTIONS):
+        mid = 0.5 * (lo + hi)
+        up = excess(mid) > 0
+        lo, hi = np.where(up, mid, lo), np.where(up, hi, mid)
+    out[touches] = 0.5 * (lo + hi)
+    return out.reshape(shape)

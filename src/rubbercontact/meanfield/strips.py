@@ -90,7 +90,15 @@ import numpy as np
 from scipy.special import j0
 
 from ..materials.maxwell import GeneralizedMaxwell
-from .crests import PHASES, SMALLEST_FRACTION, StripModulus, bending_share, crest_cosine
+from .crests import (
+    PHASES,
+    SMALLEST_FRACTION,
+    StripModulus,
+    bending_share,
+    crest_cosine,
+    neighbour_crest,
+    neighbour_share,
+)
 from .patches import WidthLoss, patch_loss
 
 #: Samples across a strip (midpoint rule in the strip's angle).
@@ -292,13 +300,35 @@ class Bending:
     friction_stress: float
 
 
+def _share_load(s: Samples, share: np.ndarray, width_loss: WidthLoss
+                ) -> tuple[Samples, float]:
+    """Strips whose neighbouring crest takes the load share ``share`` become two strips
+    (:func:`~.crests.neighbour_share`) of half-widths ``a√(1 − share)`` and ``a√share``, at
+    the same curvature; the friction stress [MPa] of the variance the split removes."""
+    parts, fstress = [], 0.0
+    for frac in (1.0 - share, share):
+        keep = frac > 0
+        r = np.sqrt(frac[keep])
+        d_var = s.weight[keep] * s.pressure[keep] ** 2 * (frac[keep] ** 1.5 - frac[keep])
+        moved = share[keep] > 0
+        fstress += float(np.sum(d_var[moved] * width_loss(
+            s.wavenumber[keep][moved], s.half_width[keep][moved],
+            (s.half_width[keep] * r)[moved])))
+        parts.append(Samples(s.pressure[keep] * r, s.weight[keep] * r,
+                             s.half_width[keep] * r, s.curvature[keep], s.wavenumber[keep],
+                             s.layer[keep]))
+    return _join(parts), fstress
+
+
 def _bend(s: Samples, wave: WaveTables, modulus: StripModulus, width_loss: WidthLoss
           ) -> Bending:
     """The wave bends the crests of the strips (module docstring): at each crest phase the
     half-width solves ``a'² κ_eff(a') |E_r(a')| = a² κ |E_r(a)|``, ``κ_eff = κ + κ_i cos ψ ·
     bending_share(q_i, a') · |E_r(q_i, a')|/|E_r(a')|``, ``ψ`` the wave's phase on the
     compound crest and the moduli at the contact times (:mod:`.crests`). The variance the
-    narrowing adds dissipates at the strip's own harmonics (:class:`~.patches.WidthLoss`)."""
+    narrowing adds dissipates at the strip's own harmonics (:class:`~.patches.WidthLoss`).
+    Where the wave's neighbouring crest touches, the two share the load
+    (:func:`_share_load`)."""
     kappa0, a0, q0 = s.curvature[:, None], s.half_width[:, None], s.wavenumber[:, None]
     stiff0 = kappa0 * modulus(a0, q0)
     half = np.broadcast_to(a0, (a0.size, PHASES))
@@ -316,12 +346,15 @@ def _bend(s: Samples, wave: WaveTables, modulus: StripModulus, width_loss: Width
     q_strip = np.broadcast_to(q0, half.shape)
     fstress = float(np.sum(d_var[ok] * width_loss(q_strip[ok], np.broadcast_to(
         a0, half.shape)[ok], half[ok])))
-    bent = Samples((s.pressure[:, None] / scale)[ok], (weight * scale)[ok], half[ok],
-                   kappa[ok], np.broadcast_to(q0, half.shape)[ok],
-                   np.broadcast_to(s.layer[:, None], half.shape)[ok])
+    nb = neighbour_crest(kappa0, wave.amplitude * j0(wave.wavenumber * half) * rel,
+                         wave.wavenumber)
+    share = np.where(ok, neighbour_share(nb.height, nb.distance, half, kappa), 0.0)
+    strips = Samples((s.pressure[:, None] / scale)[ok], (weight * scale)[ok], half[ok],
+                     kappa[ok], q_strip[ok], np.broadcast_to(s.layer[:, None], half.shape)[ok])
+    bent, d_stress = _share_load(strips, share[ok], width_loss)
     split = Samples(s.pressure, s.weight * np.mean(~ok, axis=1), s.half_width, s.curvature,
                     s.wavenumber, s.layer)
-    return Bending(bent, split, fstress)
+    return Bending(bent, split, fstress + d_stress)
 
 
 def layer_compliance(pressure_ratio, wavenumber: float, modulus) -> np.ndarray:
