@@ -142,24 +142,40 @@ def _crest_table() -> tuple[np.ndarray, np.ndarray]:
     return lb, np.cos(psi)
 
 
+@dataclass(frozen=True)
+class PhaseCell:
+    """Where ``b = q²A/κ`` falls on a table's uniform grid in ``ln b``, at every crest phase:
+    the lower row ``row``, the weight ``t`` of the next and the phase column ``column``
+    (shifted by ``π`` where ``A < 0``); ``b`` itself, shape ``(samples, PHASES)``."""
+
+    row: np.ndarray
+    t: np.ndarray
+    column: np.ndarray
+    b: np.ndarray
+
+    @classmethod
+    def locate(cls, lb: np.ndarray, curvature, amplitude, wavenumber: float) -> PhaseCell:
+        b = wavenumber**2 * np.asarray(amplitude, float) / np.asarray(curvature, float)
+        b = np.broadcast_to(b, np.broadcast(b, np.empty(PHASES)).shape)
+        x = np.log(np.clip(np.abs(b), np.exp(lb[0]), np.exp(lb[-1])))
+        # one linear interpolation on the uniform grid for every phase column at once
+        # (the same numbers as np.interp column by column)
+        step = lb[1] - lb[0]
+        k = np.clip(((x - lb[0]) / step).astype(int), 0, lb.size - 2)
+        col = np.broadcast_to(np.arange(PHASES), b.shape)
+        col = np.where(b >= 0, col, (col + PHASES // 2) % PHASES)   # A < 0: shifted by π
+        return cls(k, (x - lb[k]) / step, col, b)
+
+
 def crest_cosine(curvature, amplitude, wavenumber: float) -> np.ndarray:
     """``cos ψ`` of :func:`crest_phase` at the :data:`PHASES` crest phases, read off
     :func:`_crest_table`. ``curvature`` [1/mm] and ``amplitude`` [mm] broadcast to
     ``(samples, PHASES)``, the last axis the phases; for ``A < 0`` the phase is shifted by
     ``π`` and ``cos ψ`` changes sign."""
     lb, table = _crest_table()
-    b = wavenumber**2 * np.asarray(amplitude, float) / np.asarray(curvature, float)
-    b = np.broadcast_to(b, np.broadcast(b, np.empty(PHASES)).shape)
-    x = np.log(np.clip(np.abs(b), np.exp(lb[0]), np.exp(lb[-1])))
-    # one linear interpolation on the uniform grid ``lb`` for every phase column at once
-    # (the same numbers as np.interp column by column)
-    step = lb[1] - lb[0]
-    k = np.clip(((x - lb[0]) / step).astype(int), 0, lb.size - 2)
-    t = (x - lb[k]) / step
-    col = np.broadcast_to(np.arange(PHASES), b.shape)
-    col = np.where(b >= 0, col, (col + PHASES // 2) % PHASES)   # A < 0: shifted by π
-    value = (1 - t) * table[k, col] + t * table[k + 1, col]
-    return np.where(b >= 0, value, -value)
+    c = PhaseCell.locate(lb, curvature, amplitude, wavenumber)
+    value = (1 - c.t) * table[c.row, c.column] + c.t * table[c.row + 1, c.column]
+    return np.where(c.b >= 0, value, -value)
 
 
 def _two_minima(b: np.ndarray, phase: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
@@ -218,23 +234,15 @@ def neighbour_crest(curvature, amplitude, wavenumber: float) -> NeighbourCrest:
     :func:`crest_cosine` reads the strip's own: ``curvature`` [1/mm] and ``amplitude``
     (``Δ J0(qa)``, [mm]) broadcast to ``(samples, PHASES)``."""
     lb, height, distance = _neighbour_table()
-    amp = np.asarray(amplitude, float)
-    b = wavenumber**2 * amp / np.asarray(curvature, float)
-    b = np.broadcast_to(b, np.broadcast(b, np.empty(PHASES)).shape)
-    x = np.log(np.clip(np.abs(b), np.exp(lb[0]), np.exp(lb[-1])))
-    step = lb[1] - lb[0]
-    k = np.clip(((x - lb[0]) / step).astype(int), 0, lb.size - 2)
-    t = (x - lb[k]) / step
-    col = np.broadcast_to(np.arange(PHASES), b.shape)
-    col = np.where(b >= 0, col, (col + PHASES // 2) % PHASES)   # A < 0: shifted by π
+    c = PhaseCell.locate(lb, curvature, amplitude, wavenumber)
 
     def read(table):
-        lo, hi = table[k, col], table[k + 1, col]
+        lo, hi = table[c.row, c.column], table[c.row + 1, c.column]
         # where the second minimum appears between two grid points, the one that has it
-        return np.where(np.isnan(lo), hi, np.where(np.isnan(hi), lo, (1 - t) * lo + t * hi))
+        return np.where(np.isnan(lo), hi, np.where(np.isnan(hi), lo, (1 - c.t) * lo + c.t * hi))
 
-    return NeighbourCrest(np.abs(np.broadcast_to(amp, b.shape)) * read(height),
-                          read(distance) / wavenumber)
+    amp = np.abs(np.broadcast_to(np.asarray(amplitude, float), c.b.shape))
+    return NeighbourCrest(amp * read(height), read(distance) / wavenumber)
 
 
 def neighbour_share(height, distance, half_width, curvature) -> np.ndarray:
