@@ -46,7 +46,10 @@ at the crest) acts on a strip in two ways:
   solves ``a'² κ_eff(a') |E_r(a')| = a² κ |E_r(a)|`` and the (Hertzian) pressures scale by
   ``a/a'`` (:func:`_bend`); the change in the pressure variance dissipates at the
   strip's own harmonics, those of its period, with the spectrum of the change of width
-  (:class:`~.patches.WidthLoss`). Where ``κ_eff ≤ 0`` nonetheless, the crest splits, and the
+  (:class:`~.patches.WidthLoss`). Where the wave's next crest is nearly as high as the
+  strip's, the rubber droops onto it and the two share the load, each a Hertzian strip of
+  the same curvature (:func:`~.crests.neighbour_share`, :func:`_share_load`). Where
+  ``κ_eff ≤ 0`` nonetheless, the crest splits, and the
   whole wave forms strips as below (docs/validation/meanfield.md compares this with a strip
   kept on the parent's crest);
 * the rest of the wave, of amplitude ``(1 − 2J1(q_i a)/(q_i a)) Δ_i``, forms its own strips
