@@ -13,8 +13,8 @@ shorter wave), with ``ψ = qc + φ``:
 * moment balance: ``κc + qΔ J0(qa) sin ψ = 0``, i.e. ``c`` is a stationary point of
   ``G(c) = κc²/2 − Δ J0(qa) cos(qc + φ)``, the gap seen through the Chebyshev weight
   (at ``a → 0`` the compound gap itself). The contact sits on the highest compound crest:
-  the lowest minimum of ``G`` (:func:`crest_phase`, among the three crests nearest the
-  parent's, where the parabola stands for the parent);
+  the lowest minimum of ``G`` (:func:`crest_phase`, among the crests nearest the parent's,
+  where the parabola stands for the parent);
 * load: ``W = (πE_r a²/4) κ_eff``, ``κ_eff = κ + q²Δ cos ψ · 2J1(qa)/(qa)``
   (:func:`bending_share`).
 
@@ -64,8 +64,8 @@ CREST_RANGE = (1e-4, 1e4)
 CREST_POINTS = 2000
 #: Points per decade of frequency of a strip's modulus table (:class:`StripModulus`).
 MODULUS_PER_DECADE = 100
-#: Crests searched for the two lowest minima of ``G`` (either side of the parent's), and
-#: the bisection steps of :func:`neighbour_share`.
+#: Crests searched either side of the parent's for the two lowest minima of ``G``
+#: (:func:`compound_minima`), and the bisection steps of :func:`neighbour_share`.
 NEIGHBOUR_CRESTS, SHARE_BISECTIONS = 2, 40
 
 
@@ -104,42 +104,85 @@ def bending_share(wavenumber: float, half_width) -> np.ndarray:
     return np.where(z < BESSEL_ZERO, np.where(z > 0, 2 * j1(safe) / safe, 1.0), 0.0)
 
 
+@dataclass(frozen=True)
+class CompoundMinima:
+    """The two lowest local minima of ``G/A = u²/(2b) − cos(u + φ)`` (``u = qc``, ``b =
+    q²A/κ > 0``): values ``g`` and positions ``u``; the second ``inf``/NaN where there is one
+    only."""
+
+    g1: np.ndarray
+    u1: np.ndarray
+    g2: np.ndarray
+    u2: np.ndarray
+
+
+def compound_minima(b, phase) -> CompoundMinima:
+    """Newton from the crests ``k = −``:data:`NEIGHBOUR_CRESTS` ``…`` of the cosine (the
+    parent's and its neighbours); a start that does not end on a minimum is dropped, and the
+    second minimum is the lowest one away from the first (Newton may land twice on one)."""
+    b, phase = np.broadcast_arrays(np.asarray(b, float), np.asarray(phase, float))
+    gs, us = [], []
+    for k in range(-NEIGHBOUR_CRESTS, NEIGHBOUR_CRESTS + 1):
+        u = 2 * np.pi * k - phase
+        for _ in range(CREST_NEWTON):
+            g1 = u / b + np.sin(u + phase)
+            g2 = 1 / b + np.cos(u + phase)
+            u = u - np.where(g2 > 0, g1 / np.where(g2 > 0, g2, 1.0), 0.0)
+        minimum = ((1 / b + np.cos(u + phase) > 0)
+                   & (np.abs(u / b + np.sin(u + phase)) < 1e-8 * (1 + np.abs(u) / b)))
+        gs.append(np.where(minimum, 0.5 * u**2 / b - np.cos(u + phase), np.inf))
+        us.append(u)
+    gs, us = np.array(gs), np.array(us)
+    first = np.argmin(gs, axis=0)[None]
+    g1, u1 = np.take_along_axis(gs, first, 0)[0], np.take_along_axis(us, first, 0)[0]
+    others = np.where(np.abs(us - u1) > 0.1, gs, np.inf)
+    second = np.argmin(others, axis=0)[None]
+    g2 = np.take_along_axis(others, second, 0)[0]
+    u2 = np.where(np.isfinite(g2), np.take_along_axis(us, second, 0)[0], np.nan)
+    return CompoundMinima(g1, u1, g2, u2)
+
+
 def crest_phase(curvature, amplitude, wavenumber: float, phase) -> np.ndarray:
     """The wave's phase ``ψ = qc + φ`` at the centre ``c`` of a strip on the compound crest.
 
     ``c`` minimises ``G(c) = κc²/2 − A cos(qc + φ)`` (the gap seen through the strip's
     Chebyshev weight, ``A = Δ J0(qa)``: ``G'(c) = 0`` is the strip's moment balance, module
-    docstring) among the three crests of ``A cos`` nearest the parent's (Newton from each).
-    ``curvature`` ``κ`` [1/mm], ``amplitude`` ``A`` [mm], ``wavenumber`` [rad/mm], ``phase``
-    ``φ`` [rad]; arrays broadcast.
+    docstring) among the crests of ``A cos`` nearest the parent's (:func:`compound_minima`;
+    ``A < 0`` is ``|A|`` with the phase shifted by ``π``). ``curvature`` ``κ`` [1/mm],
+    ``amplitude`` ``A`` [mm], ``wavenumber`` [rad/mm], ``phase`` ``φ`` [rad]; arrays
+    broadcast.
     """
     kappa, amp, phase = np.broadcast_arrays(np.asarray(curvature, float),
                                             np.asarray(amplitude, float),
                                             np.asarray(phase, float))
-    base = np.where(amp >= 0, 0.0, np.pi)
-    best_g = np.full(kappa.shape, np.inf)
-    best_psi = np.array(phase, float)
-    for k in (-1, 0, 1):
-        c = (base + 2 * np.pi * k - phase) / wavenumber
-        for _ in range(CREST_NEWTON):
-            g1 = kappa * c + wavenumber * amp * np.sin(wavenumber * c + phase)
-            g2 = kappa + wavenumber**2 * amp * np.cos(wavenumber * c + phase)
-            c = c - np.where(g2 > 0, g1 / np.where(g2 > 0, g2, 1.0), 0.0)
-        g = 0.5 * kappa * c**2 - amp * np.cos(wavenumber * c + phase)
-        better = g < best_g
-        best_g = np.where(better, g, best_g)
-        best_psi = np.where(better, wavenumber * c + phase, best_psi)
-    return best_psi
+    b = wavenumber**2 * np.abs(amp) / kappa
+    flat = b <= 0                                   # no wave: the parent's crest
+    m = compound_minima(np.where(flat, 1.0, b), phase + np.where(amp < 0, np.pi, 0.0))
+    return np.where(flat | ~np.isfinite(m.g1), phase, m.u1 + phase)
+
+
+@dataclass(frozen=True)
+class CrestTables:
+    """On a log grid ``ln b`` (:data:`CREST_RANGE`, :data:`CREST_POINTS`) × the
+    :data:`PHASES` crest phases: ``cos ψ`` of the strip's crest, and the neighbouring
+    crest's height ``ΔG/A`` and distance ``q d`` (NaN: none)."""
+
+    log_b: np.ndarray
+    cos_psi: np.ndarray
+    height: np.ndarray
+    distance: np.ndarray
 
 
 @lru_cache(maxsize=1)
-def _crest_table() -> tuple[np.ndarray, np.ndarray]:
-    """``cos ψ`` of :func:`crest_phase` on a log grid of ``b = q²A/κ > 0`` × the
-    :data:`PHASES` crest phases (``G/A`` depends on ``b`` and ``φ`` alone)."""
+def crest_tables() -> CrestTables:
+    """:class:`CrestTables`, computed once per process (``G/A`` depends on ``b`` and ``φ``
+    alone)."""
     lb = np.linspace(np.log(CREST_RANGE[0]), np.log(CREST_RANGE[1]), CREST_POINTS)
     phi = 2 * np.pi * (np.arange(PHASES) + 0.5) / PHASES
-    psi = crest_phase(1.0, np.exp(lb)[:, None], 1.0, phi[None, :])
-    return lb, np.cos(psi)
+    m = compound_minima(np.exp(lb)[:, None], phi[None, :])
+    found = np.isfinite(m.g2)
+    return CrestTables(lb, np.cos(m.u1 + phi[None, :]), np.where(found, m.g2 - m.g1, np.nan),
+                       np.where(found, np.abs(m.u2 - m.u1), np.nan))
 
 
 @dataclass(frozen=True)
@@ -169,48 +212,14 @@ class PhaseCell:
 
 def crest_cosine(curvature, amplitude, wavenumber: float) -> np.ndarray:
     """``cos ψ`` of :func:`crest_phase` at the :data:`PHASES` crest phases, read off
-    :func:`_crest_table`. ``curvature`` [1/mm] and ``amplitude`` [mm] broadcast to
+    :func:`crest_tables`. ``curvature`` [1/mm] and ``amplitude`` [mm] broadcast to
     ``(samples, PHASES)``, the last axis the phases; for ``A < 0`` the phase is shifted by
     ``π`` and ``cos ψ`` changes sign."""
-    lb, table = _crest_table()
-    c = PhaseCell.locate(lb, curvature, amplitude, wavenumber)
+    tables = crest_tables()
+    c = PhaseCell.locate(tables.log_b, curvature, amplitude, wavenumber)
+    table = tables.cos_psi
     value = (1 - c.t) * table[c.row, c.column] + c.t * table[c.row + 1, c.column]
     return np.where(c.b >= 0, value, -value)
-
-
-def _two_minima(b: np.ndarray, phase: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
-    """``(ΔG/A, q d)`` between the lowest and the next minimum of ``u²/(2b) − cos(u + φ)``
-    (``u = qc``; NaN where there is one minimum only)."""
-    gs, us = [], []
-    for k in range(-NEIGHBOUR_CRESTS, NEIGHBOUR_CRESTS + 1):
-        u = 2 * np.pi * k - phase
-        for _ in range(CREST_NEWTON):
-            g1 = u / b + np.sin(u + phase)
-            g2 = 1 / b + np.cos(u + phase)
-            u = u - np.where(g2 > 0, g1 / np.where(g2 > 0, g2, 1.0), 0.0)
-        minimum = ((1 / b + np.cos(u + phase) > 0)
-                   & (np.abs(u / b + np.sin(u + phase)) < 1e-8 * (1 + np.abs(u) / b)))
-        gs.append(np.where(minimum, 0.5 * u**2 / b - np.cos(u + phase), np.inf))
-        us.append(u)
-    gs, us = np.array(gs), np.array(us)
-    first = np.argmin(gs, axis=0)
-    g1 = np.take_along_axis(gs, first[None], 0)[0]
-    u1 = np.take_along_axis(us, first[None], 0)[0]
-    apart = np.abs(us - u1) > 0.1                   # Newton may land twice on one minimum
-    g2 = np.min(np.where(apart, gs, np.inf), axis=0)
-    u2 = np.take_along_axis(us, np.argmin(np.where(apart, gs, np.inf), axis=0)[None], 0)[0]
-    ok = np.isfinite(g2)
-    return np.where(ok, g2 - g1, np.nan), np.where(ok, np.abs(u2 - u1), np.nan)
-
-
-@lru_cache(maxsize=1)
-def _neighbour_table() -> tuple[np.ndarray, np.ndarray, np.ndarray]:
-    """``(ln b, ΔG/A, q d)`` of :func:`_two_minima` on the grid of :func:`_crest_table` ×
-    the :data:`PHASES` crest phases."""
-    lb = np.linspace(np.log(CREST_RANGE[0]), np.log(CREST_RANGE[1]), CREST_POINTS)
-    phi = 2 * np.pi * (np.arange(PHASES) + 0.5) / PHASES
-    height, distance = _two_minima(np.exp(lb)[:, None], phi[None, :])
-    return lb, height, distance
 
 
 @dataclass(frozen=True)
@@ -233,8 +242,8 @@ def neighbour_crest(curvature, amplitude, wavenumber: float) -> NeighbourCrest:
     """The neighbouring crest (module docstring) at the :data:`PHASES` crest phases, as
     :func:`crest_cosine` reads the strip's own: ``curvature`` [1/mm] and ``amplitude``
     (``Δ J0(qa)``, [mm]) broadcast to ``(samples, PHASES)``."""
-    lb, height, distance = _neighbour_table()
-    c = PhaseCell.locate(lb, curvature, amplitude, wavenumber)
+    tables = crest_tables()
+    c = PhaseCell.locate(tables.log_b, curvature, amplitude, wavenumber)
 
     def read(table):
         lo, hi = table[c.row, c.column], table[c.row + 1, c.column]
@@ -242,7 +251,7 @@ def neighbour_crest(curvature, amplitude, wavenumber: float) -> NeighbourCrest:
         return np.where(np.isnan(lo), hi, np.where(np.isnan(hi), lo, (1 - c.t) * lo + c.t * hi))
 
     amp = np.abs(np.broadcast_to(np.asarray(amplitude, float), c.b.shape))
-    return NeighbourCrest(amp * read(height), read(distance) / wavenumber)
+    return NeighbourCrest(amp * read(tables.height), read(tables.distance) / wavenumber)
 
 
 def neighbour_share(height, distance, half_width, curvature) -> np.ndarray:
