@@ -258,22 +258,13 @@ def neighbour_share(height, distance, half_width, curvature) -> np.ndarray:
     """``W₂/W`` in ``[0, ½]``: the load the neighbouring crest ``height`` [mm] lower and
     ``distance`` [mm] away takes from a strip of half-width ``a`` [mm] on the curvature
     ``κ`` [1/mm] (module docstring; 0 where it stays out of contact or is none)."""
-    a, kappa, height, distance = (np.array(x, float) for x in np.broadcast_arrays(
-        half_width, curvature, height, distance))
-    shape = a.shape
-    a, kappa, height, distance = (x.reshape(-1) for x in (a, kappa, height, distance))
+    shape = np.broadcast(half_width, curvature, height, distance).shape
+    a, kappa, height, distance = (np.array(x, float).reshape(-1) for x in
+                                  np.broadcast_arrays(half_width, curvature, height, distance))
     scale = a**2 * kappa / 2                                    # 2W/(πE_r) [mm]
-    valid = np.isfinite(height) & np.isfinite(distance) & (scale > 0)
-    valid[valid] = distance[valid] > 2 * a[valid]
-    log2d = np.log(2 * distance[valid] / a[valid])
-    # the whole load on the strip leaves the neighbour a gap: no contact
-    touches = valid.copy()
-    touches[valid] = scale[valid] * (log2d + 0.5) > height[valid]
-    out = np.zeros(a.shape)
-    if not touches.any():
-        return out.reshape(shape)
-    sc, dg = scale[touches], height[touches]
-    log2d = np.log(2 * distance[touches] / a[touches])
+    with np.errstate(invalid="ignore"):                          # NaN: no neighbour
+        idx = np.flatnonzero((scale > 0) & (distance > 2 * a) & np.isfinite(height))
+    sc, dg, log2d = scale[idx], height[idx], np.log(2 * distance[idx] / a[idx])
 
     def excess(w2):
         w1 = 1 - w2
@@ -281,9 +272,11 @@ def neighbour_share(height, distance, half_width, curvature) -> np.ndarray:
                      - w2 * (log2d - 0.5 * np.log(w2) + 0.5)) - dg
 
     lo, hi = np.full(sc.shape, 1e-12), np.full(sc.shape, 0.5)
+    touches = excess(lo) > 0            # else the whole load on the strip leaves a gap
     for _ in range(SHARE_BISECTIONS):
         mid = 0.5 * (lo + hi)
         up = excess(mid) > 0
         lo, hi = np.where(up, mid, lo), np.where(up, hi, mid)
-    out[touches] = 0.5 * (lo + hi)
+    out = np.zeros(a.shape)
+    out[idx] = np.where(touches, 0.5 * (lo + hi), 0.0)
     return out.reshape(shape)
