@@ -74,6 +74,17 @@ def pressure_power(pressure: np.ndarray, period: float) -> tuple[np.ndarray, np.
     return k, power
 
 
+def band_power(solves, period: float, edges: np.ndarray, weight=None) -> np.ndarray:
+    """The pressure variance [MPa²] of each band of ``edges`` [rad/mm], averaged over the
+    solves (each mode weighted by ``weight(k)`` if given, e.g. the loss)."""
+    out = np.zeros(edges.size - 1)
+    for res in solves:
+        k, power = pressure_power(res.pressure, period)
+        w = power if weight is None else power * weight(k)
+        out += np.bincount(np.digitize(k, edges) - 1, w, edges.size - 1) / len(solves)
+    return out
+
+
 def _bem_solves(surf, row: dict) -> tuple[float, list]:
     """The load of the diffusion's ``row["target"]`` contact fraction at ``row["v"]`` and
     the BEM's solves of :data:`REALIZATIONS` random-phase realizations there."""
@@ -92,16 +103,11 @@ def run_bands(rows_path: Path, done: set, key) -> None:
     for row in (r for r in rows if key(r) not in done):
         v = row["v"]
         p, solves = _bem_solves(surf, row)
-        diss, var, mus, areas = np.zeros(edges.size - 1), np.zeros(edges.size - 1), [], []
-        for res in solves:
-            mus.append(res.friction)
-            areas.append(res.contact_fraction)
-            k, power = pressure_power(res.pressure, surf.period)
-            idx = np.digitize(k, edges) - 1
-            var += np.bincount(idx, power, edges.size - 1) / REALIZATIONS
-            diss += np.bincount(idx, power * _loss(k, v), edges.size - 1) / p / REALIZATIONS
-        row.update(p=p, R=REALIZATIONS, surface=surf.as_dict(), bem_mu=mus, bem_A=areas,
-                   band_diss=diss.tolist(), band_var=var.tolist())
+        diss = band_power(solves, surf.period, edges, lambda k, v=v: _loss(k, v)) / p
+        row.update(p=p, R=REALIZATIONS, surface=surf.as_dict(),
+                   bem_mu=[res.friction for res in solves],
+                   bem_A=[res.contact_fraction for res in solves], band_diss=diss.tolist(),
+                   band_var=band_power(solves, surf.period, edges).tolist())
         append_row(rows_path, row)
 
 
@@ -121,16 +127,11 @@ def run_truncated(rows_path: Path, done: set, key) -> None:
         idx = np.sort(order[:k])
         surf = rc.roughness.SineSeries(np.asarray(full.wavelengths)[idx],
                                        np.asarray(full.amplitudes)[idx])
-        edges = band_edges(np.sort(full.wavenumbers))
-        var, areas = np.zeros(edges.size - 1), []
-        for r in surf.realizations(REALIZATIONS, SEED):
-            res = rc.halfspace.solve_sliding(r, full.period, SBR, v, p, n=N)
-            areas.append(res.contact_fraction)
-            kk, power = pressure_power(res.pressure, full.period)
-            var += np.bincount(np.digitize(kk, edges) - 1, power,
-                               edges.size - 1) / REALIZATIONS
-        row.update(p=p, R=REALIZATIONS, surface=surf.as_dict(), bem_A=areas,
-                   band_var=var.tolist())
+        solves = [rc.halfspace.solve_sliding(r, full.period, SBR, v, p, n=N)
+                  for r in surf.realizations(REALIZATIONS, SEED)]
+        var = band_power(solves, full.period, band_edges(np.sort(full.wavenumbers)))
+        row.update(p=p, R=REALIZATIONS, surface=surf.as_dict(),
+                   bem_A=[res.contact_fraction for res in solves], band_var=var.tolist())
         append_row(rows_path, row)
 
 
@@ -363,16 +364,13 @@ def run_triplets(rows_path: Path, done: set, key) -> None:
                    "v": v, "target": p, "n": N}
             if key(row) in done:
                 continue
-            surf, var, solves = _triplet_surface(keep), np.zeros(edges.size - 1), []
-            for r in surf.realizations(REALIZATIONS, SEED):
-                res = rc.halfspace.solve_sliding(r, 8.0, SBR, v, p, n=N)
-                solves.append(res)
-                kk, power = pressure_power(res.pressure, 8.0)
-                var += np.bincount(np.digitize(kk, edges) - 1, power,
-                                   edges.size - 1) / REALIZATIONS
+            surf = _triplet_surface(keep)
+            solves = [rc.halfspace.solve_sliding(r, 8.0, SBR, v, p, n=N)
+                      for r in surf.realizations(REALIZATIONS, SEED)]
             row.update(p=p, R=REALIZATIONS, surface=surf.as_dict(),
                        bem_mu=[res.friction for res in solves],
-                       bem_A=[res.contact_fraction for res in solves], band_var=var.tolist())
+                       bem_A=[res.contact_fraction for res in solves],
+                       band_var=band_power(solves, 8.0, edges).tolist())
             append_row(rows_path, row)
 
 

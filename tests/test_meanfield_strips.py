@@ -28,7 +28,7 @@ from rubbercontact.meanfield.strips import (
 from rubbercontact.roughness import SineSeries
 
 sys.path.insert(0, str(Path(__file__).resolve().parents[1]))   # the repository's studies/
-from studies._meanfield_bands import pressure_power, strip_bands  # noqa: E402
+from studies._meanfield_bands import band_power, pressure_power, strip_bands  # noqa: E402
 
 SBR = rc.materials.sbr()
 ELASTIC = rc.materials.GeneralizedMaxwell.elastic(4.17)
@@ -153,11 +153,8 @@ def test_bent_strip_books_its_variance_at_its_own_harmonics():
     v, p0 = 1e-4, 0.05
     q = 2 * np.pi / np.array([8.0, 4.0, 2.0, 1.0])
     edges = np.concatenate([[0.0], q * 2**-0.5, [q[-1] * 2**0.5, np.inf]])
-    bem = np.zeros(edges.size - 1)
-    for r in surf.realizations(8, 1):
-        res = rc.halfspace.solve_sliding(r, 8.0, SBR, v, p0, n=8192)
-        k, power = pressure_power(res.pressure, 8.0)
-        bem += np.bincount(np.digitize(k, edges) - 1, power, edges.size - 1) / 8
+    bem = band_power([rc.halfspace.solve_sliding(r, 8.0, SBR, v, p0, n=8192)
+                      for r in surf.realizations(8, 1)], 8.0, edges)
     strips = strip_bands(surf, v, p0, edges, unit=True)
     np.testing.assert_allclose(strips[1:5], bem[1:5], rtol=0.2)
 

@@ -93,3 +93,25 @@ def test_contact_patches_counts_intervals_across_the_period_edge():
     np.testing.assert_allclose(widths, [0.3, 0.7, 1.0])
     np.testing.assert_allclose(contact_patches(np.ones(8), 2.0), [2.0])
     assert contact_patches(np.zeros(8), 2.0).size == 0
+
+
+def test_band_power_splits_the_pressure_variance_by_wavenumber():
+    # studies/_meanfield_bands.band_power: Parseval — the bands add up to the variance of
+    # the pressure (mean over the solves), and a pure harmonic lands in its own band whole
+    from types import SimpleNamespace
+
+    from studies._meanfield_bands import band_power
+
+    period, n = 8.0, 1024
+    x = np.arange(n) * period / n
+    k3 = 2 * np.pi * 3 / period
+    solves = [SimpleNamespace(pressure=1.0 + 0.5 * np.cos(k3 * x + ph) + 0.2 * np.sin(
+        2 * np.pi * 40 * x / period)) for ph in (0.0, 1.0)]
+    edges = np.array([0.0, 0.5 * k3, 2 * k3, np.inf])
+    bands = band_power(solves, period, edges)
+    assert bands.sum() == pytest.approx(np.mean([np.var(s.pressure) for s in solves]),
+                                        rel=1e-12)
+    np.testing.assert_allclose(bands, [0.0, 0.125, 0.02], atol=1e-12)
+    # a weight per wavenumber multiplies each mode's power
+    assert band_power(solves, period, edges, lambda k: 2.0 * (k > 0))[1] == \
+        pytest.approx(0.25, rel=1e-12)
