@@ -16,6 +16,7 @@ from rubbercontact.errors import InputError
 from rubbercontact.meanfield.patches import (
     WidthLoss,
     harmonic_fractions,
+    hertz_spectrum,
     patch_loss,
     westergaard_fraction,
     westergaard_pressure,
@@ -63,6 +64,9 @@ def test_small_patches_have_the_hertzian_line_spectrum():
     h = harmonic_fractions(r)[:50]
     ref = (j1(n * np.pi * r) / (n * j1(np.pi * r))) ** 2
     assert h / h[0] == pytest.approx(ref, rel=2e-2)
+    # the spectrum WidthLoss uses, against the same FFT of Westergaard's patch
+    assert h / h[0] == pytest.approx(hertz_spectrum(n * np.pi * r)
+                                     / hertz_spectrum(np.pi * r), rel=2e-2)
 
 
 @pytest.mark.parametrize("v", [1.0, 500.0])
