@@ -198,10 +198,9 @@ class WidthLoss:
     .. math:: \frac{Σ_n [F(nqa') − F(nqa)]\,(−2\,\mathrm{Im}[1/E_r(nqv)])}
                     {Σ_n [F(nqa') − F(nqa)]}.
 
-    Booking it at the harmonics of the wave that bends the strip instead put twice the BEM's
-    pressure power in that wave's band (tests/test_meanfield_strips.py). Tabulated once per
-    cascade on a grid of ``qa`` and ``q``; the harmonic sum is log-binned above
-    :data:`COMB_EXACT`.
+    (docs/validation/meanfield.md compares it with booking it at the harmonics of the wave
+    that bends the strip.) Tabulated once per cascade on a grid of ``qa`` and ``q``; the
+    harmonic sum is log-binned above :data:`COMB_EXACT`.
     """
 
     def __init__(self, material: GeneralizedMaxwell, velocity: float, nu: float,
