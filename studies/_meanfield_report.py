@@ -57,6 +57,11 @@ def _rng(e: np.ndarray) -> str:
     return f"{_pct(e.mean())} [{_pct(e.min())}, {_pct(e.max())}]" if e.size else "–"
 
 
+def _se(values) -> float:
+    """Standard error of the mean of the BEM's realizations (NaN for one)."""
+    return np.std(values, ddof=1) / np.sqrt(len(values)) if len(values) > 1 else np.nan
+
+
 def _points(rows, options: mf.MeanFieldOptions | None = None) -> list[dict]:
     """Every 1D row with the theory's μ and A and the BEM means (and standard errors)."""
     out = []
@@ -65,10 +70,9 @@ def _points(rows, options: mf.MeanFieldOptions | None = None) -> list[dict]:
             continue
         res = mf.solve(_psd(r), SBR, r["v"], r["p"], options=options)
         mu, area = np.mean(r["bem_mu"]), np.mean(r["bem_A"])
-        se = np.std(r["bem_mu"], ddof=1) / np.sqrt(len(r["bem_mu"])) if len(r["bem_mu"]) > 1 \
-            else np.nan
         out.append({**r, "mf_mu": res.friction, "mf_A": res.contact_fraction, "mu": mu,
-                    "A": area, "mu_se": se, "e_mu": res.friction / mu - 1,
+                    "A": area, "mu_se": _se(r["bem_mu"]), "A_se": _se(r["bem_A"]),
+                    "e_mu": res.friction / mu - 1,
                     "e_A": res.contact_fraction / area - 1,
                     "in_range": A_RANGE[0] <= area <= A_RANGE[1]})
     return out
@@ -93,6 +97,13 @@ def _choices_table(rows, variants) -> str:
 
 def _ok(p: dict) -> bool:
     return abs(p["e_mu"]) <= TARGET and abs(p["e_A"]) <= TARGET
+
+
+def _ok_sampled(p: dict) -> bool:
+    """Within the target of the BEM's ensemble mean, given that the mean is known to its
+    standard error only: ``|error| ≤ 15 % + 2 s.e.`` (relative) in μ and in A."""
+    return (abs(p["e_mu"]) <= TARGET + 2 * p["mu_se"] / p["mu"]
+            and abs(p["e_A"]) <= TARGET + 2 * p["A_se"] / p["A"])
 
 
 def _validation_table(points, old) -> str:
@@ -125,17 +136,22 @@ def _validation_table(points, old) -> str:
 def _share_table(points, old) -> tuple[str, dict]:
     """Random-ladder points with μ and A within 15 %, by speed: previous default and
     default."""
-    lines = ["| v [mm/s] | points | previous default (diffusion) | default (strips) |",
-             "|---|---|---|---|"]
+    lines = ["| v [mm/s] | points | BEM realizations | previous default (diffusion) | "
+             "default (strips) | default, within 15 % + 2 s.e. of the BEM mean |",
+             "|---|---|---|---|---|---|"]
     fields = {}
     for v in (*SPEEDS, None):
         sel = [[p for p in pts if _is_random(p["case"]) and p["in_range"]
                 and (v is None or p["v"] == v)] for pts in (old, points)]
         shares = [np.mean([_ok(p) for p in s]) for s in sel]
+        sampled = np.mean([_ok_sampled(p) for p in sel[1]])
         label = "all" if v is None else f"{v:g}"
-        lines.append(f"| {label} | {len(sel[1])} | {shares[0]:.0%} | {shares[1]:.0%} |")
+        reals = sorted({len(p["bem_mu"]) for p in sel[1]})
+        lines.append(f"| {label} | {len(sel[1])} | {'/'.join(map(str, reals))} | "
+                     f"{shares[0]:.0%} | {shares[1]:.0%} | {sampled:.0%} |")
         fields[f"share_{label}"] = f"{shares[1]:.0%}"
         fields[f"share_old_{label}"] = f"{shares[0]:.0%}"
+        fields[f"share_sampled_{label}"] = f"{sampled:.0%}"
     return "\n".join(lines), fields
 
 
