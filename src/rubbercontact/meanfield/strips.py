@@ -55,7 +55,11 @@ at the crest) acts on a strip in two ways:
 * the rest of the wave, of amplitude ``(1 − 2J1(q_i a)/(q_i a)) Δ_i``, forms its own strips
   at the local pressure, Westergaard's (scale separation, Archard's picture with the exact
   sine at each step); its pressure variance is added at the loss of the strips' harmonics
-  (:func:`~.patches.patch_loss` at the strips' fraction).
+  (:func:`~.patches.patch_loss` at the strips' fraction);
+* those strips lift the rubber (Westergaard's mean gap), and the wave's crests just outside
+  the strip, where the strip's own separation is small, come into contact and take a share
+  of its load (:mod:`.outer`, :func:`_outer_crests`): the contact leaves the longer wave's
+  strip, as in the BEM on octave ladders.
 
 The bending is what a mean-field theory driven by ``G`` alone cannot have: waves an
 octave apart make compound crests whose area depends on the spectrum's breadth.
@@ -102,6 +106,7 @@ from .crests import (
     neighbour_crest,
     neighbour_share,
 )
+from .outer import outer_load
 from .patches import WidthLoss, patch_loss
 
 #: Samples across a strip (midpoint rule in the strip's angle).
@@ -267,6 +272,22 @@ class WaveStep:
     friction_stress: float
 
 
+def _westergaard_samples(p_star: np.ndarray, fraction: np.ndarray, weight: np.ndarray,
+                         wave: WaveTables, curvature: np.ndarray) -> Samples:
+    """Strips of ``wave`` in partial contact (fractions ``r < 1``, ``p*`` [MPa] at their
+    modulus): :data:`STRIP_SAMPLES` pressures across each, their weights ``weight · r``."""
+    t = (np.arange(STRIP_SAMPLES) + 0.5) / STRIP_SAMPLES
+    alpha = np.pi * fraction[:, None]
+    theta = alpha * t
+    pressure = 2 * p_star[:, None] * np.cos(theta / 2) * np.sqrt(
+        np.maximum(np.sin(alpha / 2) ** 2 - np.sin(theta / 2) ** 2, 0.0))
+    rep = np.ones(STRIP_SAMPLES)
+    return Samples(pressure.ravel(), np.outer(weight * fraction, rep / STRIP_SAMPLES).ravel(),
+                   np.outer(fraction * np.pi / wave.wavenumber, rep).ravel(),
+                   np.outer(curvature, rep).ravel(), np.full(pressure.size, wave.wavenumber),
+                   np.zeros(pressure.size))
+
+
 def _form_strips(s: Samples, wave: WaveTables, residual: np.ndarray) -> WaveStep:
     """The wave, of amplitude ``residual · Δ_i`` here, forms its strips at each sample's
     local pressure (module docstring)."""
@@ -279,19 +300,70 @@ def _form_strips(s: Samples, wave: WaveTables, residual: np.ndarray) -> WaveStep
     t = (np.arange(STRIP_SAMPLES) + 0.5) / STRIP_SAMPLES
     rep = np.ones(STRIP_SAMPLES)
     p_full = s.pressure[full, None] + p_star[full, None] * np.cos(np.pi * t)
-    alpha = np.pi * st.fraction[~full, None]
-    theta = alpha * t
-    p_part = 2 * p_star[~full, None] * np.cos(theta / 2) * np.sqrt(
-        np.maximum(np.sin(alpha / 2) ** 2 - np.sin(theta / 2) ** 2, 0.0))
-    lam = 2 * np.pi / wave.wavenumber
     kept = Samples(p_full.ravel(), np.outer(s.weight[full], rep / STRIP_SAMPLES).ravel(),
                    *(np.outer(getattr(s, name)[full], rep).ravel() for name in FIELDS[2:]))
-    formed = Samples(p_part.ravel(),
-                     np.outer(s.weight[~full] * st.fraction[~full], rep / STRIP_SAMPLES).ravel(),
-                     np.outer(st.fraction[~full] * lam / 2, rep).ravel(),
-                     np.outer(wave.curvature * residual[~full], rep).ravel(),
-                     np.full(p_part.size, wave.wavenumber), np.zeros(p_part.size))
+    formed = _westergaard_samples(p_star[~full], st.fraction[~full], s.weight[~full], wave,
+                                  wave.curvature * residual[~full])
     return WaveStep(_join([kept, formed]), fstress)
+
+
+def _outer_crests(s: Samples, wave: WaveTables, residual: np.ndarray, modulus: StripModulus,
+                  width_loss: WidthLoss) -> OuterStep:
+    """The wave's crests just outside the strips take a share ``F`` of their load
+    (:func:`~.outer.outer_load`): the strips' pressures scale by ``1 − F``, the variance they
+    lose coming off their own harmonics, and the outer crests carry the load as strips of
+    the whole wave at the mean load ratio ``x̄``, their variance at the wave's strips' loss.
+    Returns the strips and, as ``outer``, the outer crests' strips."""
+    none = OuterStep(s, s.subset(np.zeros(s.weight.size, bool)), 0.0)
+    stripped = s.half_width < NO_STRIP
+    if not stripped.any():
+        return none
+    a = np.where(stripped, s.half_width, 1.0)
+    fraction = np.clip(a * s.wavenumber / np.pi, SMALLEST_FRACTION, 1.0)
+    amp = s.curvature / s.wavenumber**2
+    # the strip's mean contact pressure (Westergaard at its fraction, its contact-time modulus)
+    contact = (np.sin(np.pi * fraction / 2) ** 2 * s.wavenumber * amp * modulus(a, s.wavenumber)
+               / (2 * fraction))
+    load = outer_load(a, s.wavenumber, amp, contact, wave.wavenumber, wave.amplitude,
+                      np.where(stripped, residual, 0.0), wave.p_star)
+    share = np.where(stripped, load.share, 0.0)
+    touch = share > 0
+    if not touch.any():
+        return none
+    kept = Samples(s.pressure * (1 - share), *(getattr(s, name) for name in FIELDS[1:]))
+    d_var = s.weight[touch] * s.pressure[touch] ** 2 * ((1 - share[touch]) ** 2 - 1)
+    fstress = float(np.sum(d_var * width_loss(s.wavenumber[touch], a[touch], a[touch])))
+    st = wave.at(load.ratio[touch])
+    p_star = wave.p_star * st.stiffening
+    # contact per unit load of a strip at x̄: r/(x̄ p*)
+    moved = s.weight[touch] * s.pressure[touch] * share[touch]
+    outer = _westergaard_samples(p_star, st.fraction, moved / (load.ratio[touch] * wave.p_star),
+                                 wave, np.full(st.fraction.size, wave.curvature))
+    fstress += float(np.sum(outer.weight * outer.pressure**2
+                            * wave.loss_at(np.repeat(st.fraction, STRIP_SAMPLES))))
+    return OuterStep(kept, outer, fstress)
+
+
+@dataclass(frozen=True)
+class OuterStep:
+    """The strips, their load less the outer crests' (``strips``), the outer crests' strips
+    (``outer``) and the friction stress [MPa] of the move."""
+
+    strips: Samples
+    outer: Samples
+    friction_stress: float
+
+
+def _wave_on(s: Samples, wave: WaveTables, residual: np.ndarray, modulus: StripModulus,
+             width_loss: WidthLoss) -> WaveStep:
+    """A wave (its share ``residual`` not bending the strips) on the samples: the strips
+    widen on its layer (:func:`_soften`), its crests outside them take their share
+    (:func:`_outer_crests`), and it forms its strips inside (:func:`_form_strips`)."""
+    soft = _soften(s, wave, residual, modulus, width_loss)
+    outer = _outer_crests(soft.samples, wave, residual, modulus, width_loss)
+    formed = _form_strips(outer.strips, wave, residual)
+    return WaveStep(_join([formed.samples, outer.outer]), soft.friction_stress
+                    + outer.friction_stress + formed.friction_stress)
 
 
 @dataclass(frozen=True)
@@ -471,14 +543,10 @@ def strip_contact(wavenumbers, amplitudes, material: GeneralizedMaxwell, velocit
         bent = _rebin(bend.bent) if bend.bent.weight.size else bend.bent
         rest = _join([s.subset(~stripped), bend.split])
         residual = 1.0 - bending_share(q[i], bent.half_width)
-        soft_bent = _soften(bent, wave, residual, modulus, width_loss)
-        soft_rest = _soften(rest, wave, np.ones(rest.weight.size), modulus, width_loss)
-        step_bent = _form_strips(soft_bent.samples, wave, residual)
-        step_rest = _form_strips(soft_rest.samples, wave, np.ones(rest.weight.size))
-        s = _rebin(_join([step_bent.samples, step_rest.samples]))
+        steps = [_wave_on(bent, wave, residual, modulus, width_loss),
+                 _wave_on(rest, wave, np.ones(rest.weight.size), modulus, width_loss)]
+        s = _rebin(_join([st.samples for st in steps]))
         area.append(float(s.weight.sum()))
-        fstress.append(bend.friction_stress + soft_bent.friction_stress
-                       + soft_rest.friction_stress + step_bent.friction_stress
-                       + step_rest.friction_stress)
+        fstress.append(bend.friction_stress + sum(st.friction_stress for st in steps))
     inverse = np.argsort(order)
     return StripContact(np.array(area)[inverse], np.array(fstress)[inverse], s)
