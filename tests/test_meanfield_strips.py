@@ -18,13 +18,8 @@ import rubbercontact as rc
 from rubbercontact import meanfield as mf
 from rubbercontact.errors import InputError
 from rubbercontact.meanfield.patches import westergaard_fraction, westergaard_pressure
-from rubbercontact.meanfield.strips import (
-    bending_share,
-    layer_compliance,
-    sliding_fraction,
-    strip_contact,
-    westergaard_variance,
-)
+from rubbercontact.meanfield.sine import sliding_fraction, westergaard_variance
+from rubbercontact.meanfield.strips import bending_share, layer_compliance, strip_contact
 from rubbercontact.roughness import SineSeries
 
 sys.path.insert(0, str(Path(__file__).resolve().parents[1]))   # the repository's studies/

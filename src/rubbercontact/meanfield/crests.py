@@ -37,7 +37,7 @@ load leaves a gap). Two line contacts carry the load on more area than one (each
 
 A sliding strip is loaded in the time ``2a/v``; its modulus is ``|E_r|`` at
 ``ω = max(πv/(2a), qv)`` (:class:`StripModulus`, the rule of
-:func:`~.strips.sliding_fraction`). The wave's part of the gap is pressed at its own
+:func:`~.sine.sliding_fraction`). The wave's part of the gap is pressed at its own
 frequency where the strip is wider than the wave, so its term in ``κ_eff`` carries the ratio
 of the two moduli (1 for a strip narrower than the wave).
 """
