@@ -93,6 +93,22 @@ def test_three_octave_waves_at_500_mm_s_against_the_bem():
     se = area.std(ddof=1) / np.sqrt(area.size)
     assert res.friction == pytest.approx(mu.mean(), rel=0.08)
     assert res.contact_fraction == pytest.approx(area.mean(), rel=0.10 + 2 * se / area.mean())
+    nested = mf.solve(mf.PSD.from_sines(surf), SBR, 500.0, 0.4,
+                      options=mf.MeanFieldOptions(geometry="nested-strips"))
+    assert nested.friction > 1.1 * mu.mean()
+    assert nested.inputs["geometry"] == "nested-strips"
+
+
+def test_one_wave_has_no_outer_crests():
+    # a single sine is Westergaard's exactly: nothing outside its strips, the two geometries
+    # agree to rounding
+    surf = SineSeries([1.0], [0.06])
+    for v in (1.0, 500.0):
+        a, b = (mf.solve(mf.PSD.from_sines(surf), SBR, v, 0.05,
+                         options=mf.MeanFieldOptions(geometry=g))
+                for g in ("strips", "nested-strips"))
+        assert a.friction == pytest.approx(b.friction, rel=1e-12)
+        assert a.contact_fraction == pytest.approx(b.contact_fraction, rel=1e-12)
 
 
 def test_octave_ladder_at_500_mm_s_and_a_small_load_against_the_bem():

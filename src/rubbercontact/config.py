@@ -193,10 +193,11 @@ class MeanFieldConfig(_Strict):
                             "wavenumber (mode, Persson), at the harmonics of its contact "
                             "patches (patch, cascade); auto: patch for a measured (continuous "
                             "1D) spectrum, mode for sine series")
-    geometry: Literal["auto", "diffusion", "strips"] = Field(
+    geometry: Literal["auto", "diffusion", "strips", "nested-strips"] = Field(
         "auto", description="the contact's geometry: Persson's diffusion, or the cascade of "
                             "Westergaard strips of a 1D sine series (auto: strips for sine "
-                            "series without a law)")
+                            "series without a law; nested-strips keeps each wave's contact "
+                            "inside the longer waves' strips, for comparison)")
     interface: Literal["law", "rigid"] = Field(
         "law", description="meanfield-hybrid: the law's compliance in series with the "
                            "half-space, or a rigid low-slope contact")

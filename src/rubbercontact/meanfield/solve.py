@@ -41,7 +41,9 @@ from .strips import StripContact, strip_contact
 
 #: ``dissipation="auto"`` on a sine series (docs/validation/meanfield.md).
 AUTO_DISSIPATION_SINES = "mode"
-GEOMETRIES = ("auto", "diffusion", "strips")
+GEOMETRIES = ("auto", "diffusion", "strips", "nested-strips")
+#: The geometries of the strip cascade (:mod:`.strips`).
+STRIP_GEOMETRIES = ("strips", "nested-strips")
 #: Bins of the strip cascade's pressure histogram (:attr:`MeanFieldResult.pressure_distribution`).
 HISTOGRAM_BINS = 200
 
@@ -55,10 +57,12 @@ def _friction_stress(resp, g, psd: PSD, material, velocity, nu, kind: str) -> np
                                                material, velocity, nu)
 
 
-def _strips(psd: PSD, material, velocity: float, sigma0: float, nu: float) -> StripContact:
-    """The strip cascade on the spectrum's nodes (one wave each, amplitude ``√(2 v_i)``)."""
+def _strips(psd: PSD, material, velocity: float, sigma0: float, nu: float,
+            geometry: str) -> StripContact:
+    """The strip cascade on the spectrum's nodes (one wave each, amplitude ``√(2 v_i)``);
+    ``geometry="nested-strips"`` keeps every wave's contact inside the longer waves' strips."""
     return strip_contact(psd.wavenumbers, np.sqrt(2.0 * psd.variances), material, velocity,
-                         sigma0, nu)
+                         sigma0, nu, outer_crests=geometry == "strips")
 
 
 def _histogram(strips: StripContact, g: float, sigma0: float, q: np.ndarray
@@ -94,9 +98,12 @@ class MeanFieldOptions:
     geometry
         The contact's geometry: ``"auto"`` (default: ``"strips"`` for a 1D sine series
         without a law, ``"diffusion"`` otherwise), ``"diffusion"`` (Persson's
-        ``P(σ)``, :mod:`.contact`) or ``"strips"`` (the cascade of Westergaard strips of
+        ``P(σ)``, :mod:`.contact`), ``"strips"`` (the cascade of Westergaard strips of
         :mod:`.strips`, which gives the area and the friction of a 1D sine series; the
-        options ``correction``, ``weighting`` and ``dissipation`` are then not used).
+        options ``correction``, ``weighting`` and ``dissipation`` are then not used) or
+        ``"nested-strips"`` (the same cascade with each wave's contact kept inside the
+        longer waves' strips, no outer crests, :mod:`.outer`: the previous default, for
+        comparison).
     interface
         With a law: ``"law"`` (default: the law's compliance in series with the
         half-space, :mod:`.enriched`) or ``"rigid"`` (hard-wall low-slope contact).
@@ -147,9 +154,9 @@ class MeanFieldOptions:
         strips_apply = psd.dimension == 1 and psd.waves is not None and not law
         if self.geometry == "auto":
             return "strips" if strips_apply else "diffusion"
-        if self.geometry == "strips" and not strips_apply:
-            raise InputError("geometry='strips': needs a 1D sine series (PSD.from_sines) and "
-                             "no law; use 'diffusion'")
+        if self.geometry in STRIP_GEOMETRIES and not strips_apply:
+            raise InputError(f"geometry={self.geometry!r}: needs a 1D sine series "
+                             "(PSD.from_sines) and no law; use 'diffusion'")
         return self.geometry
 
     def dissipation_for(self, psd: PSD) -> str:
@@ -283,8 +290,9 @@ def solve(psd: PSD, material: GeneralizedMaxwell, velocity: float, mean_pressure
         resp = modal_response(comp)
         g = g_cumulative(resp.pressure_variance, sigma0)
     q = psd.wavenumbers
-    if opts.geometry_for(psd, plaw is not None) == "strips":
-        strips = _strips(psd, material, v, sigma0, nu)
+    geometry = opts.geometry_for(psd, plaw is not None)
+    if geometry in STRIP_GEOMETRIES:
+        strips = _strips(psd, material, v, sigma0, nu, geometry)
         parts, area_curve = strips.friction_stress / sigma0, strips.contact_fraction
         dist = _histogram(strips, g[-1], sigma0, q)
     else:
@@ -301,7 +309,7 @@ def solve(psd: PSD, material: GeneralizedMaxwell, velocity: float, mean_pressure
               "dimension": psd.dimension, "psd": psd.source, "law": plaw is not None,
               "material": material.name, **asdict(opts),
               "weighting": opts.weighting_for(psd), "dissipation": opts.dissipation_for(psd),
-              "geometry": opts.geometry_for(psd, plaw is not None)}
+              "geometry": geometry}
     return MeanFieldResult(
         friction=mu_ls + mu_hs, friction_ls=mu_ls, friction_hs=float(mu_hs),
         contact_fraction=float(area), contact_fraction_ls=area_ls,
@@ -325,8 +333,9 @@ def friction_curve(psd: PSD, material: GeneralizedMaxwell, velocities, mean_pres
                                  v, nu, opts.angles)
     resp = modal_response(comp)
     g = g_cumulative(resp.pressure_variance, sigma0)
-    if opts.geometry_for(psd) == "strips":
-        runs = [_strips(psd, material, float(vi), sigma0, nu) for vi in v]
+    geometry = opts.geometry_for(psd)
+    if geometry in STRIP_GEOMETRIES:
+        runs = [_strips(psd, material, float(vi), sigma0, nu, geometry) for vi in v]
         mu = np.array([r.friction_stress.sum() / sigma0 for r in runs])
         area = np.array([r.contact_fraction[-1] for r in runs])
     else:
@@ -336,5 +345,4 @@ def friction_curve(psd: PSD, material: GeneralizedMaxwell, velocities, mean_pres
         area = contact_fraction(g[..., -1])
     return FrictionCurve(v, mu, area, resp.friction_stress.sum(axis=-1) / sigma0, sigma0,
                          {"nu": float(nu), "dimension": psd.dimension, "psd": psd.source,
-                          "material": material.name, **asdict(opts),
-                          "geometry": opts.geometry_for(psd)})
+                          "material": material.name, **asdict(opts), "geometry": geometry})
