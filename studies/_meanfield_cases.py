@@ -19,6 +19,8 @@ SINE_LOADS = (0.01, 0.03, 0.1, 0.3, 0.6)
 #: The modelling choices compared (label, options); the first is the issue's naive
 #: transcription of the 2D theory, the last the package default on sine series.
 DIFFUSION = mf.MeanFieldOptions(geometry="diffusion")
+#: The strip cascade without the outer crests (the default before them).
+NESTED = mf.MeanFieldOptions(geometry="nested-strips")
 VARIANTS = (
     ("naive: S = ½ + ½A², cell mean", mf.MeanFieldOptions(
         correction="persson", weighting="cell", geometry="diffusion")),
@@ -30,6 +32,7 @@ VARIANTS = (
      mf.MeanFieldOptions(dissipation="cascade", geometry="diffusion")),
     ("S = 1, after the wave, patch spectrum r = A_i",
      mf.MeanFieldOptions(dissipation="patch", geometry="diffusion")),
+    ("Westergaard strips, without outer crests (the default before them)", NESTED),
     ("Westergaard strips (default)", mf.MeanFieldOptions()),
 )
 

@@ -22,6 +22,7 @@ from ._meanfield_bands import (
 )
 from ._meanfield_cases import (
     DIFFUSION,
+    NESTED,
     SPEEDS,
     make_map,
     self_affine_profile,
@@ -133,24 +134,25 @@ def _validation_table(points, old) -> str:
     return "\n".join(lines)
 
 
-def _share_table(points, old) -> tuple[str, dict]:
-    """Random-ladder points with μ and A within 15 %, by speed: previous default and
-    default."""
+def _share_table(points, old, nested) -> tuple[str, dict]:
+    """Random-ladder points with μ and A within 15 %, by speed: previous default, the strips
+    without outer crests (``nested-strips``) and the default."""
     lines = ["| v [mm/s] | points | BEM realizations | previous default (diffusion) | "
-             "default (strips) | default, within 15 % + 2 s.e. of the BEM mean |",
-             "|---|---|---|---|---|---|"]
+             "strips without outer crests | default (strips) | default, within 15 % + 2 s.e. "
+             "of the BEM mean |", "|---|---|---|---|---|---|---|"]
     fields = {}
     for v in (*SPEEDS, None):
         sel = [[p for p in pts if _is_random(p["case"]) and p["in_range"]
-                and (v is None or p["v"] == v)] for pts in (old, points)]
+                and (v is None or p["v"] == v)] for pts in (old, nested, points)]
         shares = [np.mean([_ok(p) for p in s]) for s in sel]
-        sampled = np.mean([_ok_sampled(p) for p in sel[1]])
+        sampled = np.mean([_ok_sampled(p) for p in sel[2]])
         label = "all" if v is None else f"{v:g}"
-        reals = sorted({len(p["bem_mu"]) for p in sel[1]})
-        lines.append(f"| {label} | {len(sel[1])} | {'/'.join(map(str, reals))} | "
-                     f"{shares[0]:.0%} | {shares[1]:.0%} | {sampled:.0%} |")
-        fields[f"share_{label}"] = f"{shares[1]:.0%}"
+        reals = sorted({len(p["bem_mu"]) for p in sel[2]})
+        lines.append(f"| {label} | {len(sel[2])} | {'/'.join(map(str, reals))} | "
+                     f"{shares[0]:.0%} | {shares[1]:.0%} | {shares[2]:.0%} | {sampled:.0%} |")
+        fields[f"share_{label}"] = f"{shares[2]:.0%}"
         fields[f"share_old_{label}"] = f"{shares[0]:.0%}"
+        fields[f"share_nested_{label}"] = f"{shares[1]:.0%}"
         fields[f"share_sampled_{label}"] = f"{sampled:.0%}"
     return "\n".join(lines), fields
 
@@ -455,7 +457,7 @@ def _cost(points) -> dict:
 def report(rows, *, figures: Path, date: str, commit: str, wall: float, variants) -> str:
     points = _points(rows)
     old = _points(rows, DIFFUSION)
-    shares, share_fields = _share_table(points, old)
+    shares, share_fields = _share_table(points, old, _points(rows, NESTED))
     hyb = _hybrid_rows(rows)
     hyb_table, hyb_fields = _hybrid_table(hyb)
     two_d, errs_2d = _two_d_table(rows)
