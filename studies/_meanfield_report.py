@@ -63,11 +63,13 @@ def _se(values) -> float:
     return np.std(values, ddof=1) / np.sqrt(len(values)) if len(values) > 1 else np.nan
 
 
-def _points(rows, options: mf.MeanFieldOptions | None = None) -> list[dict]:
-    """Every 1D row with the theory's μ and A and the BEM means (and standard errors)."""
+def _points(rows, options: mf.MeanFieldOptions | None = None,
+            kinds: tuple[str, ...] = ("1d", "selfaffine")) -> list[dict]:
+    """Every 1D row of the ``kinds`` (sine series and self-affine profiles) with the theory's
+    μ and A and the BEM means (and standard errors)."""
     out = []
     for r in rows:
-        if r["kind"] not in ("1d", "selfaffine"):
+        if r["kind"] not in kinds:
             continue
         res = mf.solve(_psd(r), SBR, r["v"], r["p"], options=options)
         mu, area = np.mean(r["bem_mu"]), np.mean(r["bem_A"])
@@ -87,7 +89,7 @@ def _choices_table(rows, variants) -> str:
     lines = ["| variant | μ error, random ladders | μ within 15 % | μ error, section 3 "
              "| μ error, Table 2 | μ error, CAPTIF |", "|---|---|---|---|---|---|"]
     for label, opts in variants:
-        pts = [p for p in _points(rows, opts) if p["in_range"] and p["kind"] == "1d"]
+        pts = [p for p in _points(rows, opts, ("1d",)) if p["in_range"]]
         rnd = np.array([p["e_mu"] for p in pts if _is_random(p["case"])])
         cols = [_rng(rnd), f"{np.mean(np.abs(rnd) <= TARGET):.0%}" if rnd.size else "–"]
         for name in ("section 3", "Table 2", "CAPTIF fit"):
@@ -457,7 +459,7 @@ def _cost(points) -> dict:
 def report(rows, *, figures: Path, date: str, commit: str, wall: float, variants) -> str:
     points = _points(rows)
     old = _points(rows, DIFFUSION)
-    shares, share_fields = _share_table(points, old, _points(rows, NESTED))
+    shares, share_fields = _share_table(points, old, _points(rows, NESTED, ("1d",)))
     hyb = _hybrid_rows(rows)
     hyb_table, hyb_fields = _hybrid_table(hyb)
     two_d, errs_2d = _two_d_table(rows)
