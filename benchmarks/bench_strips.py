@@ -59,13 +59,15 @@ def measure() -> list[dict]:
 
 
 def baseline(rev: str) -> list[dict]:
-    """:func:`measure` with the library of commit ``rev``, in a child process."""
+    """:func:`measure` with the library, the studies' cases and this benchmark of commit
+    ``rev``, in a child process (the current studies may need the current library)."""
     with tempfile.TemporaryDirectory() as tmp:
-        subprocess.run(f"git -C {ROOT} archive {rev} src | tar -x -C {tmp}", shell=True,
-                       check=True)
+        subprocess.run(f"git -C {ROOT} archive {rev} src studies benchmarks | tar -x -C {tmp}",
+                       shell=True, check=True)
         out = Path(tmp) / "rows.json"
         env = {**os.environ, "PYTHONPATH": str(Path(tmp) / "src"), "OMP_NUM_THREADS": "1"}
-        subprocess.run([sys.executable, __file__, "--json", str(out)], env=env, check=True)
+        subprocess.run([sys.executable, str(Path(tmp) / "benchmarks" / Path(__file__).name),
+                        "--json", str(out)], env=env, check=True)
         return json.loads(out.read_text())
 
 
