@@ -14,7 +14,12 @@ import pytest
 
 import rubbercontact as rc
 from rubbercontact import meanfield as mf
-from rubbercontact.meanfield.outer import crest_load, penetration, westergaard_separation
+from rubbercontact.meanfield.outer import (
+    crest_load,
+    outer_load,
+    penetration,
+    westergaard_separation,
+)
 from rubbercontact.roughness import SineSeries
 
 sys.path.insert(0, str(Path(__file__).resolve().parents[1]))
@@ -119,3 +124,17 @@ def test_octave_ladder_at_500_mm_s_and_a_small_load_against_the_bem():
     res, mu, area = _against_bem(random_ladder(8, 3), 500.0, 0.4004, 16384)
     assert res.friction == pytest.approx(mu.mean(), rel=0.15)
     assert res.contact_fraction == pytest.approx(area.mean(), rel=0.15)
+
+
+def test_outer_load_limits():
+    # a 4 mm strip (fraction 0.3 of its 8 mm wave) under a 2 mm wave of p* = 1 MPa
+    kw = dict(strip_wavenumber=np.pi / 4, strip_amplitude=0.25, contact_pressure=0.5,
+              wavenumber=np.pi, amplitude=0.1, p_star=1.0)
+    touching = outer_load(np.array([1.2]), residual=np.array([1.0]), **kw)
+    assert 0 < touching.share[0] < 1 and 0 < touching.ratio[0] <= 1
+    # a strip filling its period has no outside; a wave that only bends the strip lifts
+    # nothing; a wave of negligible amplitude reaches no crest outside
+    assert outer_load(np.array([4.0]), residual=np.array([1.0]), **kw).share[0] == 0
+    assert outer_load(np.array([1.2]), residual=np.array([0.0]), **kw).share[0] == 0
+    assert outer_load(np.array([1.2]), residual=np.array([1.0]),
+                      **{**kw, "amplitude": 1e-6}).share[0] == 0
