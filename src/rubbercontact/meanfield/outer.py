@@ -51,7 +51,7 @@ import numpy as np
 #: Crests of the wave considered beyond each edge of a strip, and their uniform offsets
 #: (on the study's random ladders, against 4 crests and 64 offsets: μ and A within 2 %).
 OUTER_CRESTS, OFFSETS = 2, 8
-#: Illinois (false-position) steps of the outer crests' load share.
+#: False-position steps of the outer crests' load share.
 SHARE_ITERATIONS = 6
 #: ``u ≥ ½`` against ``ln(u e^{1−2u})``, on which :func:`crest_load` inverts ``u e^{1−2u} = y``
 #: (the lower real branch of Lambert's W; the grid reaches contacts ``e^{-40}`` of the
@@ -143,34 +143,39 @@ def outer_load(half_width, strip_wavenumber, strip_amplitude, contact_pressure,
     edge = np.sin(np.pi * np.clip(a * qs / np.pi, 0.0, 1.0) / 2)
     modulus = 2 * p_star / (wavenumber * amplitude)
 
-    def crest_loads(left, m):
-        """The outer crests' loads of the strips ``m`` holding the share ``left`` of their
-        load, and their share of it."""
-        x = np.clip(pc[m] * left / np.maximum(res[m] * p_star, 1e-300), 0.0, 1.0)
+    def crest_loads(left, arrays):
+        """The outer crests' loads of strips holding the share ``left`` of their load, and
+        their share of it (``arrays``: the strips' ``a, pc, res, amp_s, edge, sig, dist,
+        inside``)."""
+        a, pc, res, amp_s, edge, sig, dist, inside = arrays
+        x = np.clip(pc * left / np.maximum(res * p_star, 1e-300), 0.0, 1.0)
         # Westergaard: the strip at the load W(1 − F) keeps sin²(πr/2) ∝ its load
-        gap = amp_s[m] * _separation(sig[m], edge[m] * np.sqrt(left))
-        interference = np.where(inside[m], res[m] * amplitude * penetration(x) - gap, 0.0)
-        w = crest_load(interference, dist[m], wavenumber**2 * amplitude, modulus)
+        gap = amp_s * _separation(sig, edge * np.sqrt(left))
+        interference = np.where(inside, res * amplitude * penetration(x) - gap, 0.0)
+        w = crest_load(interference, dist, wavenumber**2 * amplitude, modulus)
         # both edges, averaged over the offsets; over the strip's load per period
-        return w, 2 * np.mean(np.sum(w, axis=2), axis=1) / (pc[m] * 2 * a[m])[:, 0, 0]
+        return w, 2 * np.mean(np.sum(w, axis=2), axis=1) / (pc * 2 * a)[:, 0, 0]
 
+    arrays = (a, pc, res, amp_s, edge, sig, dist, inside)
     # the outer crests interfere most with the whole load on the strip: only the strips
     # whose crests do then are solved for, g(F) = F_k(F) − F = 0 on [0, F_k(0)] (g falls)
-    first = crest_loads(np.ones((n, 1, 1)), slice(None))[1]
+    first = crest_loads(np.ones((n, 1, 1)), arrays)[1]
     m = np.flatnonzero(first > 0)
+    arrays = tuple(v[m] for v in arrays)
     lo, hi = np.zeros(m.size), np.minimum(first[m], 1.0)
     g_lo = first[m] - lo
-    g_hi = crest_loads(1 - hi[:, None, None], m)[1] - hi
+    g_hi = crest_loads(1 - hi[:, None, None], arrays)[1] - hi
     for _ in range(SHARE_ITERATIONS):
-        # Illinois: false position, halving the kept end's value when it is kept twice
+        # false position, the kept end's value halved at every step (Illinois-like: neither
+        # end sticks, so the bracket shrinks from both sides)
         mid = np.clip(hi - g_hi * (hi - lo) / np.where(g_hi != g_lo, g_hi - g_lo, 1.0), lo, hi)
-        g_mid = crest_loads(1 - mid[:, None, None], m)[1] - mid
+        g_mid = crest_loads(1 - mid[:, None, None], arrays)[1] - mid
         up = g_mid > 0
         g_hi = np.where(up, 0.5 * g_hi, g_mid)
         g_lo = np.where(up, g_mid, 0.5 * g_lo)
         lo, hi = np.where(up, mid, lo), np.where(up, hi, mid)
     root = np.where(np.abs(g_lo) < np.abs(g_hi), lo, hi)
-    w, _ = crest_loads(1 - root[:, None, None], m)
+    w, _ = crest_loads(1 - root[:, None, None], arrays)
     total = np.sum(w, axis=(1, 2))
     share[m] = np.where(total > 0, root, 0.0)
     # the load-weighted mean load ratio x_k = W_k/(p* λ)
