@@ -49,7 +49,7 @@ from dataclasses import dataclass
 import numpy as np
 
 #: Crests of the wave considered beyond each edge of a strip, and their uniform offsets
-#: (on the study's random ladders, against 4 crests and 64 offsets: μ and A within 2 %).
+#: (their convergence: docs/validation/meanfield.md, "Cost").
 OUTER_CRESTS, OFFSETS = 2, 8
 #: False-position steps of the outer crests' load share.
 SHARE_ITERATIONS = 6
