@@ -33,9 +33,10 @@ def test_default_config_is_valid():
     (_with(loads={"pressures": [-1.0]}), r"loads.pressures.0.*MPa.*greater than 0"),
     (_with(loads={"contact_areas": [1.5]}), r"loads.contact_areas.0.*less than or equal to 1"),
     (_with(loads={"pressures": [1.0], "contact_areas": [0.1]}), r"exactly one of"),
-    (_with(velocities=[-5.0]), r"velocities.0.*mm/s"),
+    (_with(velocities=[-5.0]), r"'velocities'.*> 0 mm/s"),
+    (_with(velocities=[10.0, 0.0]), r"'velocities'.*> 0 mm/s.*static"),
     (_with(material={"nu": 0.7}), r"material.nu"),
-    (_with(fem={"mesh": [2, 90]}), r"fem.mesh.0"),
+    (_with(fem={"mesh": [2, 90]}), r"fem.mesh.*nx >= 3"),
     (_with(surface={"wavelengths": [0.1, 0.2]}), r"go together"),
     (_with(surface={"wavelengths": [0.1, 0.2], "amplitudes": [0.01]}), r"differ in length"),
     (_with(models=["vhs", "bem"]), r"models.1"),
@@ -48,6 +49,25 @@ def test_default_config_is_valid():
 def test_config_errors_name_the_key(data, expected):
     with pytest.raises(InputError, match=expected):
         parse_config(data, source="case.toml")
+
+
+@pytest.mark.parametrize("mesh", [(3, 1), (2, 90), (40, 0), (4, 2), (120, 90)])
+def test_config_and_fem_options_accept_the_same_meshes(mesh):
+    # one definition of the mesh limits: FemOptions's, which the CLI's --mesh also meets
+    from rubbercontact.fem.options import FemOptions
+
+    try:
+        FemOptions(mesh=mesh)
+        fem_ok = True
+    except InputError:
+        fem_ok = False
+    for key in ("mesh", "full_mesh"):
+        try:
+            parse_config(_with(fem={key: list(mesh)}))
+            config_ok = True
+        except InputError:
+            config_ok = False
+        assert config_ok == fem_ok, (key, mesh)
 
 
 def test_errors_name_the_file(tmp_path):

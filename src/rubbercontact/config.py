@@ -63,7 +63,9 @@ class HalfSpaceConfig(_Strict):
     tol: PositiveFloat = Field(1e-8, lt=1, description="relative residual tolerance")
 
 
-Mesh = tuple[Annotated[int, Field(ge=4)], Annotated[int, Field(ge=2)]]
+#: Elements (nx, ny) of a FEM mesh; its limits are :class:`rubbercontact.fem.FemOptions`'s
+#: (checked by :meth:`FemConfig._meshes`), so the config and the CLI state the same ones.
+Mesh = tuple[int, int]
 
 
 #: FemConfig fields that only the time-stepped (transient) solver uses.
@@ -121,6 +123,19 @@ class FemConfig(_Strict):
     steady: dict[str, Any] = Field(
         default_factory=dict, description="controls of the steady solver "
                                           "(rubbercontact.fem.SteadyOptions fields)")
+
+    @field_validator("mesh", "full_mesh")
+    @classmethod
+    def _meshes(cls, mesh: Mesh | None) -> Mesh | None:
+        from .fem.options import FemOptions
+
+        if mesh is not None:
+            try:
+                FemOptions(mesh=mesh)
+            except InputError as exc:
+                # the formatter adds the value given
+                raise ValueError(str(exc).removeprefix("mesh: ").split(", got")[0]) from None
+        return mesh
 
     @model_validator(mode="after")
     def _solver_options(self) -> FemConfig:
@@ -289,7 +304,7 @@ class RunConfig(_Strict):
     surface: SurfaceConfig
     material: MaterialConfig = MaterialConfig()
     loads: LoadConfig
-    velocities: list[Annotated[float, Field(ge=0)]] = Field(
+    velocities: list[float] = Field(
         min_length=1, description="sliding speeds [mm/s]: a list, or a log range "
                                   "{from, to, points}")
     temperatures: list[Annotated[float, Field(gt=-273.15)]] | None = Field(
@@ -312,6 +327,17 @@ class RunConfig(_Strict):
     @classmethod
     def _velocity_range(cls, value):
         return _speed_range(value)
+
+    @field_validator("velocities")
+    @classmethod
+    def _sliding(cls, value: list[float]) -> list[float]:
+        # v = 0 is static contact (no hysteretic friction) and v < 0 the mirrored surface:
+        # neither is a sliding speed, and v = 0 would cost a full FEM run for a zero.
+        bad = [v for v in value if not (np.isfinite(v) and v > 0)]
+        if bad:
+            raise ValueError("sliding speeds must be finite and > 0 mm/s (v = 0 is static "
+                             "contact, without hysteretic friction)")
+        return value
 
     @model_validator(mode="after")
     def _fem_subset(self) -> RunConfig:
