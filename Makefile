@@ -23,8 +23,9 @@ $(VENV)/.installed-bench: $(VENV)/.installed
 	$(BIN)/python -m pip install --quiet -e ".[test,bench,topography]"
 	touch $@
 
+# A second `make run` replaces the results of the first (its solves come from the cache).
 run: $(VENV)/.installed
-	$(BIN)/rubbercontact run --output results
+	$(BIN)/rubbercontact run --output results --overwrite
 
 test: $(VENV)/.installed
 	$(BIN)/python -m pytest -q -m "not slow"

@@ -3,6 +3,8 @@
 import subprocess
 import sys
 
+import pytest
+
 from rubbercontact import __version__
 from rubbercontact.cli import main
 
@@ -141,3 +143,73 @@ def test_a_command_exit_code_reaches_the_shell(monkeypatch):
     monkeypatch.setattr(cli, "app", app)
     assert cli.main(["fails"]) == 3
     assert cli.main(["works"]) == 0
+
+
+# A cheap run: the VHS alone on one wave, for the command-line checks below.
+CHEAP = """
+velocities = [10.0]
+models = ["vhs"]
+[surface]
+preset = "high_slope_wave"
+[loads]
+pressures = [0.3]
+[halfspace]
+n = 256
+[execution]
+workers = 1
+cache = "cache"
+"""
+
+
+def test_make_run_can_run_twice(tmp_path, repo_root, capsys):
+    # the options of the Makefile's `run` recipe (as `make -n` prints it), on a cheap config
+    # instead of the built-in default: a second run with the same options must succeed
+    import shlex
+
+    recipe = subprocess.run(["make", "-n", "-s", "run"], cwd=repo_root, capture_output=True,
+                            text=True, timeout=60).stdout.splitlines()
+    line = next(x for x in recipe if "rubbercontact run" in x)
+    args = shlex.split(line.split("rubbercontact", 1)[1])
+    assert args[0] == "run"
+    out = tmp_path / "out"
+    args = [a if a != "results" else str(out) for a in args]
+    cfg = tmp_path / "cheap.toml"
+    cfg.write_text(CHEAP)
+    for _ in range(2):
+        assert main([*args, str(cfg), "--quiet", "--no-figures"]) == 0
+    assert (out / "results.nc").is_file()
+
+
+def test_summary_of_a_file_that_is_not_netcdf_is_one_line(tmp_path, capsys):
+    bad = tmp_path / "notes.nc"
+    bad.write_text("not a results file\n")
+    for cmd in ("summary", "plot"):
+        assert main([cmd, str(bad)]) == 2
+        err = capsys.readouterr().err.strip().splitlines()
+        assert err == [f"error: results file {bad}: not a NetCDF file"]
+
+
+@pytest.mark.parametrize("args, says", [
+    (["halfspace", "--velocity", "-10", "--pressure", "0.35"], "velocity: sliding speed -10"),
+    (["fem", "--velocity", "-1", "--mesh", "16x12", "--quiet"], "velocity: sliding speed -1"),
+    (["halfspace", "--velocity", "10", "--pressure", "1e6"], "(0, 2902) MPa"),
+    (["fem", "--pressure", "1e6", "--mesh", "16x12", "--quiet"], "(0, 2902) MPa"),
+])
+def test_commands_refuse_negative_speeds_and_absurd_pressures(args, says, capsys):
+    # the SBR of Table 1: glassy modulus E_inf + sum E_i = 4.17 + 2897.72 MPa
+    assert main(args) == 2
+    err = capsys.readouterr().err.strip().splitlines()
+    assert len(err) == 1 and err[0].startswith("error: ") and says in err[0]
+
+
+@pytest.mark.parametrize("change, says", [
+    (("velocities = [10.0]", "velocities = [0.0]"), "'velocities'"),
+    (("velocities = [10.0]", "velocities = [-10.0]"), "'velocities'"),
+    (("pressures = [0.3]", "pressures = [0.3, 1e6]"), "loads.pressures: mean pressure 1e+06"),
+])
+def test_run_check_refuses_what_would_not_slide_or_load(change, says, tmp_path, capsys):
+    cfg = tmp_path / "c.toml"
+    cfg.write_text(CHEAP.replace(*change))
+    assert main(["run", str(cfg), "--check"]) == 2
+    err = capsys.readouterr().err.strip().splitlines()
+    assert len(err) == 1 and says in err[0]

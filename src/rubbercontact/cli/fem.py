@@ -127,6 +127,10 @@ def command(
         if step % 20 == 0:
             typer.echo(f"  step {step:5d}  {phase:6s}  t = {t:.4e} s  μ = {mu:+.4f}", err=True)
 
+    from ..pipeline.limits import check_pressures, check_velocity
+
+    check_pressures([p], mat, "mean_pressure")
+    check_velocity(v, "velocity")
     opts = fem.make_options(**kw)
     res = fem.sliding_test(surf, mat, p, v, options=opts,
                            progress=None if quiet or as_json else progress)

@@ -185,6 +185,11 @@ def command(
         sweep_list = [float(v)]
     else:
         sweep_list = [float(s) for s in sweep]
+    from ..pipeline.limits import check_pressures, check_velocity
+
+    check_pressures([p0], mat, "mean_pressure")
+    for v in sweep_list:
+        check_velocity(v, "velocity")
     kw = {"period": period if period is not None else cfg.get("period"),
           "n": n if n is not None else cfg.get("n", 4096),
           "nu": nu if nu is not None else cfg.get("nu", 0.5)}

@@ -142,8 +142,11 @@ def read_results(path: str | Path) -> xr.Dataset:
         raise InputError(f"results file {path}: not found")
     try:
         return xr.load_dataset(path)
-    except (OSError, ValueError) as exc:
-        raise InputError(f"results file {path}: not a readable NetCDF file ({exc})") from None
+    except ValueError:      # no xarray backend recognises the file; its advice is not ours
+        raise InputError(f"results file {path}: not a NetCDF file") from None
+    except OSError as exc:
+        raise InputError(f"results file {path}: not readable "
+                         f"({str(exc).splitlines()[0]})") from None
 
 
 def write_law(law: xr.Dataset, path: str | Path, *, overwrite: bool = True) -> Path:

@@ -3,7 +3,8 @@
 :func:`resolve` builds what the config describes (the material, the base surface and its
 random-phase realizations, their high-/low-slope parts, the speeds and temperatures) and
 checks what would otherwise fail only inside the tasks, with the cause named: FEM meshes
-too coarse for the cells they mesh, temperatures without a shift law.
+too coarse for the cells they mesh, temperatures without a shift law, pressures beyond
+the rubber's range (:mod:`.limits`).
 """
 
 from __future__ import annotations
@@ -18,6 +19,7 @@ from ..errors import InputError
 from ..inputs import SurfaceInput, build_material, build_surface
 from ..materials import GeneralizedMaxwell
 from ..roughness import SineSeries
+from .limits import check_pressures
 from .speeds import SpeedPlan, plan_speeds
 
 #: Models that run the low-slope solve with the high-slope law (the half-space ones).
@@ -92,6 +94,9 @@ class RunSetup:
 def resolve(cfg: RunConfig) -> RunSetup:
     """Build and check a run's set-up (raises :class:`InputError` naming the cause)."""
     material = build_material(cfg.material)
+    for key, pressures in (("loads.pressures", cfg.loads.pressures),
+                           ("law.pressures", cfg.law.pressures)):
+        check_pressures(pressures or [], material, key)
     surface = build_surface(cfg.surface)
     realizations = surface.series.realizations(cfg.realizations, seed=cfg.seed)
     parts = [Parts(*r.partition(cfg.surface.m2_threshold)) for r in realizations]
