@@ -78,13 +78,13 @@ def test_managed_local_cluster_agrees_with_sync(monkeypatch):
 
 
 def test_worker_version_mismatch_is_refused(tcp_cluster, monkeypatch):
-    import rubbercontact.sweep.tasks as tasks_module
+    import rubbercontact.sweep.executor as executor_module
 
-    # The client process pretends to have other numerics; the workers report the real ones.
-    monkeypatch.setattr(tasks_module, "NUMERICS_VERSION", "999-other")
+    # The client process pretends to run other code; the workers report the real digest.
+    monkeypatch.setattr(executor_module, "package_digest", lambda: "999-other")
     from rubbercontact.errors import InputError
 
-    with pytest.raises(InputError, match="numerics"):
+    with pytest.raises(InputError, match="code"):
         run_sweep(_tasks()[:1], executor=ExecutorConfig(scheduler=tcp_cluster.scheduler_address),
                   progress=False)
 

@@ -11,7 +11,8 @@ from hypothesis import assume, given, settings
 from hypothesis import strategies as st
 
 from rubbercontact.errors import InputError
-from rubbercontact.sweep import NUMERICS_VERSION, Task, task_key
+from rubbercontact.sweep import Task, code_digest, task_key
+from rubbercontact.sweep import tasks as sweep_tasks
 from rubbercontact.sweep.tasks import canonical
 
 FN = "rubbercontact.sweep.examples:toy_kernel"
@@ -86,13 +87,12 @@ def test_key_changes_when_an_argument_is_added(kwargs, name, value):
 
 @settings(max_examples=50, deadline=None)
 @given(kwargs_st)
-def test_key_changes_with_function_and_versions(kwargs):
+def test_key_changes_with_function_and_code(kwargs):
     base = task_key(FN, kwargs)
-    assert task_key("rubbercontact.sweep.examples:other", kwargs) != base
-    assert task_key(FN, kwargs, numerics_version=NUMERICS_VERSION + ".1") != base
-    assert task_key(FN, kwargs, function_version="2") != base
-    assert task_key(FN, kwargs, function_version="2") != task_key(FN, kwargs,
-                                                                  function_version="3")
+    code = code_digest(FN)
+    assert task_key(FN, kwargs, code=code) == base  # the default code part is the digest
+    assert task_key("rubbercontact.sweep.examples:other", kwargs, code=code) != base
+    assert task_key(FN, kwargs, code=code + "0") != base
 
 
 def test_numbers_are_typed_and_numpy_is_plain_python():
@@ -107,23 +107,19 @@ def test_numbers_are_typed_and_numpy_is_plain_python():
 
 def test_key_is_sha256_of_documented_canonical_json():
     # Independent re-statement of the documented format.
-    text = ('{"function":"m:f","function_version":null,'
-            '"kwargs":{"a":[{"i":"1"},{"f":"2.5"}],"b":"s","c":{"b":true}},'
-            '"numerics_version":"7"}')
-    assert task_key("m:f", {"c": True, "b": "s", "a": (1, 2.5)}, numerics_version="7") == \
+    text = ('{"code":"c0de","function":"m:f",'
+            '"kwargs":{"a":[{"i":"1"},{"f":"2.5"}],"b":"s","c":{"b":true}}}')
+    assert task_key("m:f", {"c": True, "b": "s", "a": (1, 2.5)}, code="c0de") == \
         hashlib.sha256(text.encode()).hexdigest()
 
 
-def test_task_key_includes_function_cache_version(monkeypatch):
-    import rubbercontact.sweep.examples as ex
-
-    task = Task(FN, {"velocity": 1.0, "pressure": 1.0})
-    before = task.key()
-    monkeypatch.setattr(ex.toy_kernel, "cache_version", "2", raising=False)
-    assert task.key() != before
-    monkeypatch.delattr(ex.toy_kernel, "cache_version")
-    monkeypatch.setattr(ex, "CACHE_VERSION", 5, raising=False)
-    assert task.key() != before
+@settings(max_examples=50, deadline=None)
+@given(kwargs_st)
+def test_canonical_form_reads_back_to_the_same_key(kwargs):
+    # A cached entry stores its task's canonical arguments; rebuilding the task from them
+    # (to re-key it under a new code digest) must give the task's own key.
+    rebuilt = sweep_tasks.plain(sweep_tasks.canonical(kwargs))
+    assert task_key(FN, rebuilt, code="c") == task_key(FN, kwargs, code="c")
 
 
 @pytest.mark.parametrize("kwargs, field", [

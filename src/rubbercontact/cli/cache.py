@@ -1,4 +1,4 @@
-"""``rubbercontact cache info|clear``: inspect or empty the sweep result cache."""
+"""``rubbercontact cache info|prune|clear|copy``: inspect, prune or empty the result cache."""
 
 from __future__ import annotations
 
@@ -7,7 +7,7 @@ from pathlib import Path
 import typer
 
 app = typer.Typer(no_args_is_help=True, add_completion=False,
-                  help="Inspect or clear the result cache.")
+                  help="Inspect, prune or clear the result cache.")
 
 _CACHE_HELP = ("Cache directory (default: $RUBBERCONTACT_CACHE, else the user cache "
                "directory).")
@@ -21,8 +21,23 @@ def _cache(directory: Path | None):
 
 @app.command("info")
 def info(cache: Path | None = typer.Option(None, "--cache", help=_CACHE_HELP)) -> None:
-    """Location, number of entries (ok / failed), size on disk, interrupted writes."""
-    typer.echo(str(_cache(cache).info()))
+    """Location, number of entries (ok / failed; of the current or other code), size on
+    disk, interrupted writes."""
+    store = _cache(cache)
+    typer.echo(str(store.info()))
+    typer.echo(str(store.code_report()))
+
+
+@app.command("prune")
+def prune(cache: Path | None = typer.Option(None, "--cache", help=_CACHE_HELP)) -> None:
+    """Delete the entries computed by other code than this installation's.
+
+    The code a task runs is part of its key, so such entries are never hit again; they
+    only take space.
+    """
+    store = _cache(cache)
+    n = store.prune()
+    typer.echo(f"deleted {n} entries of other or unknown code from {store.directory}")
 
 
 @app.command("clear")

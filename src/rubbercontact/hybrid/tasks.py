@@ -16,11 +16,6 @@ from ..errors import InputError
 from ..materials import GeneralizedMaxwell
 from ..roughness import SineSeries
 
-#: Bump when a change in these task functions changes their answers (read by the sweep cache key).
-#: 2: FEM contact at points along the face segments; 3: quadratic history; 4: one FemOptions
-#: argument and the steady solver.
-CACHE_VERSION = 4
-
 _UNITS = {
     "friction": "1", "friction_ls": "1", "friction_hs": "1", "contact_fraction": "1",
     "mean_separation": "mm", "mean_pressure": "MPa", "velocity": "mm/s", "shear_stress": "MPa",
@@ -199,12 +194,6 @@ def _halfspace_point(surf: SineSeries, period: float, material: GeneralizedMaxwe
     return _HalfspacePoint(values, attrs, np.asarray(res.x), profiles)
 
 
-#: Own version of the half-space task (over the module's CACHE_VERSION, which keys the FEM
-#: task): "3.1" reads the windowed law through the hybrid's own interpolant.
-halfspace_task.cache_version = "3.1"
-halfspace_loads_task.cache_version = "1"
-
-
 def _flat_interface_solve(interface_law: dict, mean_pressure: float, velocity: float,
                           law: str, t0: float) -> _HalfspacePoint:
     """Exact half-space solution for a flat low-slope surface (every wave is high-slope).
@@ -341,7 +330,3 @@ def _fem_scalars(out, surf: SineSeries, velocity: float, mean_pressure: float,
         "bulk_shear": st.bulk_shear, "surface_offset": st.surface_offset,
         "sliding_time": sliding_time, "impaled": int(st.impaled),
     }
-
-
-#: Own version of the speed-path task (its answers, read by the sweep cache key).
-fem_speed_path_task.cache_version = "3"

@@ -83,8 +83,3 @@ def meanfield_task(surface: dict, material: dict, velocity: float, mean_pressure
                      "geometry": res.inputs["geometry"],
                      "psd": psd.source})
     return ds
-
-
-#: Version of this task's answers (read by the sweep cache key).
-meanfield_task.cache_version = "3"   # 2: the patch spectrum on continuous 1D spectra;
-#                                      3: the strip cascade on sine series

@@ -13,16 +13,17 @@ arguments and returns an :class:`xarray.Dataset`::
     res.results      # per task a Dataset or a TaskFailure
     res.summary()    # counts computed / from cache / failed, wall time, failures
 
-Modules: :mod:`.tasks` (Task, keys, :data:`NUMERICS_VERSION`), :mod:`.cache`
+Modules: :mod:`.tasks` (Task, keys), :mod:`.codehash` (the code part of a key), :mod:`.cache`
 (ResultCache), :mod:`.executor` (ExecutorConfig, run_sweep), :mod:`.progress`,
 :mod:`.results` (SweepResult, TaskFailure), :mod:`.examples` (toy_kernel).
 See ``docs/scaling.md`` for clusters and the scaling model.
 """
 
 from .cache import ResultCache, default_cache_dir
+from .codehash import code_digest
 from .executor import ExecutorConfig, run_sweep
 from .results import SweepResult, TaskFailure
-from .tasks import NUMERICS_VERSION, Task, task_key
+from .tasks import Task, task_key
 
-__all__ = ["NUMERICS_VERSION", "ExecutorConfig", "ResultCache", "SweepResult", "Task",
-           "TaskFailure", "default_cache_dir", "run_sweep", "task_key"]
+__all__ = ["ExecutorConfig", "ResultCache", "SweepResult", "Task",
+           "TaskFailure", "code_digest", "default_cache_dir", "run_sweep", "task_key"]

@@ -8,8 +8,11 @@ Layout under the cache directory::
 ``key`` is the task's SHA-256 key (:func:`~rubbercontact.sweep.tasks.task_key`).
 Each file carries, as global attributes prefixed ``rc_cache_``: the key, the task
 description (canonical JSON), the status, the wall time of the computation, the
-numerics and package versions, the creation time and a SHA-256 checksum of all its variables
-(names, dimensions, dtypes and values). Files are written atomically
+package version, the creation time and a SHA-256 checksum of all its variables
+(names, dimensions, dtypes and values), and the digest of the code that computed it
+(:mod:`.codehash`; part of the key, stored so that ``rubbercontact cache info`` can tell
+entries of the current code from those of other code, and ``prune`` delete the latter).
+Files are written atomically
 (:func:`~rubbercontact.io.atomic.write_netcdf_atomic`). On reading, an
 unreadable file, a key that does not match the file name or a checksum
 mismatch marks the entry as corrupt: it is deleted and the task recomputed,
@@ -38,11 +41,12 @@ import xarray as xr
 
 from ..errors import InputError
 from ..io.atomic import TEMP_SUFFIX, write_netcdf_atomic
+from .codehash import code_digest
 from .results import TaskFailure
-from .tasks import NUMERICS_VERSION, Task
+from .tasks import Task
 
-__all__ = ["CacheEntry", "CacheInfo", "CopyReport", "ResultCache", "dataset_checksum",
-           "default_cache_dir"]
+__all__ = ["CacheEntry", "CacheInfo", "CodeReport", "CopyReport", "ResultCache",
+           "dataset_checksum", "default_cache_dir", "entry_code"]
 
 log = logging.getLogger(__name__)
 
@@ -133,6 +137,38 @@ class CacheInfo:
                 f"{self.n_failed} failed)\n"
                 f"size:      {self.size_bytes / 1e6:.2f} MB\n"
                 f"temporary: {self.n_temporary} (interrupted writes; removed by clear)")
+
+
+@dataclass(frozen=True)
+class CodeReport:
+    """Entries of a cache by the code that computed them (``rubbercontact cache info``).
+
+    ``other`` were computed by code that differs from this installation's (they can never
+    be hit again: the code is part of the key); ``unknown`` carry no code digest (written
+    before keys had one) or name a function this installation does not have.
+    """
+
+    current: int
+    other: int
+    unknown: int
+
+    def __str__(self) -> str:
+        return (f"code:      {self.current} of the current code, {self.other} of other code, "
+                f"{self.unknown} of unknown code (`rubbercontact cache prune` deletes "
+                f"the last two)")
+
+
+def entry_code(path: Path) -> tuple[str, str]:
+    """``(function, code digest)`` stored in the entry file ``path`` ("" where absent)."""
+    import netCDF4
+
+    with netCDF4.Dataset(path) as nc:
+        attrs = {k: nc.getncattr(k) for k in nc.ncattrs()}
+    function = str(attrs.get(_PREFIX + "function", ""))
+    if not function:  # entries written before the function had its own attribute
+        with contextlib.suppress(json.JSONDecodeError):
+            function = json.loads(str(attrs.get(_PREFIX + "task", "{}"))).get("function", "")
+    return function, str(attrs.get(_PREFIX + "code", ""))
 
 
 class ResultCache:
@@ -274,7 +310,8 @@ class ResultCache:
                     _PREFIX + "task": task.describe(),
                     _PREFIX + "label": task.label,
                     _PREFIX + "wall_time_s": float(wall_time),
-                    _PREFIX + "numerics_version": NUMERICS_VERSION,
+                    _PREFIX + "function": task.function,
+                    _PREFIX + "code": code_digest(task.function),
                     _PREFIX + "package_version": _package_version(),
                     _PREFIX + "created": time.strftime("%Y-%m-%dT%H:%M:%SZ", time.gmtime()),
                     _PREFIX + "checksum": dataset_checksum(ds)}
@@ -352,6 +389,42 @@ class ResultCache:
                 size += p.stat().st_size
         n_failed = sum(p.name.endswith(_FAILED_SUFFIX) for p in files)
         return CacheInfo(self.directory, len(files), n_failed, len(temps), size)
+
+    def _by_code(self) -> dict[str, list[Path]]:
+        """Entry files grouped as "current", "other" or "unknown" code (see CodeReport)."""
+        current: dict[str, str | None] = {}
+        groups: dict[str, list[Path]] = {"current": [], "other": [], "unknown": []}
+        for path in self._files():
+            try:
+                function, code = entry_code(path)
+            except (OSError, RuntimeError):
+                groups["unknown"].append(path)  # unreadable: corrupt, never a hit
+                continue
+            if function not in current:
+                try:
+                    current[function] = code_digest(function)
+                except InputError:
+                    current[function] = None
+            if not code or current[function] is None:
+                groups["unknown"].append(path)
+            else:
+                groups["current" if code == current[function] else "other"].append(path)
+        return groups
+
+    def code_report(self) -> CodeReport:
+        """How many entries the current code computed, other code, or unknown code."""
+        groups = self._by_code()
+        return CodeReport(len(groups["current"]), len(groups["other"]), len(groups["unknown"]))
+
+    def prune(self) -> int:
+        """Delete the entries of other or unknown code (never hit again); their number."""
+        groups = self._by_code()
+        n = 0
+        for path in groups["other"] + groups["unknown"]:
+            with contextlib.suppress(FileNotFoundError):
+                path.unlink()
+                n += 1
+        return n
 
     def clear(self, failed_only: bool = False) -> int:
         """Delete entries (only recorded failures if ``failed_only``) and stray temp files.

@@ -47,9 +47,10 @@ import xarray as xr
 
 from ..errors import ConvergenceError, InputError
 from .cache import ResultCache
+from .codehash import code_digest, package_digest
 from .progress import make_reporter
 from .results import SweepResult, TaskFailure, jsonable
-from .tasks import Task, function_version, resolve_function, task_key
+from .tasks import Task, resolve_function, task_key
 
 __all__ = ["ENV_SCHEDULER", "THREAD_ENV", "ExecutorConfig", "run_sweep"]
 
@@ -187,11 +188,10 @@ def _run(function: str, kwargs: dict[str, Any],
 
 # -- client side ------------------------------------------------------------------------
 def _versions() -> tuple[str, str]:
-    """(package version, numerics version) of the calling process."""
+    """(package version, digest of the package's code) of the calling process."""
     from .. import __version__
-    from .tasks import NUMERICS_VERSION
 
-    return str(__version__), NUMERICS_VERSION
+    return str(__version__), package_digest()
 
 
 def _check_worker_versions(client: Any, address: str | None) -> None:
@@ -206,10 +206,10 @@ def _check_worker_versions(client: Any, address: str | None) -> None:
     mine = _versions()
     bad = {w: v for w, v in found.items() if tuple(v) != mine}
     if bad:
-        worker, (version, numerics) = next(iter(bad.items()))
+        worker, (version, code) = next(iter(bad.items()))
         raise InputError(f"scheduler: worker {worker} of {address!r} runs rubbercontact "
-                         f"{version} (numerics {numerics}), this client {mine[0]} (numerics "
-                         f"{mine[1]}); {len(bad)} worker(s) differ")
+                         f"{version} (code {code[:12]}), this client {mine[0]} (code "
+                         f"{mine[1][:12]}); {len(bad)} worker(s) differ")
 
 
 @contextlib.contextmanager
@@ -296,13 +296,15 @@ def run_sweep(tasks: Sequence[Task], cache: ResultCache | None = None,
         raise InputError(f"executor: expected an ExecutorConfig or None, "
                          f"got {type(config).__name__}")
 
-    # Keys: import each function once, on the client, so a wrong path fails before any work.
-    versions: dict[str, Any] = {}
+    # Keys: import each function once, on the client, so a wrong path fails before any work;
+    # the code part of the key is read from the function's source once per function.
+    codes: dict[str, str] = {}
     keys = []
     for t in tasks:
-        if t.function not in versions:
-            versions[t.function] = function_version(t.function)
-        keys.append(task_key(t.function, t.kwargs, function_version=versions[t.function]))
+        if t.function not in codes:
+            resolve_function(t.function)
+            codes[t.function] = code_digest(t.function)
+        keys.append(task_key(t.function, t.kwargs, code=codes[t.function]))
     result = SweepResult._empty(tasks, keys)
     first: dict[str, int] = {}  # key -> index of the first task with that key
     for i, k in enumerate(keys):

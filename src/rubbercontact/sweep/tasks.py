@@ -6,8 +6,7 @@ Dask worker that has rubbercontact installed and stored next to its result.
 
 Cache key
 ---------
-``key = SHA-256( canonical JSON of {"function", "kwargs", "numerics_version",
-"function_version"} )`` where
+``key = SHA-256( canonical JSON of {"function", "kwargs", "code"} )`` where
 
 * ``function`` is the import path string;
 * ``kwargs`` is canonicalised (:func:`canonical`): dict keys are sorted, tuples
@@ -19,11 +18,10 @@ Cache key
   equal). *Why not fold ints into floats?* A false cache hit silently returns
   a wrong answer, while a spurious miss only costs one recomputation; configs
   coerced by pydantic have consistent types anyway.
-* ``numerics_version`` is :data:`NUMERICS_VERSION`: bump it whenever a change
-  in the package changes computed answers, so every old entry becomes a miss.
-* ``function_version`` is the task function's optional ``cache_version``
-  attribute (``my_kernel.cache_version = "2"``), else its module's
-  ``CACHE_VERSION`` constant, else None: bump it when only that kernel changes.
+* ``code`` is :func:`~rubbercontact.sweep.codehash.code_digest` of the function: a
+  digest of the source it runs (its slice of its module and every module of the
+  package it imports), so any change of the numerics is a miss. There is no version
+  to bump by hand.
 
 Whatever is *not* in the key must not change the answer: task functions must
 treat a tuple and a list alike, and must not read files, clocks or globals
@@ -32,6 +30,7 @@ that are not in their arguments.
 
 from __future__ import annotations
 
+import contextlib
 import hashlib
 import importlib
 import json
@@ -44,13 +43,10 @@ from typing import Any
 import numpy as np
 
 from ..errors import InputError
+from .codehash import code_digest
 
-__all__ = ["NUMERICS_VERSION", "Task", "canonical", "canonical_json", "function_version",
+__all__ = ["Task", "canonical", "canonical_json", "key_of_canonical", "plain",
            "resolve_function", "task_key"]
-
-#: Version of the package's numerics. Bump it (and say why in the commit) whenever a change
-#: makes any computed answer differ; every cache entry then becomes a miss.
-NUMERICS_VERSION = "1"
 
 _PATH_RE = re.compile(r"^[A-Za-z_][\w.]*:[A-Za-z_]\w*$")
 
@@ -109,8 +105,12 @@ def canonical(value: Any, where: str = "kwargs") -> Any:
 
 def canonical_json(value: Any) -> str:
     """Canonical JSON text of ``value`` (see :func:`canonical`): sorted keys, no spaces."""
-    return json.dumps(canonical(value), sort_keys=True, separators=(",", ":"),
-                      ensure_ascii=True, allow_nan=False)
+    return _dumps(canonical(value))
+
+
+def _dumps(value: Any) -> str:
+    return json.dumps(value, sort_keys=True, separators=(",", ":"), ensure_ascii=True,
+                      allow_nan=False)
 
 
 def resolve_function(path: str) -> Callable[..., Any]:
@@ -135,19 +135,32 @@ def resolve_function(path: str) -> Callable[..., Any]:
     return func
 
 
-def function_version(path: str) -> str | None:
-    """Per-function version of ``path``: its ``cache_version`` attribute, else its
-    module's ``CACHE_VERSION``, else None (imports the function)."""
-    func = resolve_function(path)
-    version = getattr(func, "cache_version", None)
-    if version is None:
-        version = getattr(importlib.import_module(path.split(":")[0]), "CACHE_VERSION", None)
-    return None if version is None else str(version)
+def plain(value: Any) -> Any:
+    """Inverse of :func:`canonical`: type-tagged numbers back to Python numbers.
+
+    Used to rebuild a task from the description stored with its cached result.
+    """
+    if isinstance(value, dict):
+        if len(value) == 1:
+            ((tag, text),) = value.items()
+            if tag == "b" and isinstance(text, bool):
+                return text
+            if tag in ("i", "f") and isinstance(text, str):
+                with contextlib.suppress(ValueError):
+                    return int(text) if tag == "i" else float(text)
+        return {k: plain(v) for k, v in value.items()}
+    if isinstance(value, list):
+        return [plain(v) for v in value]
+    return value
 
 
-def task_key(function: str, kwargs: Mapping[str, Any], *,
-             numerics_version: str = NUMERICS_VERSION,
-             function_version: str | None = None) -> str:
+def key_of_canonical(function: str, canonical_kwargs: Any, code: str) -> str:
+    """SHA-256 key from already canonical arguments (:func:`canonical`) and a code digest."""
+    payload = {"function": function, "kwargs": canonical_kwargs, "code": str(code)}
+    return hashlib.sha256(_dumps(payload).encode("ascii")).hexdigest()
+
+
+def task_key(function: str, kwargs: Mapping[str, Any], *, code: str | None = None) -> str:
     """SHA-256 hex digest identifying the answer of ``function(**kwargs)``.
 
     Parameters
@@ -156,18 +169,15 @@ def task_key(function: str, kwargs: Mapping[str, Any], *,
         Import path ``"package.module:function"``.
     kwargs
         Keyword arguments (plain data).
-    numerics_version
-        Package numerics version (default :data:`NUMERICS_VERSION`).
-    function_version
-        Optional per-function version (the function's ``cache_version``).
+    code
+        Digest of the code the function runs; default
+        :func:`~rubbercontact.sweep.codehash.code_digest` of ``function`` (read from its
+        source, memoised per file).
     """
-    payload = {
-        "function": function,
-        "kwargs": kwargs,
-        "numerics_version": str(numerics_version),
-        "function_version": None if function_version is None else str(function_version),
-    }
-    return hashlib.sha256(canonical_json(payload).encode("ascii")).hexdigest()
+    if code is None:
+        resolve_function(function)  # a wrong path fails with its own message first
+        code = code_digest(function)
+    return key_of_canonical(function, canonical(kwargs), code)
 
 
 @dataclass(frozen=True)
@@ -206,10 +216,9 @@ class Task:
         if not isinstance(self.label, str):
             raise InputError(f"label: expected a string, got {self.label!r}")
 
-    def key(self, numerics_version: str = NUMERICS_VERSION) -> str:
-        """Content-addressed cache key (imports the function to read ``cache_version``)."""
-        return task_key(self.function, self.kwargs, numerics_version=numerics_version,
-                        function_version=function_version(self.function))
+    def key(self, code: str | None = None) -> str:
+        """Content-addressed cache key (the code part read from the function's source)."""
+        return task_key(self.function, self.kwargs, code=code)
 
     def describe(self) -> str:
         """Canonical JSON description stored with the cached result."""
