@@ -15,7 +15,7 @@ from __future__ import annotations
 import numpy as np
 import scipy.fft as sfft
 
-from ..materials.maxwell import GeneralizedMaxwell
+from ..materials.protocol import Material
 
 __all__ = ["wavevectors", "response_kernel", "stiffness_kernel", "apply_kernel", "forward",
            "inverse", "derivative_x"]
@@ -58,7 +58,7 @@ def wavevectors(shape: tuple[int, ...], lengths: tuple[float, ...]) -> tuple[np.
     return qabs, grids[-1]
 
 
-def response_kernel(material: GeneralizedMaxwell, shape: tuple[int, ...],
+def response_kernel(material: Material, shape: tuple[int, ...],
                     lengths: tuple[float, ...], velocity: float, nu: float = 0.5) -> np.ndarray:
     """Surface compliance ``M(q) = 2/(|q| E_r(q_x v))`` [mm/MPa] on the rfft half-grid.
 
@@ -69,7 +69,7 @@ def response_kernel(material: GeneralizedMaxwell, shape: tuple[int, ...],
     Returned array is complex (real for an elastic material); entry ``q = 0`` is 0.
     """
     qabs, qx = wavevectors(shape, lengths)
-    er = np.asarray(material.reduced_modulus(qx * velocity, nu), dtype=complex)
+    er = np.asarray(material.complex_modulus(qx * velocity), dtype=complex) / (1.0 - nu**2)
     kernel = np.zeros(qabs.shape, dtype=complex)
     nz = qabs > 0
     kernel[nz] = 2.0 / (qabs[nz] * er[nz])

@@ -7,26 +7,46 @@ may also carry the high-slope companion quantities of the hybrid method: the con
 
 Laws compose: ``LennardJonesRepulsion() + TabulatedLaw(...)`` is a :class:`SumLaw` whose pressure
 and stiffness are the sums, and whose ``α`` and ``Δτ`` come from the one member that carries them.
+
+Every law declares its :attr:`~InteractionLaw.kind`: ``"wall"`` for a stiff stand-in for the hard
+wall (the half-space solver then treats it as the wall of the wall + soft algorithm,
+:mod:`.walls`), ``"soft"`` for any other law. A new law class states its kind; the solvers read
+the attribute, never the class.
 """
 
 from __future__ import annotations
 
 from dataclasses import dataclass, field
+from typing import ClassVar, Literal
 
 import numpy as np
 from scipy.interpolate import PchipInterpolator
 
 from .._validation import finite_array, positive_scalar
 from ..errors import InputError
+from .inverse import InverseWall
 
-__all__ = ["InteractionLaw", "LennardJonesRepulsion", "TabulatedLaw", "SumLaw"]
+__all__ = ["LAW_KINDS", "InteractionLaw", "LennardJonesRepulsion", "TabulatedLaw", "SumLaw"]
 
 #: E-folds of the exponential continuation below a table before it turns linear.
 _MAX_EFOLDS = 20.0
 
 
+#: The kinds a law may declare (see the module docstring).
+LAW_KINDS = ("wall", "soft")
+
+
 class InteractionLaw:
-    """Base class: subclasses implement :meth:`pressure` and :meth:`stiffness`."""
+    """Base class: subclasses implement :meth:`pressure` and :meth:`stiffness`.
+
+    Attributes
+    ----------
+    kind
+        ``"wall"`` (a stiff stand-in for the hard wall, solved by the wall + soft algorithm
+        when combined with soft laws) or ``"soft"`` (the default).
+    """
+
+    kind: ClassVar[Literal["wall", "soft"]] = "soft"
 
     def pressure(self, u: np.ndarray) -> np.ndarray:  # pragma: no cover - abstract
         """Pressure ``σ(u)`` [MPa], >= 0, non-increasing."""
@@ -51,6 +71,16 @@ class InteractionLaw:
     def resolve(self, length_scale: float, pressure_scale: float) -> InteractionLaw:
         """Return the law with parameters left as ``None`` filled from the problem's scales."""
         return self
+
+    @property
+    def members(self) -> tuple[InteractionLaw, ...]:
+        """The laws this one sums: ``(self,)``, or a :class:`SumLaw`'s terms."""
+        return (self,)
+
+    def inverse(self) -> InverseWall | None:
+        """The inverse form ``u = g(σ)`` the mixed Newton may linearise instead of ``f``
+        (:mod:`.newton`), or ``None`` (the default: Newton on ``f`` itself)."""
+        return None
 
     def describe(self) -> dict:
         """Plain-data description (for result attributes)."""
@@ -99,6 +129,8 @@ class LennardJonesRepulsion(InteractionLaw):
     "In contact" means ``u < 2ℓ`` (``σ > p_ref/512``).
     """
 
+    kind: ClassVar[Literal["wall", "soft"]] = "wall"
+
     length: float | None = None
     reference_pressure: float | None = None
     relative_length: float = 1e-5
@@ -114,6 +146,12 @@ class LennardJonesRepulsion(InteractionLaw):
         length = self.length if self.length is not None else self.relative_length * length_scale
         pref = self.reference_pressure if self.reference_pressure is not None else pressure_scale
         return LennardJonesRepulsion(float(length), float(pref), self.relative_length)
+
+    def inverse(self) -> InverseWall | None:
+        """``u = ℓ (p_ref/σ)^(1/9)`` once resolved (``None`` while a parameter is unset)."""
+        if self.length is None or self.reference_pressure is None:
+            return None
+        return InverseWall(float(self.length), float(self.reference_pressure))
 
     def _params(self) -> tuple[float, float]:
         if self.length is None or self.reference_pressure is None:
@@ -385,6 +423,10 @@ class SumLaw(InteractionLaw):
             if n > 1:
                 raise InputError(f"law: {n} members carry {name}; at most one may")
         self.laws = tuple(flat)
+
+    @property
+    def members(self) -> tuple[InteractionLaw, ...]:
+        return self.laws
 
     def pressure(self, u):
         return sum(law.pressure(u) for law in self.laws)

@@ -31,13 +31,14 @@ the same start (never observed). μ, contact fraction and ``ū`` agree with the 
 
 from __future__ import annotations
 
-from dataclasses import dataclass, replace
+from dataclasses import replace
 
 import numpy as np
 from scipy.optimize import brentq
 
 from .contact_set import contact_solve, shifted_preconditioner
-from .laws import InteractionLaw, LennardJonesRepulsion
+from .inverse import InverseWall
+from .laws import InteractionLaw
 from .problem import Problem, Solution
 
 __all__ = ["InverseWall", "newton_from", "newton_law", "shift_for_law", "solve_single_law"]
@@ -112,72 +113,14 @@ def _newton_rtol(tol: float, res: float, loose: bool = True, mixed: bool = False
     return min(1e-3, max(tol, 1e-3 * res))
 
 
-@dataclass(frozen=True)
-class InverseWall:
-    """Inverse ``g = f⁻¹`` of a Lennard-Jones wall ``f(u) = p_ref (ℓ/u)⁹`` and ``c = −g'``.
-
-    ``g(σ) = ℓ (p_ref/σ)^(1/9)`` up to ``σ = 4⁹ p_ref``, linear beyond (the law's own linear
-    continuation below ``u = ℓ/4``); ``g = +∞`` for ``σ <= 0``. ``c(σ) = 1/k(g(σ))``.
-
-    Attributes
-    ----------
-    length, reference_pressure
-        ``ℓ`` [mm] and ``p_ref`` [MPa] of the resolved law.
-    """
-
-    length: float
-    reference_pressure: float
-
-    @property
-    def threshold(self) -> float:
-        """``f(2ℓ)`` [MPa]: rows with ``σ`` or ``f(u)`` above it are solved in inverse form."""
-        return self.reference_pressure / 512.0
-
-    @property
-    def u_min(self) -> float:
-        """``ℓ/4`` [mm]: the law is linear below."""
-        return 0.25 * self.length
-
-    @property
-    def s_min(self) -> float:
-        """``f(ℓ/4) = 4⁹ p_ref`` [MPa]."""
-        return self.reference_pressure * 4.0**9
-
-    @property
-    def k_min(self) -> float:
-        """Stiffness of the linear piece [MPa/mm]."""
-        return 9.0 * self.s_min / self.u_min
-
-    def separation(self, sig: np.ndarray) -> np.ndarray:
-        """``g(σ)`` [mm]."""
-        s_min = self.s_min
-        pos = np.maximum(sig, 1e-300)
-        u = np.where(sig <= s_min, self.length * (self.reference_pressure / pos) ** (1.0 / 9.0),
-                     self.u_min - (sig - s_min) / self.k_min)
-        return np.where(sig > 0, u, np.inf)
-
-    def compliance(self, sig: np.ndarray, u: np.ndarray) -> np.ndarray:
-        """``c = 1/k(u)`` at ``u = g(σ)``: ``k = 9σ/u`` on the power law, ``k_min`` beyond."""
-        return np.where(sig <= self.s_min, u / (9.0 * np.maximum(sig, 1e-300)),
-                        1.0 / self.k_min)
-
-
-def lj_inverse(law: InteractionLaw) -> InverseWall | None:
-    """The :class:`InverseWall` of a resolved Lennard-Jones wall, ``None`` for other laws."""
-    if not isinstance(law, LennardJonesRepulsion) or law.length is None \
-            or law.reference_pressure is None:
-        return None
-    return InverseWall(float(law.length), float(law.reference_pressure))
-
-
 def newton_law(prob: Problem, law: InteractionLaw, tol: float, max_iter: int,
                sigma: np.ndarray, ubar: float, loose: bool = True,
                inverse: InverseWall | None = None) -> Solution:
     """Newton on ``σ = f(ū + Mσ − z)``, ``<σ> = σ0`` from ``(σ, ū)``; see the module docstring.
 
-    ``inverse`` (from :func:`lj_inverse`) switches the rows in the contact range to the
-    inverse form ``u = g(σ)`` (mixed Newton): same linear system (``c = −g'(σ)``), but the
-    nearly linear ``g`` is linearised instead of the steep ``f``.
+    ``inverse`` (the law's :meth:`~.laws.InteractionLaw.inverse`) switches the rows in the
+    contact range to the inverse form ``u = g(σ)`` (mixed Newton): same linear system
+    (``c = −g'(σ)``), but the nearly linear ``g`` is linearised instead of the steep ``f``.
     """
     n = prob.size
     z = prob.z
@@ -273,7 +216,7 @@ def newton_from(prob: Problem, law: InteractionLaw, start: Solution, tol: float,
     """
     shift = shift_for_law(law, start.w - prob.z, prob.sigma0, guess=start.ubar)
     return newton_law(prob, law, tol, max_iter, start.sigma, shift, loose=loose,
-                      inverse=lj_inverse(law) if mixed else None)
+                      inverse=law.inverse() if mixed else None)
 
 
 def solve_single_law(prob: Problem, law: InteractionLaw, tol: float, max_iter: int,
@@ -285,7 +228,7 @@ def solve_single_law(prob: Problem, law: InteractionLaw, tol: float, max_iter: i
     """
     mixed = prob.options.mixed_newton
     out = newton_from(prob, law, hard_wall, tol, max_iter, loose=True, mixed=mixed)
-    if not out.converged and mixed and lj_inverse(law) is not None:
+    if not out.converged and mixed and law.inverse() is not None:
         # safety net (not observed): the plain Newton from the same hard-wall start
         failed = out
         out = newton_from(prob, law, hard_wall, tol, max_iter, loose=True, mixed=False)

@@ -78,7 +78,7 @@ import numpy as np
 
 from .._validation import positive_scalar
 from ..errors import ConvergenceError, InputError
-from ..materials.maxwell import GeneralizedMaxwell
+from ..materials.protocol import Material, check_material
 from . import kernels as kn
 from .hardwall import hard_wall_active_set, hard_wall_pk, hard_wall_viscoelastic
 from .laws import InteractionLaw
@@ -177,7 +177,7 @@ class SlidingResult:
 
 
 
-def solve_sliding(surface, period, material: GeneralizedMaxwell, velocity: float,
+def solve_sliding(surface, period, material: Material, velocity: float,
                   mean_pressure: float, law: InteractionLaw | None = None, n: int = 4096,
                   nu: float = 0.5, tol: float = 1e-8, max_iter: int = 200,
                   method: str = "auto", options: SolverOptions | None = None) -> SlidingResult:
@@ -194,7 +194,8 @@ def solve_sliding(surface, period, material: GeneralizedMaxwell, velocity: float
         an integer multiple of every wavelength. For a 2D map a scalar (square pixels) or
         ``(Ly, Lx)``.
     material
-        :class:`~rubbercontact.materials.GeneralizedMaxwell` (Young's moduli).
+        Young's moduli: a :class:`~rubbercontact.materials.GeneralizedMaxwell` or any
+        :class:`~rubbercontact.materials.Material` (``complex_modulus``, ``is_elastic``).
     velocity
         Sliding speed ``v`` [mm/s] of the rubber relative to the surface (sign convention in the
         module docstring; ``v = 0`` is the relaxed elastic limit).
@@ -281,8 +282,7 @@ def solve_sliding(surface, period, material: GeneralizedMaxwell, velocity: float
 def _check_inputs(material, velocity, mean_pressure, nu, tol, max_iter, method,
                   law) -> tuple[float, float, float]:
     """Validate the scalar arguments of :func:`solve_sliding`; return ``v``, ``σ0``, ``tol``."""
-    if not isinstance(material, GeneralizedMaxwell):
-        raise InputError(f"material: expected a GeneralizedMaxwell, got {type(material).__name__}")
+    check_material(material)
     if isinstance(velocity, bool) or not isinstance(velocity, int | float | np.floating |
                                                     np.integer):
         raise InputError(f"velocity: expected a number in mm/s, got {velocity!r}")

@@ -32,9 +32,10 @@ from dataclasses import dataclass, replace
 
 import numpy as np
 
+from ..errors import InputError
 from .contact_set import contact_solve, shifted_preconditioner
 from .hardwall import hard_wall_active_set, winkler_guess
-from .laws import InteractionLaw, LennardJonesRepulsion, SumLaw
+from .laws import LAW_KINDS, InteractionLaw, SumLaw
 from .newton import newton_from, newton_law, shift_for_law
 from .problem import Problem, Solution
 
@@ -43,17 +44,24 @@ __all__ = ["LawParts", "solve_wall_soft", "split_law", "wall_soft_active_set"]
 
 @dataclass(frozen=True)
 class LawParts:
-    """A law split into its stiff wall (Lennard-Jones members) and its soft remainder."""
+    """A law split into its stiff wall (members of kind ``"wall"``) and its soft remainder."""
 
     stiff: InteractionLaw | None
     soft: InteractionLaw | None
 
 
 def split_law(law: InteractionLaw) -> LawParts:
-    """(stiff wall part, soft remainder) of a law; either may be ``None``."""
-    members = law.laws if isinstance(law, SumLaw) else (law,)
-    stiff = [m for m in members if isinstance(m, LennardJonesRepulsion)]
-    soft = [m for m in members if not isinstance(m, LennardJonesRepulsion)]
+    """(stiff wall part, soft remainder) of a law; either may be ``None``.
+
+    Each member is routed by the :attr:`~.laws.InteractionLaw.kind` it declares.
+    """
+    members = law.members
+    for m in members:
+        if getattr(m, "kind", None) not in LAW_KINDS:
+            raise InputError(f"law: {type(m).__name__} declares kind "
+                             f"{getattr(m, 'kind', None)!r}; expected one of {LAW_KINDS}")
+    stiff = [m for m in members if m.kind == "wall"]
+    soft = [m for m in members if m.kind == "soft"]
 
     def pack(ms):
         return None if not ms else ms[0] if len(ms) == 1 else SumLaw(*ms)

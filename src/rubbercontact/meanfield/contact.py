@@ -52,7 +52,7 @@ from dataclasses import dataclass
 import numpy as np
 from scipy.special import erf
 
-from ..materials.maxwell import GeneralizedMaxwell
+from ..materials.protocol import Material
 
 #: Gauss–Legendre points per node for the cell averages in ``G``.
 CELL_POINTS = 8
@@ -91,7 +91,7 @@ class Compliance:
 
 
 def half_space_compliance(wavenumbers: np.ndarray, variances: np.ndarray, dimension: int,
-                          material: GeneralizedMaxwell, velocity, nu: float,
+                          material: Material, velocity, nu: float,
                           angles: int = ANGLES_2D) -> Compliance:
     """``M = 2/(q E_r(q v cos φ))`` on the nodes for each speed in ``velocity`` [mm/s]."""
     q = np.asarray(wavenumbers, float)

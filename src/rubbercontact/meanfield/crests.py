@@ -50,7 +50,7 @@ from functools import lru_cache
 import numpy as np
 from scipy.special import j1, jn_zeros
 
-from ..materials.maxwell import GeneralizedMaxwell
+from ..materials.protocol import Material
 
 #: Crest phases ``φ`` of a wave against a strip (midpoints of equal steps); the cascade's.
 PHASES = 16
@@ -74,7 +74,7 @@ class StripModulus:
     ``ω = max(πv/(2a), qv)`` (``q`` the wave that formed it; :func:`sliding_fraction`), read
     off a log grid in ``ω`` (:data:`MODULUS_PER_DECADE` points per decade)."""
 
-    def __init__(self, material: GeneralizedMaxwell, velocity: float, nu: float,
+    def __init__(self, material: Material, velocity: float, nu: float,
                  q_min: float, q_max: float):
         self.speed = abs(float(velocity))
         if self.speed == 0.0:

@@ -55,7 +55,7 @@ from functools import lru_cache
 import numpy as np
 from scipy.special import j1
 
-from ..materials.maxwell import GeneralizedMaxwell
+from ..materials.protocol import Material
 
 #: Smallest tabulated contact fraction (below it the Hertzian scaling in ``n r``).
 R_MIN = 1e-3
@@ -142,7 +142,7 @@ def _rows(fraction: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
     return n, h / h.sum(axis=-1, keepdims=True)
 
 
-def patch_loss(fraction, wavenumbers, material: GeneralizedMaxwell, velocity,
+def patch_loss(fraction, wavenumbers, material: Material, velocity,
                nu: float) -> np.ndarray:
     """``Σ_n h_n(r) (−2 Im[1/E_r(n q v)])`` [1/MPa] for each node (shape of ``fraction``,
     ``(..., n_q)``; ``velocity`` broadcast over the leading axes). At ``r = 1`` it is the
@@ -159,7 +159,7 @@ def patch_loss(fraction, wavenumbers, material: GeneralizedMaxwell, velocity,
     return np.sum(h * loss, axis=-1)
 
 
-def _loss_interpolant(material: GeneralizedMaxwell, nu: float, omega: np.ndarray
+def _loss_interpolant(material: Material, nu: float, omega: np.ndarray
                       ) -> np.ndarray:
     """``−2 Im[1/E_r(ω)]`` [1/MPa] at ``omega`` [rad/s], read off a log grid of
     :data:`LOSS_PER_DECADE` points per decade (the loss is smooth in ``log ω``, and a speed
@@ -203,7 +203,7 @@ class WidthLoss:
     harmonic sum is log-binned above :data:`COMB_EXACT`.
     """
 
-    def __init__(self, material: GeneralizedMaxwell, velocity: float, nu: float,
+    def __init__(self, material: Material, velocity: float, nu: float,
                  q_min: float, q_max: float):
         v = float(velocity)
         n = np.concatenate([np.arange(1.0, COMB_EXACT + 1),

@@ -26,7 +26,7 @@ from dataclasses import dataclass
 
 import numpy as np
 
-from ..materials.maxwell import GeneralizedMaxwell
+from ..materials.protocol import Material
 from .crests import SMALLEST_FRACTION
 from .patches import patch_loss
 
@@ -61,14 +61,14 @@ class SlidingStrip:
     stiffening: np.ndarray
 
 
-def _modulus_ratio(material: GeneralizedMaxwell, wavenumber: float, speed: float,
+def _modulus_ratio(material: Material, wavenumber: float, speed: float,
                    fraction: np.ndarray) -> np.ndarray:
     omega = wavenumber * speed
     own = abs(complex(material.complex_modulus(omega)))
     return np.abs(material.complex_modulus(omega / np.minimum(1.0, 2.0 * fraction))) / own
 
 
-def sliding_fraction(pressure_ratio, wavenumber: float, material: GeneralizedMaxwell,
+def sliding_fraction(pressure_ratio, wavenumber: float, material: Material,
                      velocity: float, nu: float = 0.5, iterations: int = 60) -> SlidingStrip:
     """Solve ``r = (2/π) arcsin √(x/e(r))`` for each ``x`` (bisection in ``ln r``;
     module docstring). ``wavenumber`` [rad/mm], ``velocity`` [mm/s]."""
@@ -123,7 +123,7 @@ class WaveTables:
                         np.interp(lr, np.log(self.fractions), self.loss))
 
 
-def wave_tables(wavenumber: float, amplitude: float, material: GeneralizedMaxwell,
+def wave_tables(wavenumber: float, amplitude: float, material: Material,
                 velocity: float, nu: float) -> WaveTables:
     """Tabulate :func:`sliding_fraction` and :func:`~.patches.patch_loss` for one wave."""
     modulus = complex(material.complex_modulus(wavenumber * abs(velocity))) / (1.0 - nu**2)

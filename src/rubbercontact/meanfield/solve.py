@@ -14,7 +14,7 @@ import numpy as np
 
 from .._validation import finite_array, positive_scalar
 from ..errors import InputError
-from ..materials.maxwell import GeneralizedMaxwell
+from ..materials.protocol import Material, check_material
 from .contact import (
     ANGLES_2D,
     CELL_POINTS,
@@ -226,9 +226,7 @@ def _check(psd, material, mean_pressure, nu):
     if not isinstance(psd, PSD):
         raise InputError(f"psd: expected a rubbercontact.meanfield.PSD, got "
                          f"{type(psd).__name__}")
-    if not isinstance(material, GeneralizedMaxwell):
-        raise InputError(f"material: expected a GeneralizedMaxwell, got "
-                         f"{type(material).__name__}")
+    check_material(material)
     sigma0 = positive_scalar("mean_pressure", mean_pressure, unit="MPa")
     if isinstance(nu, bool) or not (isinstance(nu, int | float) and 0.0 <= nu <= 0.5):
         raise InputError(f"nu: Poisson's ratio must lie in [0, 0.5], got {nu!r}")
@@ -244,7 +242,7 @@ def _speed(velocity) -> float:
     return float(velocity)
 
 
-def solve(psd: PSD, material: GeneralizedMaxwell, velocity: float, mean_pressure: float,
+def solve(psd: PSD, material: Material, velocity: float, mean_pressure: float,
           nu: float = 0.5, law=None, options: MeanFieldOptions | None = None
           ) -> MeanFieldResult:
     """Hysteretic friction and contact area of the mean-field theory.
@@ -255,7 +253,7 @@ def solve(psd: PSD, material: GeneralizedMaxwell, velocity: float, mean_pressure
         Roughness spectrum (:class:`.PSD`); with a ``law``, the *low-slope* spectrum
         (``psd.partition(m2_threshold)[1]``), the law standing for the scales beyond it.
     material
-        Rubber (Young's moduli).
+        Rubber (Young's moduli): any :class:`~rubbercontact.materials.Material`.
     velocity
         Sliding speed [mm/s] (sign as in :func:`rubbercontact.halfspace.solve_sliding`).
     mean_pressure
@@ -318,7 +316,7 @@ def solve(psd: PSD, material: GeneralizedMaxwell, velocity: float, mean_pressure
         friction_spectrum=(q, parts), inputs=inputs, elapsed=time.perf_counter() - t0)
 
 
-def friction_curve(psd: PSD, material: GeneralizedMaxwell, velocities, mean_pressure: float,
+def friction_curve(psd: PSD, material: Material, velocities, mean_pressure: float,
                    nu: float = 0.5, options: MeanFieldOptions | None = None) -> FrictionCurve:
     """``μ(v)``, ``A(v)`` of the plain theory for many speeds in one vectorised pass.
 

@@ -82,7 +82,7 @@ from dataclasses import dataclass
 import numpy as np
 from scipy.special import j0
 
-from ..materials.maxwell import GeneralizedMaxwell
+from ..materials.protocol import Material
 from .crests import (
     PHASES,
     SMALLEST_FRACTION,
@@ -408,7 +408,7 @@ class StripContact:
     samples: Samples
 
 
-def strip_contact(wavenumbers, amplitudes, material: GeneralizedMaxwell, velocity: float,
+def strip_contact(wavenumbers, amplitudes, material: Material, velocity: float,
                   mean_pressure: float, nu: float = 0.5, outer_crests: bool = True
                   ) -> StripContact:
     """The strip cascade (module docstring) of the waves ``Δ_i cos(q_i x + φ_i)``.
