@@ -38,7 +38,7 @@ from rubbercontact.config import load_config
 from rubbercontact.io.results import write_results
 from rubbercontact.pipeline import make_runner
 from rubbercontact.plotting.figures import plot_all
-from rubbercontact.sweep import ResultCache
+from rubbercontact.sweep import ResultCache, equivalence
 
 from ._compare import extended_phase_data, phase_average_data, short_wave_share
 from ._section3_report import section3_report
@@ -207,7 +207,18 @@ def main(argv=None) -> int:
                     help="delete the FEM solves of --reference-cache that no case of this run "
                          "used (every case must run; other studies re-render from some: "
                          "see its README)")
+    ap.add_argument("--accept-reference", metavar="WHY", default=None,
+                    help="recompute the cheapest FEM solves of --reference-cache computed by "
+                         "other code and, where they agree within --accept-rtol, record that "
+                         "code as equivalent (with WHY) in its equivalence.json; then stop")
+    ap.add_argument("--accept-rtol", type=float, default=1e-6,
+                    help="relative tolerance of --accept-reference (the steady FEM's "
+                         "stopping tolerance, not round-off)")
+    ap.add_argument("--accept-samples", type=int, default=3)
     args = ap.parse_args(argv)
+    if args.accept_reference is not None:
+        return accept_reference(args.reference_cache, args.accept_reference,
+                                args.accept_rtol, args.accept_samples)
     seed_cache(args.reference_cache, args.cache)
     used: set[str] = set()
     cases = [c.strip() for c in args.only.split(",") if c.strip()]
@@ -273,10 +284,35 @@ def prune_reference(reference: Path, keep: set[str]) -> int:
 
 
 def seed_cache(reference: Path, cache: Path) -> None:
-    """Copy the tracked FEM results ``cache`` lacks (checked; corrupt ones are skipped)."""
+    """Copy the tracked FEM results ``cache`` lacks: those of the current code, and those
+    of a code the reference's ``equivalence.json`` accepts for it (re-keyed); corrupt ones
+    and those of any other code are skipped."""
     if reference.is_dir():
-        report = ResultCache(reference).copy_to(ResultCache(cache), FEM_FUNCTIONS)
+        report = equivalence.seed(reference, cache, FEM_FUNCTIONS)
         print(f"reference FEM solves {reference} -> {cache}: {report}", flush=True)
+
+
+def accept_reference(reference: Path, why: str, rtol: float, n: int) -> int:
+    """Check the reference's FEM solves of each code other than the current one on the
+    ``n`` cheapest of them, and record the equivalence where they agree within ``rtol``."""
+    from rubbercontact.sweep.codehash import code_digest
+
+    groups = {(fn, code) for _, fn, code in
+              equivalence.entries(ResultCache(reference), FEM_FUNCTIONS)}
+    known = {(a.function, a.stored, a.current) for a in equivalence.load_equivalence(reference)}
+    status = 0
+    for fn, code in sorted(groups):
+        now = code_digest(fn)
+        if code == now or (fn, code, now) in known:
+            continue
+        check = equivalence.check_sample(reference, fn, code, n)
+        try:
+            row = equivalence.accept(reference, check, why, rtol)
+            print(f"accepted: {row.checked}")
+        except rc.InputError as exc:
+            print(exc)
+            status = 1
+    return status
 
 
 if __name__ == "__main__":
