@@ -16,7 +16,6 @@ trims the instrument's reference plates and cuts 16 mm windows free of laser dro
 # --------------
 from pathlib import Path
 
-import matplotlib.pyplot as plt
 import numpy as np
 
 import rubbercontact as rc
@@ -49,4 +48,4 @@ print("low-slope wavelengths [mm]: ", np.round(ls.wavelengths, 3))
 # %%
 # The HDC figure (paper Fig. 6 style).
 fig = plot_hdc(fit, title="CAPTIF station 0: HDC and its sine-series fit")
-plt.show()
+rc.plotting.show(fig, "captif_road.png")     # also a file: runs headless

@@ -77,4 +77,4 @@ for t in temperatures:
 ax.set_xlabel("v [mm/s]")
 ax.set_ylabel("μ")
 ax.legend()
-plt.show()
+rc.plotting.show(fig, "dma_temperature.png")     # also a file: runs headless

@@ -92,4 +92,4 @@ ax.semilogx(law_pressures, vhs_mu, "s--", label="VHS, same wave")
 ax.set_xlabel("mean pressure p̄ [MPa]")
 ax.set_ylabel("μ of the high-slope wave")
 ax.legend()
-plt.show()
+rc.plotting.show(fig, "hybrid_section3.png")     # also a file: runs headless

@@ -71,4 +71,4 @@ ax.set_xlabel("v [mm/s]")
 ax.set_ylabel("μ")
 ax.set_title("Table 2 asphalt, σ0 = 0.4 MPa")
 ax.legend()
-plt.show()
+rc.plotting.show(fig, "meanfield_vs_bem.png")     # also a file: runs headless

@@ -66,4 +66,4 @@ ax.plot(areas, pressures / p_full, "o", label="half-space solver")
 ax.set_xlabel("contact fraction 2a/λ")
 ax.set_ylabel("p̄ / p_full")
 ax.legend()
-plt.show()
+rc.plotting.show(fig, "quickstart_halfspace.png")     # also a file: runs headless

@@ -71,4 +71,4 @@ ax2.semilogx(law_speeds, mu_vhs, "s--", label="VHS")
 ax2.set_xlabel("v [mm/s]")
 ax2.set_title("m2 = 1.33, p̄ = 1 MPa")
 ax2.legend()
-plt.show()
+rc.plotting.show(fig, "speed_sweep.png")     # also a file: runs headless

@@ -81,4 +81,4 @@ ax2.plot(prof.x / wave.period, prof.pressure)
 ax2.set_xlabel("x / λ")
 ax2.set_ylabel("contact pressure [MPa]")
 ax2.set_title("steady face pressure")
-plt.show()
+rc.plotting.show(fig, "steady_fem.png")     # also a file: runs headless

@@ -14,6 +14,7 @@ from __future__ import annotations
 
 import os
 import runpy
+import warnings
 from pathlib import Path
 from types import SimpleNamespace
 
@@ -93,7 +94,14 @@ def run_example(monkeypatch, tmp_path):
         old = os.getcwd()
         try:
             os.chdir(tmp_path)       # whatever a script writes lands in the test's folder
-            return runpy.run_path(str(path), run_name="__main__")
+            with warnings.catch_warnings():
+                # plt.show() on Agg would warn that it cannot show: a headless run must not
+                warnings.filterwarnings("error", "FigureCanvasAgg is non-interactive")
+                script_globals = runpy.run_path(str(path), run_name="__main__")
+            # run headless, as the gallery header tells users to, it writes its figure
+            figure = tmp_path / "results" / "examples" / f"{name.removeprefix('plot_')}.png"
+            assert figure.stat().st_size > 1000, f"{name} wrote no figure"
+            return script_globals
         finally:
             os.chdir(old)
             plt.close("all")
