@@ -66,11 +66,23 @@ def _plt():
     return plt
 
 
-def _save(fig, path: Path) -> Path:
+def _save(fig, path: Path, legends=(), **legend_kw) -> Path:
+    """Lay out, place the legends of the axes ``legends`` clear of their data
+    (:func:`~.layout.legend_clear_of_data`, once the panels have their final size), write."""
+    from .layout import legend_clear_of_data
+
     fig.tight_layout()
+    for ax in legends:
+        legend_clear_of_data(ax, **({"fontsize": 8} | legend_kw))
     fig.savefig(path, dpi=130)
     _plt().close(fig)
     return path
+
+
+def speed_text(v: float) -> str:
+    """A speed [mm/s] for a title: three significant digits (a log range's 0.316228 is
+    0.316)."""
+    return f"{float(f'{float(v):.3g}'):g} mm/s"       # 1000, not 1e+03
 
 
 def plot_law(ds: xr.Dataset, path: Path) -> Path | None:
@@ -82,11 +94,10 @@ def plot_law(ds: xr.Dataset, path: Path) -> Path | None:
     dim, speeds = law_speeds(ds)
     for v in speeds:
         at = {dim: v}
-        u = ds["law_mean_separation"].sel(at).values * 1e3
+        u = ds["law_mean_separation"].sel(at).values
         p = ds["law_pressure"].values
-        ok = (ds["law_status"].sel(at).values == "ok" if "law_status" in ds
-              else np.ones(p.size, bool))
-        lbl = f"v = {v:g} mm/s" + (" (T_ref)" if dim == "law_velocity" else "")
+        ok = _law_kept(ds, at, p.size)
+        lbl = f"v = {speed_text(v)}" + (" (T_ref)" if dim == "law_velocity" else "")
         for ax, y in zip(axes, (p, ds["law_contact_fraction"].sel(at).values,
                                 ds["law_shear_stress"].sel(at).values), strict=True):
             line, = ax.plot(u[ok], y[ok], "o-", label=lbl)
@@ -95,19 +106,29 @@ def plot_law(ds: xr.Dataset, path: Path) -> Path | None:
                     label="excluded" if (ax is axes[0] and (~ok).any()) else None)
     axes[0].set_yscale("log")
     for ax, yl in zip(axes, ("σ_hs [MPa]", "α_hs [-]", "Δτ_hs [MPa]"), strict=True):
-        ax.set_xlabel("mean separation ū [µm]")
+        ax.set_xlabel("mean separation ū [mm]")
         ax.set_ylabel(yl)
         ax.grid(alpha=0.3)
-    axes[0].legend()
     fig.suptitle("Effective interface law of the high-slope scale (FEM)")
-    return _save(fig, path)
+    return _save(fig, path, legends=[axes[0]])
 
 
-def _label(ds: xr.Dataset, m: str) -> str:
-    label = _LABELS.get(m, m)
+def _law_kept(ds: xr.Dataset, at: dict, n: int) -> np.ndarray:
+    """Which FEM points of the law the law kept (failed and non-monotone ones are not)."""
+    if "law_status" not in ds:
+        return np.ones(n, bool)
+    return ds["law_status"].sel(at).values == "ok"
+
+
+def _label(ds: xr.Dataset, m: str, iv: int | None = None) -> str:
+    """The model's name as the config spells it; the FEM's realizations when it ran on a
+    subset; its eq. 28 error against the FEM at speed ``iv``."""
+    label = str(m)
     if m == "fem" and "fem_realizations" in ds.attrs:
-        label += (f", {ds.attrs['fem_realizations']} of {ds.sizes['realization']} "
-                  "realizations + VHS control variate")
+        label += f" ({ds.attrs['fem_realizations']} of {ds.sizes['realization']} + vhs CV)"
+    if iv is not None and "error_vs_fem" in ds and m in ds["compared_model"].values:
+        e = float(ds["error_vs_fem"].sel(compared_model=m)[iv])
+        label += "" if np.isnan(e) else f", e = {100 * e:.1f} %"
     return label
 
 
@@ -119,8 +140,10 @@ def _friction_panels(ds: xr.Dataset, path: Path, x_of, xlabel: str, xlog: bool) 
     """
     plt = _plt()
     ds = isothermal_view(ds)
+    if ds.sizes["pressure"] == 1:
+        return _one_load_panel(ds, path, x_of, xlabel, xlog)
     shown = panel_indices(ds.sizes["velocity"])
-    fig, axes = plt.subplots(1, len(shown), figsize=(5.2 * len(shown), 4), squeeze=False)
+    fig, axes = plt.subplots(1, len(shown), figsize=(5.2 * len(shown), 4.4), squeeze=False)
     mu = mean_of(ds, "friction")
     for ax, iv in zip(axes[0], shown, strict=True):
         v = ds["velocity"].values[iv]
@@ -128,20 +151,51 @@ def _friction_panels(ds: xr.Dataset, path: Path, x_of, xlabel: str, xlog: bool) 
             sel = ds.sel(model=m, velocity=v)
             ax.errorbar(x_of(ds, m, v), mu.sel(model=m, velocity=v).values,
                         yerr=sel["friction_std"].values, fmt="o-", color=_COLORS.get(m),
-                        label=_label(ds, m), capsize=3)
+                        label=_label(ds, m, iv), capsize=3)
         if xlog:
             ax.set_xscale("log")
         ax.set_xlabel(xlabel)
         ax.set_ylabel("friction coefficient μ [-]")
-        title = f"v = {v:g} mm/s{_at_temperature(ds)}"
+        title = f"v = {speed_text(v)}{_at_temperature(ds)}"
         if "error_vs_fem" in ds:
-            parts = [f"e({m}) = {100 * float(ds['error_vs_fem'].sel(compared_model=m)[iv]):.1f} %"
-                     for m in ds["compared_model"].values]
-            title += "\n" + ", ".join(parts) + _error_basis(ds)
+            title += f"\ne: eq. 28 error vs fem{_error_basis(ds)}"
         ax.set_title(title, fontsize=9)
         ax.grid(alpha=0.3)
-        ax.legend(fontsize=8)
-    return _save(fig, path)
+    return _save(fig, path, legends=list(axes[0]))
+
+
+#: Markers of the speeds in a one-load figure.
+_SPEED_MARKERS = ("o", "s", "^", "D")
+
+
+def _one_load_panel(ds: xr.Dataset, path: Path, x_of, xlabel: str, xlog: bool) -> Path:
+    """A run at one load: every speed in one panel (one point per model and speed, the
+    speed by its marker) instead of one-point panels."""
+    from matplotlib.lines import Line2D
+
+    plt = _plt()
+    fig, ax = plt.subplots(figsize=(6.4, 4.6))
+    mu = mean_of(ds, "friction")
+    shown = panel_indices(ds.sizes["velocity"])
+    for k, iv in enumerate(shown):
+        v = ds["velocity"].values[iv]
+        for m in ds["model"].values:
+            ax.errorbar(x_of(ds, m, v), mu.sel(model=m, velocity=v).values,
+                        yerr=ds["friction_std"].sel(model=m, velocity=v).values,
+                        fmt=_SPEED_MARKERS[k], color=_COLORS.get(m), capsize=3)
+    handles = [Line2D([], [], color=_COLORS.get(m), marker="o", ls="",
+                      label=_label(ds, m, shown[0] if len(shown) == 1 else None))
+               for m in ds["model"].values]
+    handles += [Line2D([], [], color="0.4", marker=_SPEED_MARKERS[k], ls="",
+                       label=f"v = {speed_text(ds['velocity'].values[iv])}")
+                for k, iv in enumerate(shown)]
+    if xlog:
+        ax.set_xscale("log")
+    ax.set_xlabel(xlabel)
+    ax.set_ylabel("friction coefficient μ [-]")
+    ax.set_title(f"σ0 = {float(ds['pressure'][0]):.3g} MPa{_at_temperature(ds)}", fontsize=9)
+    ax.grid(alpha=0.3)
+    return _save(fig, path, legends=[ax], handles=handles)
 
 
 def plot_friction_vs_area(ds: xr.Dataset, path: Path) -> Path:
@@ -166,22 +220,32 @@ def plot_high_slope_friction(ds: xr.Dataset, path: Path) -> Path | None:
     fig, axes = plt.subplots(1, len(speeds), figsize=(5.2 * len(speeds), 4), squeeze=False)
     for ax, v in zip(axes[0], speeds, strict=True):
         p = ds["law_pressure"].values
-        ax.plot(p, ds["law_friction"].sel({dim: v}), "o-", color="black", label="FEM")
+        mu = ds["law_friction"].sel({dim: v}).values
+        kept = _law_kept(ds, {dim: v}, p.size)
+        ax.plot(p[kept], mu[kept], "o-", color="black", label="FEM (the law)")
+        if (~kept).any():
+            ax.plot(p[~kept], mu[~kept], "x", color="black", ms=9,
+                    label="FEM, excluded from the law")
         if "law_vhs_friction" in ds:
             ax.plot(p, ds["law_vhs_friction"].sel({dim: v}), "s--", color="tab:red",
                     label="VHS")
+        if (np.nan_to_num(mu) < 0).any():
+            ax.axhline(0.0, color="0.3", lw=0.8)
+            ax.plot(p[mu < 0], mu[mu < 0], "v", color="tab:orange", ms=9, ls="",
+                    label="μ_hs < 0 (the wave pushes)")
         ax.set_xscale("log")
         ax.set_xlabel("mean pressure p̄ [MPa]")
         ax.set_ylabel("friction coefficient μ_hs [-]")
-        ax.set_title(f"high-slope scale, v = {v:g} mm/s")
+        ax.set_title(f"high-slope scale, v = {speed_text(v)}", fontsize=10)
         ax.grid(alpha=0.3)
-        ax.legend(fontsize=8)
-    return _save(fig, path)
+    return _save(fig, path, legends=list(axes[0]))
 
 
 def plot_pressure_profiles(ds: xr.Dataset, path: Path) -> Path | None:
-    """Fig. 8: contact pressure along the surface (realization 0), hybrid and VHS."""
-    keys = [k for k in ("pressure_profile_hybrid", "pressure_profile_vhs") if k in ds]
+    """Fig. 8: contact pressure along the surface (realization 0), every model of the run
+    that stores a profile (the half-space ones)."""
+    keys = {m: f"pressure_profile_{m}" for m in ds["model"].values
+            if f"pressure_profile_{m}" in ds}
     if not keys:
         return None
     plt = _plt()
@@ -193,21 +257,22 @@ def plot_pressure_profiles(ds: xr.Dataset, path: Path) -> Path | None:
     ip = ds.sizes["pressure"] // 2
     for ax, iv in zip(axes[:, 0], shown, strict=True):
         v = ds["velocity"].values[iv]
-        for k in keys:
-            m = k.rsplit("_", 1)[-1]
+        # dashes: the hybrids share one low-slope solve, and their profiles coincide
+        for (m, k), ls in zip(keys.items(), ("-", "--", "-.", ":", "-", "--"), strict=False):
             ax.plot(x / period, ds[k].isel(velocity=iv, pressure=ip), color=_COLORS.get(m),
-                    lw=0.8, label=_LABELS.get(m, m))
+                    lw=0.8, ls=ls, label=m)
         ax.set_xlabel("x / L0 [-]")
         ax.set_ylabel("contact pressure [MPa]")
-        ax.set_title(f"v = {v:g} mm/s, σ0 = {float(ds['pressure'][ip]):.3g} MPa"
-                     f"{_at_temperature(ds)}")
+        ax.set_title(f"v = {speed_text(v)}, σ0 = {float(ds['pressure'][ip]):.3g} MPa"
+                     f"{_at_temperature(ds)}", fontsize=10)
         ax.grid(alpha=0.3)
-        ax.legend(fontsize=8)
         if "heights" in ds:
             ax2 = ax.twinx()
-            ax2.plot(x / period, ds["heights"].values * 1e3, color="0.6", lw=0.6)
-            ax2.set_ylabel("surface height [µm]", color="0.5")
-    return _save(fig, path)
+            ax2.plot(x / period, ds["heights"].values, color="0.6", lw=0.6)
+            ax2.set_ylabel("surface height [mm]", color="0.5")
+            ax.set_zorder(ax2.get_zorder() + 1)     # the pressures and legend over the surface
+            ax.patch.set_visible(False)
+    return _save(fig, path, legends=list(axes[:, 0]))
 
 
 def plot_all(ds: xr.Dataset, directory: str | Path) -> list[Path]:

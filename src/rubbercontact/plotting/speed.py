@@ -14,7 +14,7 @@ import numpy as np
 import xarray as xr
 
 from ..io.results import mean_of
-from .figures import _COLORS, _LABELS, _plt, _save, panel_indices
+from .figures import _COLORS, _plt, _save, panel_indices, speed_text
 
 #: Most loads, temperatures and speeds drawn as panels or curves.
 MAX_LOADS = 4
@@ -55,12 +55,11 @@ def _speed_axes(ds: xr.Dataset, path: Path, draw, ylabel: str, title: str) -> Pa
             ax.set_xscale("log")
             ax.set_xlabel("sliding speed v [mm/s]")
             ax.set_ylabel(ylabel)
-            ax.set_title(f"σ0 = {p:g} MPa" + ("" if t is None else f", T = {t:g} °C"),
+            ax.set_title(f"σ0 = {p:.3g} MPa" + ("" if t is None else f", T = {t:.3g} °C"),
                          fontsize=9)
             ax.grid(alpha=0.3, which="both")
-    axes[0, 0].legend(fontsize=7)
     fig.suptitle(title)
-    return _save(fig, path)
+    return _save(fig, path, legends=[axes[0, 0]], fontsize=7)
 
 
 def plot_friction_vs_speed(ds: xr.Dataset, path: Path) -> Path | None:
@@ -78,7 +77,7 @@ def plot_friction_vs_speed(ds: xr.Dataset, path: Path) -> Path | None:
             sel["temperature"] = float(at_t["temperature"])
         for m in ds["model"].values:
             col = _COLORS.get(m)
-            ax.plot(v, mu.sel(model=m, **sel), "o-", ms=3, color=col, label=_LABELS.get(m, m))
+            ax.plot(v, mu.sel(model=m, **sel), "o-", ms=3, color=col, label=m)
             if m in _SPLIT:
                 ax.plot(v, split["friction_ls"].sel(model=m, **sel), "--", color=col, lw=1,
                         label=f"{m}: μ_ls")
@@ -103,7 +102,7 @@ def plot_contact_vs_speed(ds: xr.Dataset, path: Path) -> Path | None:
             sel["temperature"] = float(at_t["temperature"])
         for m in ds["model"].values:
             ax.plot(v, area.sel(model=m, **sel), "o-", ms=3, color=_COLORS.get(m),
-                    label=_LABELS.get(m, m))
+                    label=m)
         ax.set_yscale("log")
 
     return _speed_axes(ds, path, draw, "contact area A_c/A_0 [-]",
@@ -119,18 +118,21 @@ def plot_friction_vs_temperature(ds: xr.Dataset, path: Path) -> Path | None:
     loads = _loads(ds)
     v_all = ds["velocity"].values
     speeds = v_all[panel_indices(v_all.size, MAX_LOADS)]
-    fig, axes = _grid(ds, len(loads), len(speeds))
+    panels = [(p, v) for p in loads for v in speeds]
+    # wrapped into a near-square grid: one row of 4 panels was a 2496 x 468 strip
+    cols = int(np.ceil(np.sqrt(len(panels))))
+    rows = int(np.ceil(len(panels) / cols))
+    fig, axes = _grid(ds, rows, cols)
     t = ds["temperature"].values
-    for r, p in enumerate(loads):
-        for c, v in enumerate(speeds):
-            ax = axes[r, c]
-            for m in ds["model"].values:
-                ax.plot(t, mu.sel(model=m, pressure=p, velocity=v), "o-", ms=3,
-                        color=_COLORS.get(m), label=_LABELS.get(m, m))
-            ax.set_xlabel("temperature T [°C]")
-            ax.set_ylabel("friction coefficient μ [-]")
-            ax.set_title(f"σ0 = {p:g} MPa, v = {v:g} mm/s", fontsize=9)
-            ax.grid(alpha=0.3)
-    axes[0, 0].legend(fontsize=7)
+    for ax, (p, v) in zip(axes.flat, panels, strict=False):
+        for m in ds["model"].values:
+            ax.plot(t, mu.sel(model=m, pressure=p, velocity=v), "o-", ms=3,
+                    color=_COLORS.get(m), label=m)
+        ax.set_xlabel("temperature T [°C]")
+        ax.set_ylabel("friction coefficient μ [-]")
+        ax.set_title(f"σ0 = {p:.3g} MPa, v = {speed_text(v)}", fontsize=9)
+        ax.grid(alpha=0.3)
+    for ax in axes.flat[len(panels):]:
+        ax.set_visible(False)
     fig.suptitle("Friction against temperature (time-temperature superposition)")
-    return _save(fig, path)
+    return _save(fig, path, legends=[axes[0, 0]], fontsize=7)
