@@ -13,8 +13,8 @@ try:
 except PackageNotFoundError:  # running from a source tree without installation
     __version__ = "0.0.0+unknown"
 
-_LAZY = ("halfspace", "fem", "hybrid", "meanfield", "pipeline", "sweep", "io", "config", "inputs",
-         "plotting", "cli")
+_LAZY = ("halfspace", "fem", "hybrid", "meanfield", "models", "pipeline", "sweep", "io", "config",
+         "inputs", "plotting", "cli")
 
 
 def __getattr__(name: str):

@@ -1,0 +1,178 @@
+"""The half-space models: the VHS on the whole surface, and the hybrid with a law.
+
+Both run :func:`rubbercontact.hybrid.tasks.halfspace_loads_task` (one task over every
+load), the same task the pipeline runs, so a script and a run share cache entries.
+"""
+
+from __future__ import annotations
+
+from collections.abc import Callable, Mapping
+from dataclasses import dataclass
+from typing import Any, Literal
+
+import numpy as np
+import xarray as xr
+
+from ..errors import InputError
+from ..roughness import SineSeries
+from .base import ContactResult, TaskModel
+
+__all__ = ["HalfspaceOptions", "VHS", "Hybrid"]
+
+LOADS_TASK = "rubbercontact.hybrid.tasks:halfspace_loads_task"
+
+
+@dataclass(frozen=True)
+class HalfspaceOptions:
+    """The half-space solve of a model.
+
+    Attributes
+    ----------
+    n
+        Grid points per period [-] (the hybrid's low-slope grid defaults to the
+        equal-points-per-wave rule of :func:`rubbercontact.hybrid.grid.low_slope_points`).
+    nu
+        Poisson's ratio of the rubber [-].
+    law
+        The rubber-road interaction: ``"lennard-jones"`` (a stiff repulsive wall) or
+        ``"hard-wall"`` (exact complementarity).
+    tol
+        Relative residual tolerance of the solve [-].
+    """
+
+    n: int = 4096
+    nu: float = 0.5
+    law: Literal["lennard-jones", "hard-wall"] = "lennard-jones"
+    tol: float = 1e-8
+
+    def __post_init__(self) -> None:
+        if not (isinstance(self.n, int) and self.n >= 64):
+            raise InputError(f"n: grid points per period must be an int >= 64, got {self.n!r}")
+        if self.law not in ("lennard-jones", "hard-wall"):
+            raise InputError(f"law: 'lennard-jones' or 'hard-wall', got {self.law!r}")
+        if not 0 < self.tol < 1:
+            raise InputError(f"tol: must be in (0, 1), got {self.tol!r}")
+
+
+def _material_dict(material: Any) -> dict:
+    from ..pipeline.setup import task_material
+
+    return task_material(material)
+
+
+def _surface(surface: Any) -> SineSeries:
+    if not isinstance(surface, SineSeries):
+        raise InputError(f"surface: the half-space models take a SineSeries, got "
+                         f"{type(surface).__name__}")
+    return surface
+
+
+def _loads_result(name: str, results: list, velocity: float, pressures: np.ndarray,
+                  attrs: Mapping[str, Any]) -> ContactResult:
+    (ds,) = results
+    if not isinstance(ds, xr.Dataset):
+        nan = np.full(pressures.size, np.nan)
+        return ContactResult(name, velocity, pressures, nan, nan, nan, nan,
+                             (f"failed: {ds}",) * pressures.size, dict(attrs))
+
+    def col(k):
+        return np.asarray(ds[k].values, float) if k in ds else np.full(pressures.size, np.nan)
+
+    hs = col("friction_hs") if attrs.get("hybrid") else np.full(pressures.size, np.nan)
+    return ContactResult(name, velocity, pressures, col("friction"), col("contact_fraction"),
+                         col("mean_separation"), hs, tuple(ds["status"].values.astype(str)),
+                         dict(attrs))
+
+
+class VHS(TaskModel):
+    """The viscoelastic half-space (BEM) on the whole surface (``"vhs"``)."""
+
+    name = "vhs"
+
+    def __init__(self, options: HalfspaceOptions | None = None) -> None:
+        self.options = options or HalfspaceOptions()
+
+    def tasks(self, surface, material, velocity, pressures):
+        from ..sweep import Task
+
+        surf, o = _surface(surface), self.options
+        kw = {"surface": surf.as_dict(), "period": surf.period,
+              "material": _material_dict(material), "velocity": velocity,
+              "mean_pressures": pressures.tolist(), "n": o.n, "nu": o.nu, "law": o.law,
+              "tol": o.tol}
+        return [Task(LOADS_TASK, kw, label=f"vhs v={velocity:g}")]
+
+    def collect(self, results, velocity, pressures):
+        return _loads_result(self.name, results, velocity, pressures, {"law": self.options.law})
+
+
+#: A law: a table over speeds (:func:`rubbercontact.hybrid.effective_law`), a callable
+#: ``velocity -> table`` (e.g. the linear law), or ``{velocity: table}``.
+LawSource = xr.Dataset | Callable[[float], dict] | Mapping[float, dict]
+
+
+class Hybrid(TaskModel):
+    """The hybrid: the low-slope waves by the half-space, the high-slope ones by a law.
+
+    Parameters
+    ----------
+    law
+        The high-slope scale's interface law (see :data:`LawSource`).
+    reading
+        ``"windowed"`` (``"hybrid-windowed"``: the law read at the pressure averaged over
+        one high-slope period, this package's recommended reading) or ``"pointwise"``
+        (``"hybrid"``: the paper's reading at each grid point).
+    m2_threshold
+        A wave is high-slope when its rms slope m2 exceeds this [-] (the paper's 1).
+    options
+        The low-slope half-space solve.
+    """
+
+    def __init__(self, law: LawSource, reading: Literal["windowed", "pointwise"] = "windowed",
+                 m2_threshold: float = 1.0, options: HalfspaceOptions | None = None) -> None:
+        if reading not in ("windowed", "pointwise"):
+            raise InputError(f"reading: 'windowed' or 'pointwise', got {reading!r}")
+        if not isinstance(law, (xr.Dataset, Mapping)) and not callable(law):
+            raise InputError(f"law: a law table (xarray.Dataset), a callable velocity -> "
+                             f"table, or {{velocity: table}}; got {type(law).__name__}")
+        self.law, self.reading = law, reading
+        self.m2_threshold = float(m2_threshold)
+        self.options = options or HalfspaceOptions()
+        self.name = "hybrid-windowed" if reading == "windowed" else "hybrid"
+
+    def table(self, velocity: float) -> dict:
+        """The law at ``velocity`` as plain data (separation, pressure, α, Δτ)."""
+        from ..hybrid import law_at_velocity
+
+        if isinstance(self.law, xr.Dataset):
+            return law_at_velocity(self.law, velocity)
+        if isinstance(self.law, Mapping):
+            match = [v for v in self.law if np.isclose(float(v), velocity, rtol=1e-9)]
+            if not match:
+                raise InputError(f"law: no table at {velocity} mm/s (has "
+                                 f"{sorted(map(float, self.law))} mm/s)")
+            return dict(self.law[match[0]])
+        return dict(self.law(velocity))
+
+    def tasks(self, surface, material, velocity, pressures):
+        from ..hybrid.grid import low_slope_points
+        from ..sweep import Task
+
+        surf, o = _surface(surface), self.options
+        high, low = surf.partition(self.m2_threshold)
+        if high.size == 0:
+            raise InputError(f"surface: no wave has m2 > {self.m2_threshold:g}; without a "
+                             f"high-slope scale the hybrid is the VHS (use VHS)")
+        kw = {"surface": low.as_dict(), "period": surf.period,
+              "material": _material_dict(material), "velocity": velocity,
+              "mean_pressures": pressures.tolist(),
+              "n": low_slope_points(o.n, surf, low) if low.size else o.n, "nu": o.nu,
+              "law": o.law, "tol": o.tol, "interface_law": self.table(velocity)}
+        if self.reading == "windowed":
+            kw["hs_window"] = float(high.period)
+        return [Task(LOADS_TASK, kw, label=f"{self.name} v={velocity:g}")]
+
+    def collect(self, results, velocity, pressures):
+        return _loads_result(self.name, results, velocity, pressures,
+                             {"law": self.options.law, "hybrid": 1, "reading": self.reading,
+                              "m2_threshold": self.m2_threshold})
