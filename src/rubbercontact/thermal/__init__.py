@@ -1,0 +1,17 @@
+"""Frictional heating of the rubber: thermal properties, the moving heat source, flash
+temperature.
+
+``ThermalProperties`` (conductivity, density, specific heat of the compound, SI in, package
+units out; :data:`FILLED_SBR` the default), ``surface_temperature`` (the steady temperature
+of a periodic heat flux sliding over the rubber, by FFT, :mod:`.kernel`) and the closed
+forms of uniform moving sources (:mod:`.spots`) that the mean-field flash temperature
+(:mod:`rubbercontact.meanfield.flash`) is built from.
+"""
+
+from .kernel import surface_temperature, temperature_kernel, thermal_admittance
+from .properties import FILLED_SBR, ThermalProperties
+from .spots import band_centre_temperature, band_mean_temperature, disc_centre_temperature
+
+__all__ = ["ThermalProperties", "FILLED_SBR", "surface_temperature", "temperature_kernel",
+           "thermal_admittance", "band_centre_temperature", "band_mean_temperature",
+           "disc_centre_temperature"]
