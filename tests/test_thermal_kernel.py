@@ -183,3 +183,16 @@ def test_thermal_properties_units_and_errors():
         ThermalProperties(conductivity=-1.0)
     with pytest.raises(InputError, match="unknown"):
         ThermalProperties.from_dict({"conductance": 1.0})
+
+
+def test_material_spec_carries_a_thermal_table():
+    """``[material.thermal]`` is read by load_thermal and accepted by load_material."""
+    from rubbercontact.materials.spec import load_material, load_thermal
+
+    spec = {"preset": "sbr", "thermal": {"conductivity": 0.3, "specific_heat": 1700.0}}
+    th = load_thermal(spec)
+    assert (th.conductivity, th.density, th.specific_heat) == (0.3, 1150.0, 1700.0)
+    assert load_thermal({"preset": "sbr"}) == FILLED_SBR
+    assert load_material(spec).name == load_material({"preset": "sbr"}).name
+    with pytest.raises(InputError, match="thermal.density"):
+        load_thermal({"preset": "sbr", "thermal": {"density": "heavy"}})

@@ -14,6 +14,11 @@ Optional: ``reference_temperature`` [°C] and a ``shift`` table (``law = "WLF"``
 ``c2`` [K], or ``law = "Arrhenius"``, ``activation_energy`` [J/mol]; its ``t_ref``
 defaults to ``reference_temperature``), attached to the material so that
 ``material.at_temperature(T)`` works. Relative paths are taken from ``base_dir``.
+
+Optional ``thermal`` table: the compound's ``conductivity`` [W/(m·K)], ``density`` [kg/m³],
+``specific_heat`` [J/(kg·K)] (and ``source``), read by :func:`load_thermal` (missing values
+take the filled-SBR defaults of :mod:`rubbercontact.thermal.properties`, which states the
+conversion into mm, MPa, s: ``K`` is the same number in mW/(mm·K), ``ρc`` × 1e-6 in MPa/K).
 """
 
 from __future__ import annotations
@@ -22,6 +27,7 @@ from collections.abc import Mapping
 from pathlib import Path
 
 from ..errors import InputError
+from ..thermal.properties import ThermalProperties
 from .dma import read_dma
 from .fit import fit_prony
 from .master import master_curve
@@ -31,7 +37,7 @@ from .shift import shift_law_from_dict
 _SOURCES = ("preset", "file", "dma", "equilibrium_modulus")
 _KEYS = set(_SOURCES) | {"moduli", "relaxation_times", "name", "frequency_unit",
                          "modulus_unit", "terms", "tolerance", "reference_temperature",
-                         "shift"}
+                         "shift", "thermal"}
 _DMA_ONLY = ("frequency_unit", "modulus_unit", "terms", "tolerance")
 
 
@@ -50,6 +56,12 @@ def _shift(spec: Mapping, t_ref: float | None):
         raise InputError(f"material.shift.t_ref {raw['t_ref']} differs from "
                          f"material.reference_temperature {t_ref}")
     return shift_law_from_dict(raw)
+
+
+def load_thermal(spec: Mapping) -> ThermalProperties:
+    """The compound's thermal properties from a ``[material]`` table's ``thermal`` table
+    (the filled-SBR defaults without one; keys in the module docstring)."""
+    return ThermalProperties.from_dict(spec.get("thermal"))
 
 
 def load_material(spec: Mapping, *, base_dir: str | Path | None = None) -> GeneralizedMaxwell:
