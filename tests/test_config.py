@@ -117,3 +117,10 @@ def test_fuzz_config_loader(tmp_path_factory, data):
         load_config(p)
     except InputError as exc:
         assert str(exc) and "\n" not in str(exc)[:1]
+
+
+def test_models_default_to_the_ones_to_run_first():
+    # the recommended hybrid reading, without the full FEM (hours on a real surface)
+    cfg = parse_config(BASE)
+    assert "hybrid-windowed" in cfg.models and "vhs" in cfg.models
+    assert "fem" not in cfg.models and "hybrid" not in cfg.models
