@@ -284,3 +284,36 @@ def harmonic_fill(z: np.ndarray) -> np.ndarray:
                    shape=(k.size, k.size)).tocsr()
     z[gaps] = spsolve(a, rhs)
     return z
+
+
+def max_height(hmap: HeightMap, newton_steps: int = 20) -> float:
+    """Highest point [mm] of a periodic map's trigonometric polynomial.
+
+    The sampled maximum refined by Newton's method on the exact gradient of the
+    polynomial (its nonzero Fourier modes); a flat direction (a map uniform in y) is
+    handled by the least-squares step. A non-periodic map gives its sampled maximum.
+    """
+    z = hmap.heights
+    j, i = np.unravel_index(int(np.argmax(z)), z.shape)
+    if not hmap.periodic:
+        return float(z[j, i])
+    ck = np.fft.fft2(z) / z.size
+    ky = 2 * np.pi * np.fft.fftfreq(z.shape[0], hmap.dy)
+    kx = 2 * np.pi * np.fft.fftfreq(z.shape[1], hmap.dx)
+    nz = np.abs(ck) > 1e-14 * np.abs(ck).max()
+    kyy, kxx = np.meshgrid(ky, kx, indexing="ij")
+    c, k = ck[nz], np.stack([kxx[nz], kyy[nz]])
+    r = np.array([i * hmap.dx, j * hmap.dy])
+    best = float(z[j, i])
+    for _ in range(int(newton_steps)):
+        e = c * np.exp(1j * (k.T @ r))
+        grad = -(k * e.imag).sum(axis=1)
+        hess = -(k[:, None, :] * k[None, :, :] * e.real).sum(axis=2)
+        step = np.linalg.lstsq(hess, -grad, rcond=1e-10)[0]
+        if np.linalg.norm(step) > max(hmap.dx, hmap.dy):
+            break                   # left the sampled maximum's basin: keep the best point
+        r = r + step
+        best = max(best, float(np.sum(c * np.exp(1j * (k.T @ r))).real))
+        if np.linalg.norm(step) < 1e-14 * max(hmap.lengths):
+            break
+    return best
