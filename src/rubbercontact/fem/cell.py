@@ -17,8 +17,9 @@ import numpy as np
 
 from ..roughness.sines import SineSeries
 from .assembly import Assembler
+from .barrier import BarrierLaw, feasible_step
 from .constitutive import MaterialParameters, ViscousState
-from .contact import ContactState, evaluate_contact
+from .contact import ContactState, evaluate_contact, face_points
 from .element import ElementOutput, deformation_gradient
 from .mesh import PeriodicCell
 
@@ -53,17 +54,20 @@ class CellModel:
     sliding_plate
         Give the top edge's common horizontal displacement its own unknown
         (``plate_x``, the last one); the steady solver decides what holds it.
+    barrier
+        Barrier contact instead of the penalty (see :mod:`.barrier`).
     """
 
     def __init__(self, cell: PeriodicCell, surface: SineSeries, params: MaterialParameters,
                  penalty: float, smoothing: float = 0.0, contact_points: int = 4,
-                 sliding_plate: bool = False) -> None:
+                 sliding_plate: bool = False, barrier: BarrierLaw | None = None) -> None:
         self.cell = cell
         self.surface = surface
         self.params = params
         self.penalty = float(penalty)
         self.smoothing = float(smoothing)
         self.contact_points = int(contact_points)
+        self.barrier = barrier
         n_dofs = 2 * cell.n_nodes
         dof_map = -np.ones(n_dofs, dtype=np.int64)
         top = np.zeros(cell.n_nodes, bool)
@@ -155,7 +159,21 @@ class CellModel:
         (``smoothing`` [mm] overrides the model's)."""
         return evaluate_contact(self.surface, shift, self.face_positions(u_full), self.cell.width,
                                 self.segment_length, self.penalty, self.contact_points,
-                                self.smoothing if smoothing is None else smoothing)
+                                self.smoothing if smoothing is None else smoothing,
+                                self.barrier)
+
+    def feasible_step(self, U: np.ndarray, dU: np.ndarray, shift: float) -> float:
+        """The largest step ``α ≤ 1`` along ``dU`` from ``U`` that keeps every contact point
+        above the surface (1 without a barrier; see :func:`.barrier.feasible_step`)."""
+        if self.barrier is None:
+            return 1.0
+        m, w = self.contact_points, self.cell.width
+        pos = self.face_positions(self.asm.full_displacement(U))
+        dpos = self.face_positions(self.asm.full_displacement(dU)) - self.X_face
+        p0 = face_points(pos, w, m)
+        # the points are linear in the nodes: their moves are the nodes' moves interpolated
+        dp = face_points(dpos, 0.0, m)
+        return feasible_step(self.surface, shift, p0, dp, near=self.cell.hx)
 
     def add_contact_forces(self, r: np.ndarray, cs: ContactState) -> None:
         """Residual = ∂Π/∂u: the contact force acts ON the rubber, so subtract it."""
@@ -212,8 +230,14 @@ class CellModel:
             want = (1 - f) * want + f * np.roll(gap_old, -(k + 1))
         new = self.face_positions(self.asm.full_displacement(V))
         z_new = self.surface.heights(new[:, 0] + shift + ds)
-        fix = (want < 0) | (new[:, 1] - z_new < 0)
-        y_target = z_new + np.minimum(want, 0.0)
+        if self.barrier is None:
+            fix = (want < 0) | (new[:, 1] - z_new < 0)
+            y_target = z_new + np.minimum(want, 0.0)
+        else:
+            # the barrier's face never touches: keep each node at least half the reach up
+            floor = 0.5 * self.barrier.dhat
+            fix = (want < self.barrier.dhat) | (new[:, 1] - z_new < floor)
+            y_target = z_new + np.clip(want, floor, self.barrier.dhat)
         # at most a quarter of the face row's height, and only if no element of the face
         # row inverts (on steep flanks a vertical correction can be large)
         h_row = float(cell.y_nodes[1] - cell.y_nodes[0])

@@ -47,12 +47,13 @@ class ContactState:
     """
 
     gap: np.ndarray          # (n m,) signed normal gap where penetrating, vertical elsewhere [mm]
-    active: np.ndarray       # (n m,) bool, g < 0
+    active: np.ndarray       # (n m,) bool, g < reach: the point carries force
     point_x: np.ndarray      # (n m,) current abscissa of the contact points [mm]
     points_per_segment: int  # m
     force: np.ndarray        # (n, 2) nodal force of the surface ON the rubber [N/mm]
     stiffness: np.ndarray    # (n, 4, 4) per segment ∂(−force)/∂(a_x, a_y, b_x, b_y) [N/mm²]
-    energy: float            # penalty energy [N·mm/mm]
+    energy: float            # penalty (or barrier) energy [N·mm/mm]
+    reach: float = 0.0       # gap [mm] below which a point carries force (barrier: d̂)
 
 
 def closest_point(surface: SineSeries, shift: float, px: np.ndarray, py: np.ndarray,
@@ -129,9 +130,18 @@ def _point_penalty(surface: SineSeries, shift: float, px: np.ndarray, py: np.nda
     return gap, force, stiff, energy
 
 
+def face_points(pos: np.ndarray, width: float, points_per_segment: int) -> np.ndarray:
+    """The contact points ``(n m, 2)`` [mm] of the periodic face ``pos`` ``(n, 2)``: each
+    segment's first node and ``m − 1`` interior points (linear in the node positions)."""
+    m = int(points_per_segment)
+    b = np.vstack([pos[1:], pos[:1] + [width, 0.0]])
+    t = (np.arange(m) / m)[None, :, None]
+    return (pos[:, None, :] + t * (b - pos)[:, None, :]).reshape(-1, 2)
+
+
 def evaluate_contact(surface: SineSeries, shift: float, pos: np.ndarray, width: float,
                      segment_length: np.ndarray, penalty: float, points_per_segment: int = 4,
-                     smoothing: float = 0.0) -> ContactState:
+                     smoothing: float = 0.0, barrier=None) -> ContactState:
     """Penalty forces and tangent of the periodic rubber face ``pos`` ``(n, 2)`` [mm].
 
     The face is the closed polyline of its nodes (segment ``k`` joins node ``k`` to node
@@ -166,28 +176,34 @@ def evaluate_contact(surface: SineSeries, shift: float, pos: np.ndarray, width: 
         ``|x| < δ`` and 0 below (0 gives the plain penalty). The contact force is exact
         for penetrations beyond ``δ``; it only softens the on/off switch that makes Newton
         cycle on the active set.
+    barrier
+        A :class:`~.barrier.BarrierLaw`: the barrier replaces the penalty (``penalty``
+        and ``smoothing`` unused); its points within ``d̂`` of the surface are active.
     """
     m = int(points_per_segment)
     n = pos.shape[0]
-    xa, ya = pos[:, 0], pos[:, 1]
-    xb = np.append(xa[1:], xa[0] + width)
-    yb = np.roll(ya, -1)
     t = np.arange(m) / m
-    px = (xa[:, None] + t * (xb - xa)[:, None]).ravel()
-    py = (ya[:, None] + t * (yb - ya)[:, None]).ravel()
+    pts = face_points(pos, width, m)
+    px, py = pts[:, 0], pts[:, 1]
     seg = np.asarray(segment_length, dtype=float)
     w = np.tile(seg[:, None] / m, (1, m))
     # the node's own point stands for half of each adjacent sub-interval
     w[:, 0] = 0.5 * (seg + np.roll(seg, 1)) / m
-    gap, f, k, energy = _point_penalty(surface, shift, px, py, w.ravel(), penalty, smoothing)
+    if barrier is None:
+        gap, f, k, energy = _point_penalty(surface, shift, px, py, w.ravel(), penalty,
+                                           smoothing)
+        reach = 0.0
+    else:
+        gap, f, k, energy = barrier.points(surface, shift, px, py, w.ravel())
+        reach = barrier.dhat
     shape = np.column_stack([1.0 - t, t])                        # (m, 2): N_a, N_b
     f = f.reshape(n, m, 2)
     force = np.einsum("qi,kqa->kia", shape, f)                   # (n, 2 ends, 2)
     nodal = force[:, 0] + np.roll(force[:, 1], 1, axis=0)
     stiff = np.einsum("qi,qj,kqab->kiajb", shape, shape, k.reshape(n, m, 2, 2))
-    return ContactState(gap=gap, active=gap < 0.0, point_x=px, points_per_segment=m,
-                        force=nodal,
-                        stiffness=stiff.reshape(n, 4, 4), energy=energy)
+    return ContactState(gap=gap, active=gap < reach, point_x=px, points_per_segment=m,
+                        force=nodal, stiffness=stiff.reshape(n, 4, 4), energy=energy,
+                        reach=reach)
 
 
 def segment_penetration(surface: SineSeries, shift: float, pos: np.ndarray, width: float,
@@ -216,14 +232,15 @@ def face_contact_fraction(surface: SineSeries, shift: float, cs: ContactState,
 
     A straight segment on a curved surface is off it by up to its chord sag
     ``Δx² |z''| / 8`` (nodes or interior points lift off by that much, whichever side
-    is convex); smaller gaps are below the resolution of the face and count as contact.
+    is convex); smaller gaps are below the resolution of the face and count as contact,
+    as do the gaps within the barrier's reach (``cs.reach``), where points carry force.
     Evaluated once per converged step, not in the Newton iterations.
     """
     m = cs.points_per_segment
     x = cs.point_x
     dx = np.diff(np.append(x[::m], x[0] + width))            # segment projections
     sag = np.repeat(dx, m) ** 2 * np.abs(surface.curvatures(x + shift)) / 8.0
-    return contact_fraction(x, cs.gap - sag, width)
+    return contact_fraction(x, cs.gap - cs.reach - sag, width)
 
 
 def contact_fraction(x: np.ndarray, gap: np.ndarray, width: float) -> float:

@@ -192,7 +192,11 @@ def _newton_step(cell: SteadyCell, ev: SteadyEvaluation, pre, gauge: str, eta: f
         return LINE_SEARCH_FAILED
     merit0 = float(np.linalg.norm(pre.solve(ev.r, gauge)))
     carried = _touches(ev)
-    alpha = 1.0
+    # barrier contact: start where no contact point has crossed the surface on the way
+    # (the penalty's 1); the halvings below keep it so
+    alpha = cell.model.feasible_step(ev.U, lin.x, ev.shift)
+    if alpha <= 0.0:
+        return LINE_SEARCH_FAILED
     for _ in range(12):
         trial = _evaluate(cell, ev.U + alpha * lin.x, ev.shift, ev.load, gauge, counters)
         # A step must not lift the cell off the surface: without contact the plate's load

@@ -19,6 +19,9 @@ from ..errors import InputError
 SOLVERS = ("steady", "transient")
 #: Finite-strain viscoelastic models (see :mod:`.constitutive`).
 VISCOUS_MODELS = ("simo", "reese-govindjee")
+#: ``"penalty"``: the face may penetrate, force ``ε ⟨−g⟩`` (:mod:`.contact`);
+#: ``"barrier"``: a C² log barrier, impenetrable by construction (:mod:`.barrier`).
+CONTACTS = ("penalty", "barrier")
 
 
 def _integer(name: str, value: Any, low: int) -> int:
@@ -169,6 +172,13 @@ class FemOptions:
         mean pressure, ``p̄/ε`` (see :func:`~.contact.evaluate_contact`); 0 is the plain
         penalty. A contact point sitting at the kink makes Newton cycle; the rounding acts
         only where the local pressure is below a few per cent of ``p̄``.
+    contact
+        ``"penalty"`` or ``"barrier"`` (:data:`CONTACTS`).
+    barrier_distance
+        The barrier's reach ``d̂`` as a fraction of the smallest element (barrier only).
+    barrier_stiffness
+        The barrier's stiffness: the gap is ``d̂/10`` under this multiple of ``p̄``
+        (barrier only; see :func:`~.barrier.barrier_law`).
     bulk_modulus
         ``κ`` [MPa] (None: :data:`~.constitutive.DEFAULT_BULK_MODULUS`).
     history_order
@@ -191,6 +201,9 @@ class FemOptions:
     contact_points: int = 4
     penalty_factor: float = 100.0
     contact_smoothing: float = 0.1
+    contact: str = "penalty"
+    barrier_distance: float = 1e-3
+    barrier_stiffness: float = 1.0
     bulk_modulus: float | None = None
     history_order: int = 2
     viscous_model: str = "simo"
@@ -215,6 +228,14 @@ class FemOptions:
         _integer("contact_points", self.contact_points, 1)
         positive_scalar("penalty_factor", self.penalty_factor)
         positive_scalar("contact_smoothing", self.contact_smoothing, allow_zero=True)
+        if self.contact not in CONTACTS:
+            raise InputError(f"contact: must be one of {', '.join(CONTACTS)}, got "
+                             f"{self.contact!r}")
+        positive_scalar("barrier_distance", self.barrier_distance)
+        if not self.barrier_distance < 0.5:
+            raise InputError(f"barrier_distance: must be < 0.5 (of the smallest element), got "
+                             f"{self.barrier_distance}")
+        positive_scalar("barrier_stiffness", self.barrier_stiffness)
         if self.bulk_modulus is not None:
             positive_scalar("bulk_modulus", self.bulk_modulus, unit="MPa")
         if self.history_order not in (1, 2):

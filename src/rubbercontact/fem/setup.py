@@ -13,6 +13,7 @@ import numpy as np
 
 from ..materials.maxwell import GeneralizedMaxwell
 from ..roughness.sines import SineSeries
+from .barrier import barrier_law
 from .cell import CellModel
 from .constitutive import MaterialParameters
 from .contact import penalty_parameter
@@ -67,7 +68,16 @@ def build_cell(surface: SineSeries, material: GeneralizedMaxwell, mean_pressure:
                                               options.history_order, options.viscous_model)
     L0 = surface.period
     hx = L0 / nx
-    y0 = float(surface.heights(np.arange(nx) * hx).max()) - 1e-3 * hx
+    barrier = None
+    if options.contact == "barrier":
+        rows = periodic_cell(L0, options.height_ratio * L0, nx, ny, grading=options.grading)
+        barrier = barrier_law(min(hx, float(np.diff(rows.y_nodes).min())), mean_pressure,
+                              options.barrier_distance, options.barrier_stiffness)
+        # the straight face must start above the whole surface, within the barrier's reach
+        # of its crest so that it carries the plate from the first iteration
+        y0 = _surface_top(surface) + 0.5 * barrier.dhat
+    else:
+        y0 = float(surface.heights(np.arange(nx) * hx).max()) - 1e-3 * hx
     cell = periodic_cell(L0, options.height_ratio * L0, nx, ny, grading=options.grading, y0=y0)
     spp = steps_per_period or nx
     dt = L0 / (spp * velocity) if velocity > 0 else np.inf
@@ -78,6 +88,16 @@ def build_cell(surface: SineSeries, material: GeneralizedMaxwell, mean_pressure:
     # the rounding is sized on the penetration under the mean pressure, p̄/ε
     model = CellModel(cell, surface, params, penalty,
                       smoothing=options.contact_smoothing * mean_pressure / penalty,
-                      contact_points=options.contact_points, sliding_plate=sliding_plate)
+                      contact_points=options.contact_points, sliding_plate=sliding_plate,
+                      barrier=barrier)
     load = mean_pressure * L0
     return CellSetup(model, params, load, options.newton_tol * load, dt, h_min)
+
+
+def _surface_top(surface: SineSeries) -> float:
+    """The surface's highest point [mm]: the best of 64 samples per shortest wave, raised
+    by the chord sag bound ``Δ² max|z''|/8`` the sampling can miss."""
+    n = 64 * int(np.ceil(surface.period / float(np.min(surface.wavelengths))))
+    x = np.arange(n) * surface.period / n
+    curv = float(np.sum(surface.wavenumbers**2 * surface.amplitudes))
+    return float(surface.heights(x).max()) + (surface.period / n) ** 2 * curv / 8.0
