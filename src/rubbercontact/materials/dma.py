@@ -2,202 +2,284 @@
 
 :class:`DMAData` holds angular frequencies [rad/s], Young's storage and loss moduli
 ``E'``, ``E''`` [MPa], the reference temperature [°C] and where the data came from.
-:func:`read_dma` reads it from a CSV file with a header naming the columns. The data
-class and :func:`dma_from_material` live in :mod:`rubbercontact.materials.dmadata` and are
+:func:`read_dma` reads it from a text file as instruments export it. The data class and
+:func:`dma_from_material` live in :mod:`rubbercontact.materials.dmadata` and are
 importable from here as well.
 
-CSV convention
---------------
-* Lines starting with ``#`` are comments; the first other line is the header; the
-  delimiter is ``,`` (or ``;`` / tab, taken from the header line).
-* Each header cell is a name with an optional unit in brackets or parentheses:
-  ``frequency [Hz]``, ``E_storage [Pa]``, ``tan_delta``, ``T (°C)``. Names are matched
-  ignoring case, spaces, ``_``, ``-`` and ``.``; ``′``/``″``/``"`` count as primes:
+File convention
+---------------
+* The text layout (delimiter, decimal comma, preamble, units row, ``#`` comments) is
+  detected: :mod:`rubbercontact.materials.dmatext`.
+* Each header cell is a name with an optional unit in brackets or parentheses
+  (``Frequency (Hz)``, ``Storage modulus [MPa]``), after a slash (``E'/MPa``) or as a
+  suffix (``frequency_Hz``, ``E_storage_MPa``). Names are matched ignoring case, spaces,
+  ``_``, ``-``, ``.``, ``(``, ``)`` and ``|``; ``′``/``″``/``"`` count as primes:
 
-  ========== =========================================================== ===============
-  role       accepted names                                              units
-  ========== =========================================================== ===============
-  frequency  ``f``, ``freq``, ``frequency``; ``omega``, ``ω``,            Hz, rad/s
-             ``angular_frequency`` (these imply rad/s)
-  E′, E″     ``E'``, ``E_storage``, ``E_prime``; ``E''``, ``E_loss``,     Pa, kPa, MPa,
-             ``E_double_prime``                                          GPa, N/mm2
-  G′, G″     the same with ``G``                                         as E
-  tan δ      ``tan_delta``, ``tan δ``, ``tand``, ``loss_factor``,         none, ``-``, 1
-             ``loss_tangent``
-  temperature ``T``, ``temp``, ``temperature``                           °C, C, degC, K
-  ========== =========================================================== ===============
+  =========== =========================================================== ==============
+  role        accepted names                                              units
+  =========== =========================================================== ==============
+  frequency   ``f``, ``freq``, ``frequency``                              Hz, kHz, rad/s
+  ω           ``omega``, ``ω``, ``angular frequency`` (rad/s if unstated) as above, 1/s
+  E′, E″      ``E'``, ``E_storage``, ``storage modulus E'``; ``E''``,      Pa, kPa, MPa,
+              ``E_loss``, ``loss modulus E''``                            GPa, N/mm2
+  \\|E*\\|    ``E*``, ``|E*|``, ``complex modulus E*`` (with tan δ)        as E
+  G′, G″, G*  the same with ``G``                                         as E
+  E or G      ``storage modulus``, ``loss modulus``, ``complex modulus``  as E
+              (the letter comes from ``modulus=``)
+  tan δ       ``tan delta``, ``Tan(delta)``, ``tan δ``, ``loss factor``,   none, ``-``, 1
+              ``damping factor``, ``loss tangent``
+  temperature ``T``, ``temp``, ``temperature``                            °C, C, K
+  =========== =========================================================== ==============
 
 * Units must be stated, in the header or by the ``frequency_unit`` / ``modulus_unit``
   arguments (a header unit and a different argument are an error): a silent factor 2π or
-  10⁶ is the commonest DMA mistake.
-* The moduli are ``E'`` with ``E''`` or with ``tan δ``, or ``G'`` with ``G''`` or with
-  ``tan δ``. Shear moduli are converted with ``E = 3G`` (incompressible rubber, ν = 0.5).
-  When a file has several, E beats G and a loss modulus beats tan δ; the others are
-  ignored (and listed in ``provenance``). ``columns=`` names the columns explicitly.
+  10⁶ is the commonest DMA mistake. For the same reason a modulus named without E or G
+  (``Storage modulus``: tensile DMA writes E, a shear rheometer G) needs ``modulus=``.
+* The moduli are the storage modulus with the loss modulus or with ``tan δ``, or ``|E*|``
+  with ``tan δ``. Shear moduli are converted with ``E = 2 (1 + ν) G``, ``ν`` the
+  ``poisson_ratio`` (0.5, incompressible rubber: ``E = 3 G``). When a file has several,
+  E beats G, ω beats f (they must agree), a loss modulus beats tan δ and ``E'`` beats
+  ``|E*|``; the others are ignored and listed in ``provenance``. ``columns=`` names the
+  columns explicitly.
 * An optional temperature column holds isothermal sweeps at several temperatures (for
   :func:`~rubbercontact.materials.master_curve`).
 """
 
 from __future__ import annotations
 
-import csv
 import hashlib
-import re
+import numbers
 import warnings
 from collections.abc import Mapping
+from dataclasses import dataclass
 from pathlib import Path
 
 import numpy as np
 
 from ..errors import InputError
-from .dmadata import _FREQ_UNITS, _MOD_UNITS, DMAData, DMAWarning, _unit, dma_from_material
+from .dmacolumns import (
+    ANGULAR_UNITS,
+    DIMENSIONLESS,
+    FREQ_UNITS,
+    MOD_UNITS,
+    ROLES,
+    TEMP_UNITS,
+    role,
+    split_unit,
+    unit,
+)
+from .dmadata import DMAData, DMAWarning, dma_from_material
+from .dmatext import Row, TextTable, read_table
 from .shift import ZERO_CELSIUS, ShiftLaw
 
 __all__ = ["DMAData", "DMAWarning", "read_dma", "dma_from_material"]
 
-_TEMP_UNITS = {"°c": "°C", "c": "°C", "degc": "°C", "k": "K"}
-_NAMES = {
-    "frequency": {"f", "freq", "frequency"},
-    "omega": {"omega", "ω", "angularfrequency", "w"},
-    "E'": {"e'", "estorage", "eprime", "storagee"},
-    "E''": {"e''", "eloss", "edoubleprime", "losse"},
-    "G'": {"g'", "gstorage", "gprime", "storageg"},
-    "G''": {"g''", "gloss", "gdoubleprime", "lossg"},
-    "tan_delta": {"tandelta", "tanδ", "tand", "lossfactor", "losstangent"},
-    "temperature": {"t", "temp", "temperature"},
-}
-_ROLES = ("frequency", "E'", "E''", "G'", "G''", "tan_delta", "temperature")
+#: the roles ``columns=`` may name (a generic modulus is named by its letter there)
+_EXPLICIT_ROLES = tuple(r for r in ROLES if not r.startswith("M"))
 
 
-def _split_header(cell: str) -> tuple[str, str | None]:
-    m = re.match(r"^(.*?)\s*[\[(]\s*([^\])]*?)\s*[\])]\s*$", cell)
-    return (m.group(1), m.group(2)) if m else (cell, None)
+@dataclass(frozen=True)
+class _Column:
+    """A recognised column: its position and the unit its header states (or ``None``)."""
+
+    index: int
+    unit: str | None
 
 
-def _normalise(name: str) -> str:
-    s = name.strip().lower()
-    for a, b in (("″", "''"), ('"', "''"), ("′", "'"), ("’", "'"), ("δ", "delta")):
-        s = s.replace(a, b)
-    return re.sub(r"[\s_\-.]", "", s)
+@dataclass(frozen=True)
+class _Choice:
+    """The roles read: frequency, storage (``X'`` or ``X*``), loss (``X''`` or tan δ)."""
+
+    frequency: str
+    kind: str
+    storage: str
+    loss: str
 
 
-def _role(name: str) -> str | None:
-    key = _normalise(name)
-    for role, names in _NAMES.items():
-        if key in {_normalise(n) for n in names}:
-            return role
-    return None
-
-
-def _delimiter(line: str) -> str:
-    return max((",", ";", "\t"), key=line.count)
-
-
-def _assign_columns(path: Path, header: list[str], columns: Mapping | None) -> dict:
-    """Map roles to (index, unit) from the header, or from an explicit ``columns`` map."""
-    parsed = [_split_header(c.strip()) for c in header]
-    found: dict[str, tuple[int, str | None]] = {}
-    if columns is not None:
-        bad = set(columns) - set(_ROLES)
-        if bad:
-            raise InputError(f"columns: unknown role(s) {sorted(bad)}; expected {_ROLES}")
-        names = [p[0].strip() for p in parsed]
-        for role, col in columns.items():
-            if col not in names and col not in header:
-                raise InputError(f"{path}: column {col!r} (for {role}) not in the header "
-                                 f"{header}")
-            i = names.index(col) if col in names else header.index(col)
-            found[role] = (i, parsed[i][1])
-        return found
-    for i, (name, unit) in enumerate(parsed):
-        role = _role(name)
-        if role == "omega":
-            role, unit = "frequency", unit or "rad/s"
-        if role is None:
-            continue
-        if role in found:
-            raise InputError(f"{path}: columns {header[found[role][0]]!r} and {header[i]!r} "
-                             f"both read as {role}; keep one or pass columns=")
-        found[role] = (i, unit)
+def _explicit_columns(path: Path, header: tuple[str, ...], columns: Mapping) -> dict:
+    bad = set(columns) - set(_EXPLICIT_ROLES)
+    if bad:
+        raise InputError(f"columns: unknown role(s) {sorted(bad)}; expected {_EXPLICIT_ROLES}")
+    parsed = [split_unit(c) for c in header]
+    names = [p[0].strip() for p in parsed]
+    found = {}
+    for r, col in columns.items():
+        if col not in names and col not in header:
+            raise InputError(f"{path}: column {col!r} (for {r}) not in the header "
+                             f"{list(header)}")
+        i = names.index(col) if col in names else header.index(col)
+        found[r] = _Column(i, parsed[i][1])
     return found
+
+
+def _assign_columns(path: Path, header: tuple[str, ...], columns: Mapping | None,
+                    modulus: str | None) -> dict[str, _Column]:
+    """Map roles to columns from the header, or from an explicit ``columns`` map."""
+    if columns is not None:
+        return _explicit_columns(path, header, columns)
+    found: dict[str, _Column] = {}
+    for i, cell in enumerate(header):
+        name, unit_text = split_unit(cell)
+        r = role(name)
+        if r is None:
+            continue
+        if r.startswith("M"):
+            if modulus is None:
+                raise InputError(f"{path}: column {cell!r} does not say E or G; pass "
+                                 f"modulus='E' (tensile/bending DMA) or modulus='G' (shear)")
+            r = modulus + r[1:]
+        if r in found:
+            raise InputError(f"{path}: columns {header[found[r].index]!r} and {cell!r} "
+                             f"both read as {r}; keep one or pass columns=")
+        found[r] = _Column(i, unit_text)
+    return found
+
+
+def _choose(path: Path, header: tuple[str, ...], cols: dict[str, _Column]) -> _Choice:
+    """Which columns give the frequency and the moduli (precedence in the docstring)."""
+    freq = "omega" if "omega" in cols else "frequency" if "frequency" in cols else None
+    if freq is None:
+        raise InputError(f"DMA file {path}: no frequency column in the header {list(header)}; "
+                         f"name one 'frequency [Hz]' or 'omega [rad/s]', or pass columns=")
+    kind = next((k for k in "EG" if f"{k}'" in cols or f"{k}*" in cols), None)
+    if kind is None:
+        raise InputError(f"DMA file {path}: no storage modulus column (E' or G') in the "
+                         f"header {list(header)}")
+    storage = f"{kind}'" if f"{kind}'" in cols else f"{kind}*"
+    if storage == f"{kind}'" and f"{kind}''" in cols:
+        return _Choice(freq, kind, storage, f"{kind}''")
+    if "tan_delta" in cols:
+        return _Choice(freq, kind, storage, "tan_delta")
+    other = "G''" if kind == "E" else "E''"
+    hint = f" (the file has {other}: E and G cannot be mixed)" if other in cols else ""
+    needs = "tan δ" if storage.endswith("*") else f"{kind}'' or tan δ"
+    raise InputError(f"DMA file {path}: no {needs} column beside "
+                     f"{header[cols[storage].index]!r}{hint}")
 
 
 def _column_unit(path: Path, label: str, header_unit: str | None, argument: str | None,
                  table: dict, arg_name: str):
     if header_unit is None and argument is None:
         raise InputError(f"{path}: column {label!r} states no unit; write it in the header "
-                         f"(e.g. '{label} [{'Hz' if table is _FREQ_UNITS else 'MPa'}]') "
+                         f"(e.g. '{label} [{'Hz' if 'hz' in table else 'MPa'}]') "
                          f"or pass {arg_name}=")
     if header_unit is not None and argument is not None:
-        h = _unit(header_unit, table, f"{path}: column {label!r}")
-        a = _unit(argument, table, arg_name)
+        h = unit(header_unit, table, f"{path}: column {label!r}")
+        a = unit(argument, table, arg_name)
         if h != a:
             raise InputError(f"{path}: column {label!r} is in {h[0]} but {arg_name}="
                              f"{argument!r}; remove one")
         return h
     if header_unit is not None:
-        return _unit(header_unit, table, f"{path}: column {label!r}")
-    return _unit(argument, table, arg_name)
+        return unit(header_unit, table, f"{path}: column {label!r}")
+    return unit(argument, table, arg_name)
 
 
-def _read_rows(path: Path) -> tuple[list[str], list[tuple[int, list[str]]]]:
-    if not path.is_file():
-        raise InputError(f"DMA file {path}: not found")
-    try:
-        text = path.read_text(encoding="utf-8-sig")
-    except UnicodeDecodeError as exc:
-        raise InputError(f"DMA file {path}: not a text file ({exc})") from None
-    header, rows, delim = None, [], ","
-    for lineno, line in enumerate(text.splitlines(), start=1):
-        if not line.strip() or line.lstrip().startswith("#"):
-            continue
-        if header is None:
-            delim = _delimiter(line)
-            header = [c.strip() for c in next(csv.reader([line], delimiter=delim))]
-            continue
-        rows.append((lineno, [c.strip() for c in next(csv.reader([line], delimiter=delim))]))
-    if header is None:
-        raise InputError(f"DMA file {path}: empty (no header line)")
-    if header and all(_is_number(c) for c in header):
-        raise InputError(f"DMA file {path}: the first line holds numbers, not column names; "
-                         f"add a header such as 'frequency [Hz], E_storage [MPa], E_loss [MPa]'")
-    return header, rows
-
-
-def _is_number(text: str) -> bool:
-    try:
-        float(text)
-    except ValueError:
-        return False
-    return True
-
-
-def _column(path: Path, header: list[str], rows, index: int) -> np.ndarray:
-    out = np.empty(len(rows))
-    for k, (lineno, cells) in enumerate(rows):
-        cell = cells[index] if index < len(cells) else ""
+def _column(path: Path, table: TextTable, index: int) -> np.ndarray:
+    out = np.empty(len(table.rows))
+    for k, row in enumerate(table.rows):
+        cell = row.cells[index] if index < len(row.cells) else ""
         try:
             out[k] = float(cell)
         except ValueError:
-            raise InputError(f"{path}, line {lineno}: column {header[index]!r}: "
+            raise InputError(f"{path}, line {row.line}: column {table.header[index]!r}: "
                              f"{cell!r} is not a number") from None
         if not np.isfinite(out[k]):
-            raise InputError(f"{path}, line {lineno}: column {header[index]!r}: "
+            raise InputError(f"{path}, line {row.line}: column {table.header[index]!r}: "
                              f"{cell!r} is not finite")
     return out
 
 
+def _positive(path: Path, table: TextTable, arr: np.ndarray, index: int, label: str) -> None:
+    if np.any(arr <= 0):
+        row: Row = table.rows[int(np.argmax(arr <= 0))]
+        raise InputError(f"{path}, line {row.line}: column {table.header[index]!r}: {label} "
+                         f"value {row.cells[index]} must be > 0")
+
+
+def _frequency(path: Path, table: TextTable, cols: dict[str, _Column], choice: _Choice,
+               argument: str | None) -> tuple[np.ndarray, str]:
+    """Angular frequencies [rad/s] and the unit read; ω and f must agree when both given."""
+    col = cols[choice.frequency]
+    label = table.header[col.index]
+    if choice.frequency == "omega":
+        fu = _column_unit(path, label, col.unit or ("rad/s" if argument is None else None),
+                          argument, ANGULAR_UNITS, "frequency_unit")
+    else:
+        fu = _column_unit(path, label, col.unit, argument, FREQ_UNITS, "frequency_unit")
+    freq = _column(path, table, col.index) * fu[1]
+    _positive(path, table, freq, col.index, "frequency")
+    if choice.frequency == "omega" and "frequency" in cols and cols["frequency"].unit:
+        other = cols["frequency"]
+        f = _column(path, table, other.index) * unit(
+            other.unit, FREQ_UNITS, f"{path}: column {table.header[other.index]!r}")[1]
+        # instruments round both columns to 3-5 digits: agreement to 1 % tells units apart
+        bad = np.abs(f - freq) > 1e-2 * freq
+        if np.any(bad):
+            line = table.rows[int(np.argmax(bad))].line
+            raise InputError(f"{path}, line {line}: columns {label!r} and "
+                             f"{table.header[other.index]!r} disagree (ω ≠ 2π f); check units")
+    return freq, fu[0]
+
+
+def _moduli(path: Path, table: TextTable, cols: dict[str, _Column], choice: _Choice,
+            argument: str | None) -> tuple[np.ndarray, np.ndarray, str]:
+    """Storage and loss moduli [MPa, of the file's kind E or G] and the storage unit."""
+    sc = cols[choice.storage]
+    su = _column_unit(path, table.header[sc.index], sc.unit, argument, MOD_UNITS,
+                      "modulus_unit")
+    first = _column(path, table, sc.index) * su[1]
+    _positive(path, table, first, sc.index, "modulus")
+    lc = cols[choice.loss]
+    if choice.loss == "tan_delta":
+        if (lc.unit or "").strip() not in DIMENSIONLESS:
+            raise InputError(f"{path}: column {table.header[lc.index]!r}: tan δ is "
+                             f"dimensionless, got unit {lc.unit!r}")
+        tan = _column(path, table, lc.index)
+        _positive(path, table, tan, lc.index, "tan δ")
+        storage = first / np.sqrt(1.0 + tan**2) if choice.storage.endswith("*") else first
+        return storage, storage * tan, su[0]
+    lu = _column_unit(path, table.header[lc.index], lc.unit, argument, MOD_UNITS,
+                      "modulus_unit")
+    loss = _column(path, table, lc.index) * lu[1]
+    _positive(path, table, loss, lc.index, "loss")
+    return first, loss, su[0]
+
+
+def _temperatures(path: Path, table: TextTable, cols: dict[str, _Column]) -> np.ndarray | None:
+    if "temperature" not in cols:
+        return None
+    col = cols["temperature"]
+    label = table.header[col.index]
+    if not col.unit:
+        raise InputError(f"{path}: column {label!r} states no unit; write "
+                         f"'{label} [°C]' or '[K]'")
+    tu = unit(col.unit, TEMP_UNITS, f"{path}: column {label!r}")
+    return _column(path, table, col.index) - (ZERO_CELSIUS if tu == "K" else 0.0)
+
+
+def _check_options(modulus: str | None, poisson_ratio: float) -> float:
+    if modulus is not None and modulus not in ("E", "G"):
+        raise InputError(f"modulus: expected 'E' or 'G', got {modulus!r}")
+    if isinstance(poisson_ratio, bool) or not isinstance(poisson_ratio, numbers.Real) \
+            or not 0.0 <= poisson_ratio <= 0.5:
+        raise InputError(f"poisson_ratio: must lie in [0, 0.5], got {poisson_ratio!r}")
+    return float(poisson_ratio)
+
+
 def read_dma(path: str | Path, frequency_unit: str | None = None, temperature: float | None = None,
              *, modulus_unit: str | None = None, shift: ShiftLaw | None = None,
-             columns: Mapping[str, str] | None = None) -> DMAData:
-    """Read a DMA (master) curve from a CSV file (convention in the module docstring).
+             columns: Mapping[str, str] | None = None, modulus: str | None = None,
+             poisson_ratio: float = 0.5) -> DMAData:
+    """Read a DMA (master) curve from a text file (convention in the module docstring).
 
     Parameters
     ----------
     path
-        CSV file with a header naming the columns.
+        Text file (CSV, semicolon- or tab-separated, or columns) with a header naming the
+        columns.
     frequency_unit
-        ``"Hz"`` or ``"rad/s"`` when the header states no frequency unit.
+        ``"Hz"``, ``"kHz"`` or ``"rad/s"`` when the header states no frequency unit.
     temperature
         Reference temperature of the curve [°C] (default: the single temperature of a
         temperature column, or the shift law's ``t_ref``, else not stated).
@@ -206,8 +288,14 @@ def read_dma(path: str | Path, frequency_unit: str | None = None, temperature: f
     shift
         Shift law of the master curve (WLF or Arrhenius referred to ``temperature``).
     columns
-        Explicit column names per role (``"frequency"``, ``"E'"``, ``"E''"``, ``"G'"``,
-        ``"G''"``, ``"tan_delta"``, ``"temperature"``), instead of recognising them.
+        Explicit column names per role (``"frequency"``, ``"omega"``, ``"E'"``, ``"E''"``,
+        ``"E*"``, ``"G'"``, ``"G''"``, ``"G*"``, ``"tan_delta"``, ``"temperature"``),
+        instead of recognising them.
+    modulus
+        ``"E"`` or ``"G"``: what the columns named without a letter (``Storage modulus``)
+        hold.
+    poisson_ratio
+        ``ν`` in ``E = 2 (1 + ν) G`` for shear data [-], in [0, 0.5].
 
     Returns
     -------
@@ -220,82 +308,44 @@ def read_dma(path: str | Path, frequency_unit: str | None = None, temperature: f
         Missing file, column or unit, conflicting units, non-numbers, non-positive moduli
         (one line naming the file and column).
     """
+    nu = _check_options(modulus, poisson_ratio)
     path = Path(path)
-    header, rows = _read_rows(path)
-    cols = _assign_columns(path, header, columns)
-    if not rows:
-        raise InputError(f"DMA file {path}: no data rows below the header")
-    if "frequency" not in cols:
-        raise InputError(f"DMA file {path}: no frequency column in the header {header}; "
-                         f"name one 'frequency [Hz]' or 'omega [rad/s]', or pass columns=")
-    kind = "E" if "E'" in cols else "G" if "G'" in cols else None
-    if kind is None:
-        raise InputError(f"DMA file {path}: no storage modulus column (E' or G') in the "
-                         f"header {header}")
-    loss_role = f"{kind}''" if f"{kind}''" in cols else ("tan_delta" if "tan_delta" in cols
-                                                         else None)
-    if loss_role is None:
-        other = "G''" if kind == "E" else "E''"
-        hint = f" (the file has {other}: E and G cannot be mixed)" if other in cols else ""
-        raise InputError(f"DMA file {path}: no {kind}'' or tan δ column beside "
-                         f"{header[cols[kind + chr(39)][0]]!r}{hint}")
-    storage_role = kind + "'"
-    fi, fu_header = cols["frequency"]
-    fu = _column_unit(path, header[fi], fu_header, frequency_unit, _FREQ_UNITS,
-                      "frequency_unit")
-    si, su_header = cols[storage_role]
-    mu = _column_unit(path, header[si], su_header, modulus_unit, _MOD_UNITS, "modulus_unit")
-    freq = _column(path, header, rows, fi) * fu[1]
-    storage = _column(path, header, rows, si) * mu[1]
-    li, lu_header = cols[loss_role]
-    if loss_role == "tan_delta":
-        if lu_header not in (None, "", "-", "1"):
-            raise InputError(f"{path}: column {header[li]!r}: tan δ is dimensionless, "
-                             f"got unit {lu_header!r}")
-        loss = storage * _column(path, header, rows, li)
-    else:
-        lu = _column_unit(path, header[li], lu_header, modulus_unit, _MOD_UNITS,
-                          "modulus_unit")
-        if lu != mu:
-            raise InputError(f"{path}: columns {header[si]!r} and {header[li]!r} are in "
-                             f"different units ({mu[0]}, {lu[0]}); state one")
-        loss = _column(path, header, rows, li) * lu[1]
-    for label, arr, i, unit in (("storage", storage, si, mu[0]), ("loss", loss, li, "")):
-        if np.any(arr <= 0):
-            k = int(np.argmax(arr <= 0))
-            raise InputError(f"{path}, line {rows[k][0]}: column {header[i]!r}: {label} "
-                             f"value {rows[k][1][i]} {unit} must be > 0".rstrip())
-    if np.any(freq <= 0):
-        k = int(np.argmax(freq <= 0))
-        raise InputError(f"{path}, line {rows[k][0]}: column {header[fi]!r}: frequency "
-                         f"must be > 0, got {rows[k][1][fi]}")
-    factor = 3.0 if kind == "G" else 1.0
-    temps = None
-    if "temperature" in cols:
-        ti, tu = cols["temperature"]
-        unit = _unit(tu, _TEMP_UNITS, f"{path}: column {header[ti]!r}") if tu else None
-        if unit is None:
-            raise InputError(f"{path}: column {header[ti]!r} states no unit; write "
-                             f"'{header[ti]} [°C]' or '[K]'")
-        temps = _column(path, header, rows, ti) - (ZERO_CELSIUS if unit == "K" else 0.0)
-        if temperature is None and np.unique(temps).size == 1 and shift is None:
-            temperature = float(temps[0])
-    used = {"frequency", storage_role, loss_role, "temperature"}
+    table = read_table(path)
+    cols = _assign_columns(path, table.header, columns, modulus)
+    choice = _choose(path, table.header, cols)
+    freq, freq_unit = _frequency(path, table, cols, choice, frequency_unit)
+    storage, loss, mod_unit = _moduli(path, table, cols, choice, modulus_unit)
+    factor = 2.0 * (1.0 + nu) if choice.kind == "G" else 1.0
+    temps = _temperatures(path, table, cols)
+    if temps is not None and temperature is None and np.unique(temps).size == 1 \
+            and shift is None:
+        temperature = float(temps[0])
+    used = {choice.frequency, choice.storage, choice.loss, "temperature"}
     provenance = {
         "source": str(path), "sha256": hashlib.sha256(path.read_bytes()).hexdigest(),
-        "frequency_column": header[fi], "storage_column": header[si],
-        "loss_column": header[li], "frequency_unit": fu[0], "modulus_unit": mu[0],
-        "ignored_columns": [header[i] for r, (i, _) in cols.items() if r not in used],
+        "frequency_column": table.header[cols[choice.frequency].index],
+        "storage_column": table.header[cols[choice.storage].index],
+        "loss_column": table.header[cols[choice.loss].index],
+        "frequency_unit": freq_unit, "modulus_unit": mod_unit,
+        "ignored_columns": [table.header[c.index] for r, c in cols.items() if r not in used],
+        "delimiter": table.delimiter, "decimal_comma": table.decimal_comma,
+        "preamble_lines": table.preamble_lines,
     }
-    if kind == "G":
-        provenance["conversion"] = "E = 3 G (incompressible rubber, nu = 0.5)"
-    e_max = float(storage.max()) * factor
+    if choice.kind == "G":
+        provenance["conversion"] = (f"E = 2 (1 + nu) G with nu = {nu:g}: "
+                                    f"E = {factor:g} G")
+    _check_magnitude(path, table.header[cols[choice.storage].index],
+                     float(storage.max()) * factor)
+    return DMAData(freq, storage * factor, loss * factor, temperature=temperature,
+                   temperatures=temps, shift=shift, source=str(path),
+                   frequency_unit=freq_unit, provenance=provenance)
+
+
+def _check_magnitude(path: Path, label: str, e_max: float) -> None:
+    """Moduli far outside rubber's range are a unit mistake (an error, or a warning)."""
     if e_max > 1e6:
-        raise InputError(f"{path}: column {header[si]!r}: E' up to {e_max:g} MPa is stiffer "
+        raise InputError(f"{path}: column {label!r}: E' up to {e_max:g} MPa is stiffer "
                          f"than diamond; are the values in Pa? state the unit")
     if e_max < 1e-3:
         warnings.warn(f"{path}: E' at most {e_max:g} MPa (1 kPa) is a gel, not a rubber: "
-                      f"check the modulus unit", DMAWarning, stacklevel=2)
-    return DMAData(freq, storage * factor, loss * factor, temperature=temperature,
-                   temperatures=temps, shift=shift, source=str(path), frequency_unit=fu[0],
-                   provenance=provenance)
+                      f"check the modulus unit", DMAWarning, stacklevel=3)
