@@ -6,7 +6,8 @@ Exactly one source:
 * ``file = "fitted.toml"`` (a Prony table, TOML or CSV; see
   :meth:`GeneralizedMaxwell.from_file`);
 * ``dma = "dma.csv"`` (fitted with :func:`fit_prony`; isothermal sweeps are first built
-  into a master curve), with optional ``frequency_unit``, ``modulus_unit``, ``terms``,
+  into a master curve), with optional ``frequency_unit``, ``modulus_unit``, ``modulus``
+  (``"E"``/``"G"`` for columns named without the letter), ``terms``,
   ``tolerance``;
 * inline ``equilibrium_modulus``, ``moduli``, ``relaxation_times`` [MPa, s].
 
@@ -36,9 +37,9 @@ from .shift import shift_law_from_dict
 
 _SOURCES = ("preset", "file", "dma", "equilibrium_modulus")
 _KEYS = set(_SOURCES) | {"moduli", "relaxation_times", "name", "frequency_unit",
-                         "modulus_unit", "terms", "tolerance", "reference_temperature",
-                         "shift", "thermal"}
-_DMA_ONLY = ("frequency_unit", "modulus_unit", "terms", "tolerance")
+                         "modulus_unit", "modulus", "terms", "tolerance",
+                         "reference_temperature", "shift", "thermal"}
+_DMA_ONLY = ("frequency_unit", "modulus_unit", "modulus", "terms", "tolerance")
 
 
 def _shift(spec: Mapping, t_ref: float | None):
@@ -99,7 +100,8 @@ def load_material(spec: Mapping, *, base_dir: str | Path | None = None) -> Gener
                                  name=spec.get("name", "config"))
     else:
         dma = read_dma(base / spec["dma"], spec.get("frequency_unit"), t_ref,
-                       modulus_unit=spec.get("modulus_unit"), shift=law)
+                       modulus_unit=spec.get("modulus_unit"), shift=law,
+                       modulus=spec.get("modulus"))
         if not dma.is_isothermal:
             if law is not None:
                 raise InputError("material.shift: isothermal sweeps get their shift law "
