@@ -213,3 +213,21 @@ def test_run_check_refuses_what_would_not_slide_or_load(change, says, tmp_path, 
     assert main(["run", str(cfg), "--check"]) == 2
     err = capsys.readouterr().err.strip().splitlines()
     assert len(err) == 1 and says in err[0]
+
+
+def test_the_built_in_default_says_what_its_numbers_are(tmp_path, monkeypatch, capsys):
+    # the built-in default's config swapped for a cheap one: the note under the numbers
+    # comes with the default (no CONFIG argument), not with a user's config
+    import tomllib
+
+    import rubbercontact.config as config
+    from rubbercontact.cli.run import DEFAULT_RUN_NOTE
+
+    cheap = config.parse_config(tomllib.loads(CHEAP), base_dir=tmp_path)
+    monkeypatch.setattr(config, "default_config", lambda: cheap)
+    assert main(["run", "--output", str(tmp_path / "d"), "--quiet", "--no-figures"]) == 0
+    assert DEFAULT_RUN_NOTE in capsys.readouterr().out
+    cfg = tmp_path / "cheap.toml"
+    cfg.write_text(CHEAP)
+    assert main(["run", str(cfg), "-o", str(tmp_path / "u"), "--quiet", "--no-figures"]) == 0
+    assert DEFAULT_RUN_NOTE not in capsys.readouterr().out

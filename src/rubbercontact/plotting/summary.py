@@ -59,15 +59,28 @@ def _columns(ds: xr.Dataset) -> list[tuple[str, str, xr.DataArray, int]]:
     return cols
 
 
+def _spread(ds: xr.Dataset, k: str) -> xr.DataArray:
+    """Standard deviation of ``k`` over the realizations that ran (NaN below two)."""
+    n = ds[k].notnull().sum("realization")
+    return ds[k].std("realization").where(n > 1)
+
+
 def _per_speed(ds: xr.Dataset, v: float) -> list[str]:
-    lines = [f"v = {v:g} mm/s"]
+    lines = [f"v = {v:g} mm/s: phase average over {ds.sizes['realization']} realizations "
+             f"± the spread between them (standard deviation)"]
     cols = _columns(ds)
+    spread = {"friction": _spread(ds, "friction"),
+              "contact_fraction": _spread(ds, "contact_fraction")}
     wid = {m: max(10, len(m) + 3) for m in ds["model"].values}
-    lines.append(f"  {'sigma0 [MPa]':>12} " + " ".join(f"{h:>{w}}" for _, h, _, w in cols))
+    lines.append(f"  {'sigma0 [MPa]':>12} " + " ".join(f"{h:>{w + 9}}" for _, h, _, w in cols))
     for p in ds["pressure"].values:
         row = [f"  {p:12.4g}"]
-        for m, _, arr, w in cols:
-            row.append(f"{float(arr.sel(model=m, velocity=v, pressure=p)):{w}.4f}")
+        for m, h, arr, w in cols:
+            at = {"model": m, "velocity": v, "pressure": p}
+            key = "contact_fraction" if h.endswith(" A") else "friction"
+            sd = float(spread[key].sel(at)) if key in ds and not h.endswith("adh") else np.nan
+            pm = f"{'' if np.isnan(sd) else f'±{sd:.2g}':<8}"
+            row.append(f"{float(arr.sel(at)):{w}.4f} {pm}")
         lines.append(" ".join(row))
     if "friction_at_area_mean" in ds:
         lines.append(f"  {'A_c/A_0':>12} " + " ".join(f"{m + ' mu':>{wid[m]}}"
