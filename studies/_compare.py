@@ -1,9 +1,9 @@
-"""The comparisons of the validation: eq. 28 at equal area, its sampling intervals, the
-phase-averaged FEM (control variate) and the section 3 variants the studies reuse.
+"""The runs behind the validation's comparisons: the cheap models on many realizations,
+the extended loads, the paper's figures to compare with.
 
-Pure computations on the results of :func:`rubbercontact.pipeline.run` (``xarray`` datasets)
-and on the arrays of :func:`phase_average_data`; the words around them are in
-``_validation_report`` and ``templates/``.
+The comparisons themselves (eq. 28 at equal area, its intervals, the phase-averaged FEM)
+are the library's, :mod:`rubbercontact.compare`, re-exported here for the studies; the
+words around them are in ``_validation_report`` and ``templates/``.
 """
 
 from __future__ import annotations
@@ -13,12 +13,29 @@ import warnings
 import numpy as np
 
 import rubbercontact as rc
-from rubbercontact.hybrid.metrics import (
-    bootstrap_interval,
-    control_variate_by_column,
-    interpolate_at_areas,
-    mean_relative_error,
-    rising_branch,
+from rubbercontact.compare import (  # noqa: F401 - the studies read them as compare.NAME
+    AREA_FACTORS,
+    CHEAP_MODELS,
+    INTERVAL_LEVEL,
+    RESAMPLES,
+    area_sensitivity,
+    below_load,
+    common_areas,
+    eq28_at_equal_area,
+    eq28_first,
+    eq28_intervals,
+    eq28_of_curves,
+    eq28_phase_averaged,
+    eq28_phase_bounds,
+    eq28_realization_bounds,
+    friction_at_common_areas,
+    merge_phase_data,
+    per_realization_errors,
+    phase_area_range,
+    phase_mean_curves,
+    with_area_factor,
+    with_realization_means,
+    without_model,
 )
 from rubbercontact.pipeline import make_runner
 
@@ -28,95 +45,8 @@ PAPER_E = {10.0: 0.029, 50.0: 0.071}
 
 #: The paper's number of random-phase realizations (its section 3 comparison).
 PAPER_REALIZATIONS = 5
-#: Bootstrap resamples and the two-sided level of every interval of eq. 28.
-RESAMPLES = 2000
-INTERVAL_LEVEL = 0.9
 #: The VHS's weight of the short waves on Table 2: the waves up to this wavelength [mm].
 SHORT_WAVE_CUTOFF = 0.25
-
-
-def common_areas(curves: dict, points: int = 4):
-    """``points`` areas log-spaced over the range every ``(area, μ)`` sweep covers, and
-    each model's μ there (nothing extrapolated); None when the sweeps share no range.
-    The sweeps come in increasing load; only their rising branch is used (a load whose
-    area does not exceed a lower load's is left out, ``rising_branch``)."""
-    curves = {m: (a[np.isfinite(a) & np.isfinite(mu)], mu[np.isfinite(a) & np.isfinite(mu)])
-              for m, (a, mu) in curves.items()}    # failed loads (NaN) are left out
-    for m, (a, mu) in curves.items():
-        if a.size:   # per load, in increasing load: the index orders the loads
-            keep = rising_branch(np.arange(a.size), a)
-            curves[m] = (a[keep], mu[keep])
-    if any(a.size < 2 for a, _ in curves.values()):
-        return None
-    lo = max(a.min() for a, _ in curves.values())
-    hi = min(a.max() for a, _ in curves.values())
-    if not hi > lo:
-        return None
-    areas = np.geomspace(lo, hi, points)
-    return areas, {m: interpolate_at_areas(a, mu, areas) for m, (a, mu) in curves.items()}
-
-
-def friction_at_common_areas(ds, points: int = 4) -> dict:
-    """Per velocity: target areas and each model's mean friction there.
-
-    With target areas in the config these are the config's (pipeline output); with loads
-    given as pressures, ``points`` areas log-spaced over the range that every model's
-    load sweep covers (so nothing is extrapolated).
-    """
-    models = list(ds["model"].values)
-    out = {}
-    for v in ds["velocity"].values:
-        if "friction_at_area_mean" in ds:
-            areas = ds["contact_area"].values
-            mus = {m: ds["friction_at_area_mean"].sel(model=m, velocity=v).values
-                   for m in models}
-        else:
-            s = ds.sel(velocity=v)
-            common = common_areas({m: (s["contact_fraction_mean"].sel(model=m).values,
-                                        s["friction_mean"].sel(model=m).values)
-                                    for m in models}, points)
-            if common is None:
-                continue
-            areas, mus = common
-        ok = np.all([np.isfinite(mus[m]) for m in models], axis=0)
-        out[float(v)] = (areas[ok], {m: mus[m][ok] for m in models})
-    return out
-
-
-def eq28_intervals(ds, models=("hybrid", "hybrid-windowed", "vhs"),
-                   level: float = INTERVAL_LEVEL, resamples: int = RESAMPLES,
-                   points: int = 4) -> dict:
-    """``{v: {model: (low, high, used)}}``: the sampling uncertainty of eq. 28 at equal area.
-
-    A paired bootstrap over realizations (``bootstrap_interval``): each resample redoes the
-    mean curves of every model on the same drawn realizations, the common areas and the
-    error, exactly as ``friction_at_common_areas`` does for the whole set.
-    """
-    models = [m for m in models if m in ds["model"].values]
-    out = {}
-    for v in ds["velocity"].values:
-        s = ds.sel(velocity=v)
-        if "friction_at_area" in ds:
-            mu_k = {m: s["friction_at_area"].sel(model=m).transpose("realization", ...).values
-                    for m in ds["model"].values}
-
-            def stat(idx, m, mu_k=mu_k):
-                mus = {k: x[idx].mean(axis=0) for k, x in mu_k.items()}
-                ok = np.all([np.isfinite(x) for x in mus.values()], axis=0)
-                return mean_relative_error(mus["fem"][ok], mus[m][ok]) if ok.any() else np.nan
-        else:
-            arr = {m: (s["contact_fraction"].sel(model=m).transpose("realization", ...).values,
-                       s["friction"].sel(model=m).transpose("realization", ...).values)
-                   for m in ds["model"].values}
-
-            def stat(idx, m, arr=arr):
-                return eq28_of_curves({k: (a[idx].mean(axis=0), mu[idx].mean(axis=0))
-                                        for k, (a, mu) in arr.items()}, [m], points)[m]
-        out[float(v)] = {m: bootstrap_interval(lambda idx, m=m: stat(idx, m),
-                                               ds.sizes["realization"], resamples=resamples,
-                                               level=level)
-                         for m in models}
-    return out
 
 
 def hybrid_with_linear_law(ds, n: int = 4096) -> dict:
@@ -157,40 +87,10 @@ def hybrid_with_linear_law(ds, n: int = 4096) -> dict:
 
 
 # FEM contact-area factors of the sensitivity check (about the resolution at h/a ~ 0.5-1)
-AREA_FACTORS = (1.05, 1.0, 0.95, 0.9)
-
-
-def with_realization_means(ds):
-    """``ds`` with ``friction_mean`` and ``contact_fraction_mean`` redone from the
-    realizations it holds (after a subset, a replaced model or a scaled area)."""
-    return ds.assign(friction_mean=ds["friction"].mean("realization"),
-                     contact_fraction_mean=ds["contact_fraction"].mean("realization"))
-
-
-def eq28_at_equal_area(ds, models=("hybrid", "hybrid-windowed", "vhs")) -> dict:
-    """``{v: (areas, {model: e})}``: eq. 28 against the FEM at the common areas of
-    ``friction_at_common_areas`` (the comparison of VALIDATION.md)."""
-    return {v: (areas, {m: mean_relative_error(mus["fem"], mus[m]) for m in models
-                        if m in mus})
-            for v, (areas, mus) in friction_at_common_areas(ds).items()}
-
-
-def eq28_first(ds, k: int | None = None,
-               models=("hybrid", "hybrid-windowed", "vhs")) -> dict:
-    """``{v: (areas, {model: e}, {model: (low, high, used)})}``: eq. 28 at equal area over
-    the first ``k`` realizations (all: None), with its bootstrap interval (none for one
-    realization)."""
-    sub = ds if k is None else with_realization_means(ds.isel(realization=slice(0, k)))
-    ci = eq28_intervals(sub, models=models) if sub.sizes["realization"] >= 2 else {}
-    return {v: (areas, e, ci.get(v, {}))
-            for v, (areas, e) in eq28_at_equal_area(sub, models).items()}
 
 
 #: Realizations of the cheap models (VHS, hybrids) behind the phase-averaged eq. 28.
 PHASE_REALIZATIONS = 1000
-
-
-CHEAP_MODELS = ("hybrid", "hybrid-windowed", "vhs")
 
 
 def phase_average_data(ds, cfg, n: int = PHASE_REALIZATIONS) -> dict:
@@ -236,110 +136,11 @@ def phase_average_data(ds, cfg, n: int = PHASE_REALIZATIONS) -> dict:
     return out
 
 
-def _column_mean(x: np.ndarray, idx: np.ndarray) -> np.ndarray:
-    with warnings.catch_warnings():
-        warnings.simplefilter("ignore", RuntimeWarning)   # an all-failed load stays NaN
-        return np.nanmean(x[idx], axis=0)
-
-
-def phase_mean_curves(data: dict, idx_r=None, idx_n=None, beta: str = "difference") -> dict:
-    """``{"plain": {m: (Ā, μ̄)}, "phase": {m: (Ā, μ̄)}}`` per load of one velocity.
-
-    *plain*: every model averaged over the R realizations with a full FEM (VALIDATION's
-    eq. 28); *phase*: the cheap models over all N, the FEM as ``mean_N(VHS) + mean_R(FEM −
-    VHS)`` (``control_variate_mean``; a failed FEM test drops that realization at its load).
-    ``idx_r`` / ``idx_n`` resample the R and the N realizations (bootstrap); ``beta``:
-    ``"regression"`` fits the control's coefficient per load (``control_variate_by_column``).
-    """
-    fem = data["fem"]
-    r, n = fem[0].shape[0], data["all"]["vhs"][0].shape[0]
-    idx_r = np.arange(r) if idx_r is None else np.asarray(idx_r)
-    idx_n = np.arange(n) if idx_n is None else np.asarray(idx_n)
-    plain = {m: tuple(_column_mean(x, idx_r) for x in xs)
-             for m, xs in [("fem", fem), *data["paired"].items()]}
-    phase = {m: tuple(_column_mean(x, idx_n) for x in xs) for m, xs in data["all"].items()}
-    cv = [control_variate_by_column(t[idx_r], c[idx_r], call[idx_n], beta)[0]
-          for t, c, call in zip(fem, data["paired"]["vhs"], data["all"]["vhs"], strict=True)]
-    phase["fem"] = tuple(cv)
-    return {"plain": plain, "phase": phase}
-
-
-def eq28_of_curves(curves: dict, models, points: int = 4) -> dict:
-    """``{m: e}``: eq. 28 against ``curves["fem"]`` at the common areas of mean curves."""
-    common = common_areas(curves, points)
-    if common is None:
-        return {m: np.nan for m in models}
-    _, mus = common
-    ok = np.all([np.isfinite(x) for x in mus.values()], axis=0)
-    return {m: mean_relative_error(mus["fem"][ok], mus[m][ok]) if ok.any() else np.nan
-            for m in models}
-
-
-def eq28_phase_averaged(phase_data: dict, resamples: int = RESAMPLES,
-                        level: float = INTERVAL_LEVEL,
-                        seed: int = 0, beta: str = "difference") -> dict:
-    """``{v: ({m: e}, {m: (low, high, used)})}``: eq. 28 at equal area against the
-    phase-averaged FEM, with a two-sample bootstrap interval (the R FEM realizations and
-    the N cheap ones resampled independently, ``resamples`` times; a fitted β is refitted
-    in every resample)."""
-    out = {}
-    for v, data in phase_data.items():
-        models = [m for m in CHEAP_MODELS if m in data["all"]]
-        e = eq28_of_curves(phase_mean_curves(data, beta=beta)["phase"], models)
-        r, n = data["fem"][0].shape[0], data["all"]["vhs"][0].shape[0]
-        rng = np.random.default_rng(seed)
-        draws = []
-        for _ in range(int(resamples)):     # one resample serves every model (paired)
-            d = eq28_of_curves(phase_mean_curves(
-                data, rng.integers(0, r, r), rng.integers(0, n, n), beta)["phase"], models)
-            draws.append([d[m] for m in models])
-        draws = np.array(draws)
-        ci = {}
-        for j, m in enumerate(models):
-            x = draws[:, j][np.isfinite(draws[:, j])]
-            if x.size:
-                low, high = np.quantile(x, [(1 - level) / 2, (1 + level) / 2])
-                ci[m] = (float(low), float(high), int(x.size))
-        out[v] = (e, ci)
-    return out
-
-
 #: Loads [MPa] added to section 3's three, per speed, so that the comparison spans the
 #: paper's area range 0.01-0.1 (phase-averaged FEM areas 0.012-0.10 at 10 mm/s, 0.009-0.1
 #: at 50 mm/s), each with the number of realizations (the first ones) its full FEM ran on.
 #: A 50 mm/s, 2 MPa test costs about half an hour on one core.
 EXTENDED_LOADS = {10.0: {0.05: 5, 0.1: 5, 1.2: 5}, 50.0: {0.1: 5, 2.0: 5}}
-
-
-def merge_phase_data(a: dict, b: dict) -> dict:
-    """One velocity's phase data (``phase_average_data``) over the loads of ``a`` and ``b``.
-
-    Both come from the same seed and N; ``b`` may have fewer FEM realizations than ``a``
-    (its FEM rows are padded with NaN, which ``phase_mean_curves`` leaves out at that load;
-    the paired cheap models are the first R of the N, so they need no padding). Loads must
-    not repeat; the result is sorted by load.
-    """
-    p = np.concatenate([a["pressures"], b["pressures"]])
-    if np.unique(p).size != p.size:
-        raise ValueError(f"merge_phase_data: loads repeat: {sorted(p.tolist())}")
-    if set(a["all"]) != set(b["all"]) or a["all"]["vhs"][0].shape[0] != b["all"]["vhs"][0].shape[0]:
-        raise ValueError("merge_phase_data: the two sets differ in models or in N")
-    order = np.argsort(p)
-    r = max(a["fem"][0].shape[0], b["fem"][0].shape[0])
-
-    def pad(x):
-        return np.vstack([x, np.full((r - x.shape[0], x.shape[1]), np.nan)])
-
-    def join(xa, xb, fill):
-        return np.hstack([fill(xa), fill(xb)])[:, order]
-
-    every = {m: tuple(join(xa, xb, lambda x: x) for xa, xb in zip(a["all"][m], b["all"][m],
-                                                                   strict=True))
-             for m in a["all"]}
-    return {"pressures": p[order],
-            "fem": tuple(join(xa, xb, pad) for xa, xb in zip(a["fem"], b["fem"], strict=True)),
-            "paired": {m: tuple(x[:r] for x in xs) for m, xs in every.items()},
-            "all": every}
 
 
 def extended_phase_data(cfg, phase_data: dict, used_keys: set[str] | None = None,
@@ -375,67 +176,6 @@ def extended_phase_data(cfg, phase_data: dict, used_keys: set[str] | None = None
                 ds = rc.pipeline.run(ext_cfg, runner=recording)
             merged = merge_phase_data(merged, phase_average_data(ds, ext_cfg, n)[v])
         out[v] = merged
-    return out
-
-
-def without_model(data: dict, model: str) -> dict:
-    return {**data, "paired": {m: x for m, x in data["paired"].items() if m != model},
-            "all": {m: x for m, x in data["all"].items() if m != model}}
-
-
-def phase_area_range(data: dict) -> tuple[float, float]:
-    common = common_areas(phase_mean_curves(data)["phase"])
-    return (np.nan, np.nan) if common is None else (common[0][0], common[0][-1])
-
-
-def below_load(data: dict, pmax: float) -> dict:
-    """``data`` at the loads below ``pmax`` only."""
-    keep = data["pressures"] < pmax
-
-    def cut(xs):
-        return tuple(x[:, keep] for x in xs)
-
-    return {"pressures": data["pressures"][keep], "fem": cut(data["fem"]),
-            "paired": {m: cut(x) for m, x in data["paired"].items()},
-            "all": {m: cut(x) for m, x in data["all"].items()}}
-
-
-def with_area_factor(ds, factor: float):
-    """``ds`` with the FEM's contact fractions multiplied by ``factor`` (friction unchanged)."""
-    ds = ds.copy(deep=True)
-    ds["contact_fraction"].loc[{"model": "fem"}] = ds["contact_fraction"].sel(model="fem") * factor
-    return with_realization_means(ds)
-
-
-def area_sensitivity(ds, models=("hybrid-windowed", "vhs")) -> dict:
-    """``{factor: {v: {model: e}}}``: eq. 28 at equal area with every FEM contact fraction
-    scaled by each of ``AREA_FACTORS``."""
-    return {factor: {v: e for v, (_, e) in
-                     eq28_at_equal_area(with_area_factor(ds, factor), models).items()}
-            for factor in AREA_FACTORS}
-
-
-def per_realization_errors(ds, models=("hybrid-windowed", "vhs"), points: int = 4) -> dict:
-    """``{v: {model: [e_r]}}``: eq. 28 at equal area within each realization.
-
-    The paper's eq. 28 compares realization means. This compares each realization's own
-    load sweep (common areas as in ``common_areas``), so it says how well a model predicts
-    one surface rather than the ensemble; NaN where that realization's sweeps share no area.
-    """
-    models = [m for m in models if m in ds["model"].values]
-    out: dict = {}
-    for v in ds["velocity"].values:
-        s = ds.sel(velocity=v)
-        errs: dict = {m: [] for m in models}
-        for r in range(ds.sizes["realization"]):
-            sr = s.isel(realization=r)
-            common = common_areas({m: (sr["contact_fraction"].sel(model=m).values,
-                                        sr["friction"].sel(model=m).values)
-                                    for m in [*models, "fem"]}, points)
-            for m in models:
-                errs[m].append(np.nan if common is None
-                               else mean_relative_error(common[1]["fem"], common[1][m]))
-        out[float(v)] = errs
     return out
 
 
