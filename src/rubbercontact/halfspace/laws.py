@@ -414,12 +414,11 @@ class SumLaw(InteractionLaw):
         for law in laws:
             if not isinstance(law, InteractionLaw):
                 raise InputError(f"law: expected interaction laws, got {law!r}")
-            flat.extend(law.laws if isinstance(law, SumLaw) else [law])
+            flat.extend(law.members)
         if not flat:
             raise InputError("law: SumLaw needs at least one law")
         for name in ("contact_fraction", "shear_stress"):
-            n = sum(1 for law in flat if isinstance(law, TabulatedLaw)
-                    and getattr(law, f"{name}_table") is not None)
+            n = sum(1 for law in flat if getattr(law, f"{name}_table", None) is not None)
             if n > 1:
                 raise InputError(f"law: {n} members carry {name}; at most one may")
         self.laws = tuple(flat)
