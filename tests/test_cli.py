@@ -231,3 +231,12 @@ def test_the_built_in_default_says_what_its_numbers_are(tmp_path, monkeypatch, c
     cfg.write_text(CHEAP)
     assert main(["run", str(cfg), "-o", str(tmp_path / "u"), "--quiet", "--no-figures"]) == 0
     assert DEFAULT_RUN_NOTE not in capsys.readouterr().out
+
+
+def test_run_check_prints_the_cost(tmp_path, capsys):
+    cfg = tmp_path / "cheap.toml"
+    cfg.write_text(CHEAP)
+    assert main(["run", str(cfg), "--check", "--workers", "2"]) == 0
+    out = capsys.readouterr().out
+    assert "cost: half-space solves (vhs; 256 points): 1 x" in out
+    assert "on 2 worker(s)" in out

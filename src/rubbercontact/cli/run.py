@@ -38,14 +38,14 @@ def command(
     from ..plotting.figures import plot_all, summary_table
 
     cfg = load_config(config) if config is not None else default_config()
-    if check:
-        typer.echo(describe_plan(cfg))
-        return
     upd_exec = {k: v for k, v in {"workers": workers, "threads_per_worker": threads_per_worker,
                                   "scheduler": scheduler, "cache": cache}.items()
                 if v is not None}
     if upd_exec:
         cfg = cfg.model_copy(update={"execution": cfg.execution.model_copy(update=upd_exec)})
+    if check:
+        typer.echo(describe_plan(cfg))
+        return
     outdir = output if output is not None else cfg.output.directory
     outdir = Path(outdir)
     results_path = outdir / "results.nc"
@@ -98,6 +98,7 @@ DEFAULT_RUN_NOTE = ("built-in default: a reduced demonstration of the paper's §
 def describe_plan(cfg) -> str:
     """What a run of ``cfg`` will compute (after :func:`rubbercontact.pipeline.resolve`)."""
     from ..pipeline import resolve
+    from ..pipeline.cost import estimate_cost
     from ..pipeline.lawstage import uses_continuation
 
     setup = resolve(cfg)
@@ -125,4 +126,5 @@ def describe_plan(cfg) -> str:
             how = ("by continuation in speed, one task per pressure"
                    if uses_continuation(cfg, sp.computed.size) else "one task per point")
             lines.append(f"law: {n_p} pressures x {sp.computed.size} speeds of FEM, {how}")
+    lines.append(estimate_cost(setup).describe())
     return "\n".join(lines)
