@@ -20,13 +20,13 @@ File convention
   =========== =========================================================== ==============
   frequency   ``f``, ``freq``, ``frequency``                              Hz, kHz, rad/s
   ω           ``omega``, ``ω``, ``angular frequency`` (rad/s if unstated) as above, 1/s
-  E′, E″      ``E'``, ``E_storage``, ``storage modulus E'``; ``E''``,      Pa, kPa, MPa,
+  E′, E″      ``E'``, ``E_storage``, ``storage modulus E'``; ``E''``,     Pa, kPa, MPa,
               ``E_loss``, ``loss modulus E''``                            GPa, N/mm2
-  \\|E*\\|    ``E*``, ``|E*|``, ``complex modulus E*`` (with tan δ)        as E
-  G′, G″, G*  the same with ``G``                                         as E
-  E or G      ``storage modulus``, ``loss modulus``, ``complex modulus``  as E
+  E*          ``E*``, ``|E*|``, ``complex modulus E*`` (with tan δ)       as E′
+  G′, G″, G*  the same with ``G``                                         as E′
+  E or G      ``storage modulus``, ``loss modulus``, ``complex modulus``  as E′
               (the letter comes from ``modulus=``)
-  tan δ       ``tan delta``, ``Tan(delta)``, ``tan δ``, ``loss factor``,   none, ``-``, 1
+  tan δ       ``tan delta``, ``Tan(delta)``, ``tan δ``, ``loss factor``,  none, ``-``, 1
               ``damping factor``, ``loss tangent``
   temperature ``T``, ``temp``, ``temperature``                            °C, C, K
   =========== =========================================================== ==============
