@@ -41,6 +41,7 @@ from rubbercontact.plotting.figures import plot_all
 from rubbercontact.sweep import ResultCache, equivalence
 
 from ._compare import extended_phase_data, phase_average_data, short_wave_share
+from ._headline import headline_table, write_headline
 from ._section3_report import section3_report
 from ._templates import render
 from ._validation_report import (
@@ -236,6 +237,8 @@ def main(argv=None) -> int:
                      if args.phase_realizations else {})
             extended = (extended_phase_data(cfg, phase, case_used, QUICK_EXTENDED_LOADS)
                         if phase and args.level == "quick" and args.extended else {})
+            if phase and args.level == "quick":
+                write_headline(headline_table(ds, phase, commit))
             part = section3_report(ds, wall, figs, msgs, args.level, phase, extended,
                                    fem_solves(args.cache, case_used),
                                    steady_vs_transient(args.cache, case_used,
