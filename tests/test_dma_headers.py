@@ -185,6 +185,8 @@ ROWS = _rows([HZ, E.real, E.imag])
     (["f (Hz),E' (MPa),E'' (MPa),T", *_rows([HZ, E.real, E.imag, HZ])], {},
      r"column 'T' states no unit"),
     (["f (Hz),E' (MPa),E'' (MPa)"], {}, r"no data rows below the header"),
+    (["Frequency (Hz) E' (MPa) E'' (MPa)", *_rows([HZ, E.real, E.imag], sep=" ")], {},
+     r"line 1: 1 column name\(s\) over 3 columns of numbers; separate the names by tabs"),
     (["f (Hz),E' (MPa),E'' (MPa)", "1,abc,2", *ROWS], {},
      r"line 2: '1,abc,2' is neither column names nor numbers"),
     (["Sample: SBR", "Operator: x"], {}, r"no line of numbers found"),

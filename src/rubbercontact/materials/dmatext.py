@@ -149,6 +149,9 @@ def read_table(path: Path) -> TextTable:
                   for nm, u in zip(names, units + [""] * (len(names) - len(units)),
                                    strict=False)]
         head -= 1
+    if delimiter is None and len(header) != n:
+        raise InputError(f"{path}, line {lines[head][0]}: {len(header)} column name(s) over "
+                         f"{n} columns of numbers; separate the names by tabs or 2+ spaces")
     rows = tuple(Row(no, tuple(_split(ln, delimiter))) for no, ln in lines[first:])
     decimal_comma = delimiter != "," and any("," in c for r in rows for c in r.cells)
     if decimal_comma:
