@@ -11,11 +11,15 @@ examples find their data next to themselves (``Path(__file__).parent / "data"``)
 scripts run from anywhere must. :func:`example_file`, a ``reset_modules`` hook, sets
 ``builtins.__file__`` to the example's path while it runs (a name missing from a module's
 globals is looked up in builtins) and removes it afterwards.
+
+Warnings. A warning an example raises is printed into its page; Python's format would put
+the build machine's absolute path of the raising module in front of it.
 """
 
 from __future__ import annotations
 
 import builtins
+import warnings
 from pathlib import Path
 
 import sphinx_gallery.gen_rst as _gen_rst
@@ -30,11 +34,23 @@ def _rst_headers(gallery_conf):
 
 
 def example_file(gallery_conf, fname, when):
-    """``reset_modules`` hook: ``__file__`` of the example ``fname`` while it runs."""
+    """``reset_modules`` hook: ``__file__`` of the example ``fname`` while it runs, and
+    warnings printed without the file that raised them (:func:`short_warning`)."""
     if when == "before":
         builtins.__file__ = str(EXAMPLES / Path(fname).name)
+        warnings.formatwarning = short_warning
     else:
         builtins.__dict__.pop("__file__", None)
+        warnings.formatwarning = _FORMATWARNING
+
+
+_FORMATWARNING = warnings.formatwarning
+
+
+def short_warning(message, category, filename, lineno, line=None) -> str:
+    """A warning as a reader of the gallery needs it: its kind and its message. Python's
+    own format starts with the raising file's path, the build machine's absolute one."""
+    return f"{category.__name__}: {message}\n"
 
 
 def setup(app):
