@@ -79,3 +79,15 @@ def test_max_rel_diff_ignores_the_wall_time():
     assert eq._max_rel_diff(a, b.assign(mu=0.55))[0] == pytest.approx(0.1)
     assert np.isinf(eq._max_rel_diff(a.assign(mu=("x", [1.0, 2.0])),
                                      b.assign(mu=("x", [1.0])))[0])
+
+
+def test_fem_options_of_the_penalty_contact_keep_their_arguments():
+    # Adding the barrier contact must not change the arguments (so the cache keys) of the
+    # penalty's FEM tasks: the reference FEM solves were written before it existed.
+    from rubbercontact.fem import FemOptions
+
+    legacy = {f for f in FemOptions().to_dict()}
+    assert not legacy & {"contact", "barrier_distance", "barrier_stiffness"}
+    barrier = FemOptions(contact="barrier")
+    assert FemOptions.from_dict(barrier.to_dict()) == barrier
+    assert FemOptions.from_dict(FemOptions().to_dict()) == FemOptions()

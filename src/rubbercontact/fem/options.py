@@ -261,9 +261,15 @@ class FemOptions:
         return self.transient.steps_per_period or self.mesh[0]
 
     def to_dict(self) -> dict:
-        """Plain data (every field), e.g. for a task's arguments and its cache key."""
+        """Plain data, e.g. for a task's arguments and its cache key: every field, except
+        that the barrier's selector and parameters are written only when the contact is the
+        barrier — so the penalty's tasks keep the arguments (and the cache keys) they had
+        before the barrier existed, and the reference FEM solves stay reachable."""
         out = asdict(self)
         out["mesh"] = list(self.mesh)
+        if self.contact == "penalty":
+            for name in ("contact", "barrier_distance", "barrier_stiffness"):
+                del out[name]
         return out
 
     @classmethod
