@@ -482,7 +482,8 @@ def default_config() -> RunConfig:
 #: Reduced section 3 validation (paper §3): three waves, coarse FEM, sized for 2 cores and
 #: an empty result cache. Both FEM uses (the law cell and the full cell) solve the steady
 #: state directly (fem.solver = "steady"): creep-settled by construction. The law stops at
-#: 4 MPa, about E∞. The full FEM runs on one realization, the cheap models on eight: the
+#: 2 MPa: at 4 MPa its cell sheared as a whole (a friction stress above E∞/3) and the points
+#: were excluded as non-monotone, so the table ended at 2 MPa anyway. The full FEM runs on one realization, the cheap models on eight: the
 #: FEM's phase average is estimated with the VHS as control variate (fem.realizations),
 #: the workflow that makes the FEM comparison affordable. The eq. 28 figures the default
 #: prints are a demonstration (one FEM realization, three loads), not the validation
@@ -498,7 +499,7 @@ DEFAULT_CONFIG: dict = {
     "halfspace": {"n": 2048},
     # law: 40 elements per 0.0625 mm wavelength; full FEM: 16 per 0.0625 mm wavelength
     "fem": {"mesh": [40, 30], "full_mesh": [64, 48], "realizations": 1},
-    "law": {"pressures": [0.05, 0.1, 0.2, 0.5, 1.0, 2.0, 4.0]},
+    "law": {"pressures": [0.05, 0.1, 0.2, 0.5, 1.0, 2.0]},
     "execution": {"workers": 2},
     "output": {"directory": "results"},
 }
