@@ -2,7 +2,8 @@
 
 ``PSD`` (the spectrum: from line scans, a map, a sine series or self-affine), ``solve`` (one
 speed and load; ``law=`` enriches it by the hybrid's FEM law of the high-slope scale) and
-``friction_curve`` (many speeds at once). The 1D (plane strain) form of the theory and its
+``friction_curve`` (many speeds at once); ``flash_friction_curve`` (the same with the flash
+temperature of :mod:`.flash`). The 1D (plane strain) form of the theory and its
 constants are derived in :mod:`.contact`, the friction and its ``S(q)`` in :mod:`.friction`,
 the enrichment in :mod:`.enriched`; the validation against the BEM is
 docs/validation/meanfield.md.
@@ -10,10 +11,12 @@ docs/validation/meanfield.md.
 
 from .contact import AreaCurve, PressureDistribution
 from .enriched import PressureLaw
+from .flash import FlashCurve, FlashOptions, FlashWarning, flash_friction_curve
 from .friction import FrictionCorrection
 from .psd import PSD
 from .solve import FrictionCurve, MeanFieldOptions, MeanFieldResult, friction_curve, solve
 
 __all__ = ["PSD", "solve", "friction_curve", "MeanFieldOptions", "MeanFieldResult",
            "FrictionCurve", "PressureDistribution", "AreaCurve", "PressureLaw",
-           "FrictionCorrection"]
+           "FrictionCorrection", "flash_friction_curve", "FlashOptions", "FlashCurve",
+           "FlashWarning"]
