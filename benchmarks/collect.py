@@ -14,7 +14,8 @@ PARTS = [("halfspace.md", "Half-space (BEM) solver"),
          ("make_run.md", "make run from an empty cache"),
          ("prony_fit.md", "Prony fit of DMA data against pyvisco"),
          ("meanfield.md", "Mean-field model"),
-         ("strips.md", "Mean-field strip cascade, against a baseline")]
+         ("strips.md", "Mean-field strip cascade, against a baseline"),
+         ("flash.md", "Mean-field flash temperature")]
 
 
 def main() -> None:
