@@ -110,6 +110,16 @@ def test_linear_law_of_a_cell_uniform_in_y_is_the_1d_linear_law(laws):
     np.testing.assert_allclose(law2["shear_stress_y"], 0.0, atol=1e-14)   # no lateral force
 
 
+def test_law_of_a_cell_of_two_periods_is_the_law_of_one():
+    # a periodic surface's law is a mean over its period: two copies give the same table
+    split1 = split_map(extruded(SURF, 256), 1.0, cell_points=32)
+    split2 = split_map(extruded(SURF, 256), 1.0, cell_points=64, cell_periods=2)
+    law1 = linear_law_map(split1.cell, MAT, V, points=12)
+    law2 = linear_law_map(split2.cell, MAT, V, points=12)
+    for k in ("separation", "contact_fraction", "shear_stress"):
+        np.testing.assert_allclose(law2[k], law1[k], rtol=RTOL_1D, atol=1e-14, err_msg=k)
+
+
 @pytest.mark.parametrize("window", [True, False])
 def test_hybrid_on_a_map_uniform_in_y_is_the_1d_hybrid(laws, window):
     law2, law1 = laws

@@ -77,3 +77,22 @@ def test_no_high_slope_band_and_bad_input():
         split_map(HeightMap(extruded(LADDER).heights, (1 / 16, 1.0)))
     with pytest.raises(InputError, match="cell_points"):
         split_map(extruded(LADDER), 1.0, cell_points=7)
+
+
+def test_a_high_slope_part_periodic_on_the_cell_is_the_cell():
+    # an egg crate of the 0.125 mm band plus a longer wave: the map's z_hs repeats on the
+    # cell, which then keeps the map's own amplitudes and phases (no random phases)
+    n, lx = 128, 1.0
+    x = np.arange(n) * lx / n
+    # m2 along x: 1.42 (band of 0.125 mm) and 1.07 (the diagonal, next band): both high
+    crate = (0.04 * (np.sin(16 * np.pi * x[None, :] + 0.4) + np.sin(16 * np.pi * x[:, None] + 1.1))
+             + 0.03 * np.sin(16 * np.pi * (x[None, :] + x[:, None]) + 0.2))
+    hm = HeightMap(crate + 0.01 * np.sin(2 * np.pi * x[None, :]), (lx, lx), periodic=True)
+    for periods in (1, 2):
+        sp = split_map(hm, 1.0, cell_points=16 * periods, cell_periods=periods)
+        assert sp.cell_period == pytest.approx(0.125 * periods)
+        assert sp.cell.source["phases"] == "the map's"
+        np.testing.assert_allclose(sp.cell.heights, sp.high.heights[:16 * periods, :16 * periods],
+                                   atol=1e-15)
+    with pytest.raises(InputError, match="power of 2"):
+        split_map(hm, 1.0, cell_periods=3)

@@ -12,13 +12,15 @@ paper's ``m2 > 1``, eq. 16, read along x; SPEC.md "Maps").
 ``z = z_ls + z_hs`` to round-off, on the map's lattice.
 
 The high-slope law is computed on a *cell*: one period ``λ_c = 2π/q_c`` of the longest
-high-slope band in x and in y (the 1D cell is one period of the longest high-slope wave). The
-high-slope spectrum is carried onto the cell's lattice ``K = (2π/λ_c)(m, n)``: each
-high-slope mode of the map gives its variance to the nearest cell mode of the same band
-(the direction of the power is kept as well as the lattice allows; the band's variance
-exactly), and the cell's surface is the trigonometric polynomial with those variances and
-random (seeded) phases. A map uniform in y with a wave of wavelength ``λ_c`` gives the cell
-``Δ sin(2πx/λ_c + φ)``: the 1D cell.
+high-slope band in x and in y (the 1D cell is one period of the longest high-slope wave), or
+``cell_periods`` such periods. The high-slope spectrum is carried onto the cell's lattice
+``K = (2π/side)(m, n)``: each high-slope mode of the map gives its variance to the nearest
+cell mode of the same band (the direction of the power is kept as well as the lattice
+allows; the band's variance exactly), and the cell's surface is the trigonometric
+polynomial with those variances and random (seeded) phases. When every high-slope mode of
+the map lies on the cell's lattice (the map's ``z_hs`` is periodic on the cell), the cell
+keeps the map's amplitudes and phases: it is ``z_hs`` itself. A map uniform in y with a wave
+of wavelength ``λ_c`` gives the cell ``Δ sin(2πx/λ_c + φ)``: the 1D cell.
 """
 
 from __future__ import annotations
@@ -51,8 +53,8 @@ class MapSplit:
         ``variance`` [mm²], ``rms_slope_x``, ``rms_slope_y``, ``rms_gradient`` [-], ``modes``,
         ``high_slope`` (1/0); ``threshold`` in attrs.
     cell
-        The high-slope band on the cell's lattice (``λ_c × λ_c``), or ``None`` when no band
-        is high-slope.
+        The high-slope band on the cell's lattice (side ``cell_periods × λ_c``), or ``None``
+        when no band is high-slope.
     cell_modes
         The cell's modes (dim ``mode``, one of each ``±K`` pair): ``kx``, ``ky`` [rad/mm],
         ``variance`` [mm²] (both members of the pair together), or ``None``.
@@ -66,7 +68,7 @@ class MapSplit:
 
     @property
     def cell_period(self) -> float:
-        """``λ_c`` [mm] (0 without a high-slope band)."""
+        """The cell's side [mm] (``cell_periods × λ_c``; 0 without a high-slope band)."""
         return 0.0 if self.cell is None else self.cell.lengths[1]
 
 
@@ -107,7 +109,7 @@ def octave_bands(hmap: HeightMap, m2_threshold: float = 1.0) -> xr.Dataset:
 
 
 def split_map(hmap: HeightMap, m2_threshold: float = 1.0, *, cell_points: int = CELL_POINTS,
-              seed: int | None = 0) -> MapSplit:
+              cell_periods: int = 1, seed: int | None = 0) -> MapSplit:
     """Split a periodic map into ``z_ls`` and ``z_hs`` and realize ``z_hs`` on its cell.
 
     Parameters
@@ -118,8 +120,13 @@ def split_map(hmap: HeightMap, m2_threshold: float = 1.0, *, cell_points: int = 
         A band whose rms slope along x exceeds it is high-slope [-].
     cell_points
         Points per side of the cell's realization (even, enough for its highest mode).
+    cell_periods
+        Cell side in periods ``λ_c`` of the longest high-slope band (1, 2, 4, …): a larger
+        cell holds more of the band's modes.
     seed
-        Of the cell's phases.
+        Of the cell's phases (unused when the map's high-slope modes all lie on the cell's
+        lattice: the cell then takes the map's own amplitudes and phases, and is ``z_hs``
+        itself up to the period).
     """
     if not isinstance(hmap, HeightMap):
         raise InputError(f"map: expected a HeightMap, got {type(hmap).__name__}")
@@ -139,44 +146,65 @@ def split_map(hmap: HeightMap, m2_threshold: float = 1.0, *, cell_points: int = 
     high = hmap.replace(z_hs, {**note, "part": "high-slope"})
     if high_bands.size == 0:
         return MapSplit(low, high, bands, None, None)
+    if int(cell_periods) != cell_periods or cell_periods < 1 \
+            or int(cell_periods) & (int(cell_periods) - 1):
+        raise InputError(f"cell_periods: expected a power of 2 (1, 2, 4, …), got "
+                         f"{cell_periods!r}")
     lam = float(bands["wavelength"].values[high_bands.min()])
-    cell, modes = _cell(qx[is_high], qy[is_high], p[is_high], band[is_high], lam,
-                        int(cell_points), seed, note)
-    return MapSplit(low, high, bands, cell, modes)
+    modes = (qx[is_high], qy[is_high], zk[is_high] / zk.size, band[is_high])
+    cell, table = _cell(modes, lam, int(cell_periods), int(cell_points), seed, note)
+    return MapSplit(low, high, bands, cell, table)
 
 
-def _cell(qx, qy, p, band, lam: float, n: int, seed, note: dict
+def _cell(modes, lam: float, periods: int, n: int, seed, note: dict
           ) -> tuple[HeightMap, xr.Dataset]:
-    """The high-slope modes carried to the cell lattice and realized (module docstring)."""
+    """The high-slope modes ``(qx, qy, ẑ, band)`` carried to the cell lattice and realized
+    (module docstring)."""
     if n % 2 or n < 8:
         raise InputError(f"cell_points: expected an even number >= 8, got {n}")
-    k0 = 2 * np.pi / lam
+    qx, qy, zc, band = modes
+    power = np.abs(zc) ** 2
+    live = power > 1e-15 * power.sum()      # modes with round-off power only carry nothing
+    qx, qy, zc, band = qx[live], qy[live], zc[live], band[live]
+    side = periods * lam
+    k0, qc = 2 * np.pi / side, 2 * np.pi / lam
     mm, nn = np.meshgrid(np.arange(-n // 2 + 1, n // 2), np.arange(-n // 2 + 1, n // 2))
     kx, ky = (k0 * mm).ravel(), (k0 * nn).ravel()
     kq = np.hypot(kx, ky)
-    with np.errstate(divide="ignore"):
-        kband = np.where(kq > 0, np.floor(np.log2(kq / k0) + 0.5 + 1e-12), -1)
-    offset = int(np.min(band))     # the map's band of λ_c is the cell's band 0
-    power = np.zeros(kx.size)
+    with np.errstate(divide="ignore"):     # band 0 is λ_c's; longer cell modes are unused
+        kband = np.where(kq > 0, np.floor(np.log2(kq / qc) + 0.5 + 1e-12), -1)
+    offset = int(np.min(band))     # the map's band of λ_c
+    target = np.zeros(band.size, int)
     for b in np.unique(band):
         cand = np.flatnonzero(kband == b - offset)
         if cand.size == 0:
             raise InputError(f"cell_points: {n} points per cell cannot hold band {b} "
                              f"(wavelength {lam / 2 ** (b - offset):.4g} mm); use more")
-        sel = band == b
+        sel = np.flatnonzero(band == b)
         d = (qx[sel, None] - kx[None, cand]) ** 2 + (qy[sel, None] - ky[None, cand]) ** 2
-        np.add.at(power, cand[np.argmin(d, axis=1)], p[sel])
-    grid = np.zeros((n, n))
-    grid[nn.ravel() % n, mm.ravel() % n] = power
-    grid = 0.5 * (grid + np.roll(grid[::-1, ::-1], 1, axis=(0, 1)))   # P(−K) = P(K)
-    z = realize(grid, seed)
-    cell = HeightMap(z, (lam, lam), periodic=True,
-                     source={**note, "part": "high-slope cell", "cell_period_mm": lam,
-                             "seed": seed})
+        target[sel] = cand[np.argmin(d, axis=1)]
+    on_lattice = (np.allclose(kx[target], qx, rtol=0, atol=1e-9 * k0)
+                  and np.allclose(ky[target], qy, rtol=0, atol=1e-9 * k0)
+                  and np.unique(target).size == target.size)
+    rows, cols = nn.ravel()[target] % n, mm.ravel()[target] % n
+    if on_lattice:       # the map's high-slope part is periodic on the cell: keep it
+        spec = np.zeros((n, n), complex)
+        spec[rows, cols] = zc * n * n
+        z = np.fft.ifft2(spec).real
+        grid = np.zeros((n, n))
+        grid[rows, cols] = np.abs(zc) ** 2
+    else:
+        grid = np.zeros((n, n))
+        np.add.at(grid, (rows, cols), np.abs(zc) ** 2)
+        grid = 0.5 * (grid + np.roll(grid[::-1, ::-1], 1, axis=(0, 1)))   # P(−K) = P(K)
+        z = realize(grid, seed)
+    cell = HeightMap(z, (side, side), periodic=True,
+                     source={**note, "part": "high-slope cell", "cell_side_mm": side,
+                             "phases": "the map's" if on_lattice else f"random, seed {seed}"})
     half = (ky > 0) | ((ky == 0) & (kx > 0))
-    keep = half & (grid[nn.ravel() % n, mm.ravel() % n] > 0)
-    modes = xr.Dataset({"kx": ("mode", kx[keep], {"units": "rad/mm"}),
+    power = grid[nn.ravel() % n, mm.ravel() % n]
+    keep = half & (power > 0)
+    table = xr.Dataset({"kx": ("mode", kx[keep], {"units": "rad/mm"}),
                         "ky": ("mode", ky[keep], {"units": "rad/mm"}),
-                        "variance": ("mode", 2 * grid[nn.ravel() % n, mm.ravel() % n][keep],
-                                     {"units": "mm^2"})})
-    return cell, modes
+                        "variance": ("mode", 2 * power[keep], {"units": "mm^2"})})
+    return cell, table
