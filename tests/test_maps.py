@@ -153,3 +153,13 @@ def test_map_psd_uniform_in_y_is_the_profile_spectrum_and_anisotropy_warns():
     with warnings.catch_warnings():
         warnings.simplefilter("error")
         assert ms.map_psd(self_affine_map((32, 32), 1.0, 0.8, rms_gradient=0.3)).dimension == 2
+
+
+def test_resampling_a_periodic_map_is_exact_for_its_modes():
+    hm, qx, qy = oblique(nx=32, ny=16, amp=0.02)
+    fine = hm.resampled((48, 96))
+    x, y = np.arange(96) * 2.0 / 96, np.arange(48) * 1.0 / 48
+    np.testing.assert_allclose(fine.heights, 0.02 * np.sin(qx * x[None, :] + qy * y[:, None]),
+                               atol=1e-15)
+    with pytest.raises(InputError, match="periodic"):
+        HeightMap(hm.heights, hm.lengths).resampled((8, 8))

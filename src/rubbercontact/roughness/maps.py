@@ -220,6 +220,23 @@ class HeightMap:
         return self.replace(z, {"periodize": "mirror"}, periodic=True, filled=filled,
                             lengths=lengths)
 
+    def resampled(self, shape: tuple[int, int]) -> HeightMap:
+        """The periodic map's trigonometric polynomial sampled on ``shape = (ny, nx)`` points
+        (Fourier interpolation, :func:`scipy.signal.resample`): the same surface on a finer
+        (or, dropping its shortest modes, coarser) grid, for resolution studies."""
+        from scipy.signal import resample
+
+        if not self.periodic:
+            raise InputError("resampled: Fourier interpolation needs a periodic map; use "
+                             "map.periodized() first")
+        if np.ndim(shape) != 1 or len(shape) != 2 or any(int(n) != n or n < MIN_MAP_POINTS
+                                                          for n in shape):
+            raise InputError(f"shape: expected (ny, nx), integers >= {MIN_MAP_POINTS}, "
+                             f"got {shape!r}")
+        z = resample(resample(self.heights, int(shape[0]), axis=0), int(shape[1]), axis=1)
+        return HeightMap(z, self.lengths, periodic=True,
+                         source={**self.source, "resampled_from": list(self.shape)})
+
     def profile(self) -> np.ndarray | None:
         """The common row if the map is uniform in ``y`` (every row equal), else ``None``."""
         z = self.heights
