@@ -8,10 +8,16 @@ forms of uniform moving sources (:mod:`.spots`) that the mean-field flash temper
 (:mod:`rubbercontact.meanfield.flash`) is built from.
 """
 
-from .kernel import surface_temperature, temperature_kernel, thermal_admittance
+from .kernel import (
+    subsurface_temperature,
+    surface_temperature,
+    temperature_kernel,
+    thermal_admittance,
+)
 from .properties import FILLED_SBR, ThermalProperties
 from .spots import band_centre_temperature, band_mean_temperature, disc_centre_temperature
 
-__all__ = ["ThermalProperties", "FILLED_SBR", "surface_temperature", "temperature_kernel",
+__all__ = ["ThermalProperties", "FILLED_SBR", "surface_temperature", "subsurface_temperature",
+           "temperature_kernel",
            "thermal_admittance", "band_centre_temperature", "band_mean_temperature",
            "disc_centre_temperature"]

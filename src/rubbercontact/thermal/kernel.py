@@ -27,7 +27,8 @@ from ..errors import InputError
 from ..halfspace.kernels import forward, inverse, wavevectors
 from .properties import ThermalProperties
 
-__all__ = ["thermal_admittance", "temperature_kernel", "surface_temperature"]
+__all__ = ["thermal_admittance", "temperature_kernel", "surface_temperature",
+           "subsurface_temperature"]
 
 
 def thermal_admittance(k, k_x, velocity: float, diffusivity: float) -> np.ndarray:
@@ -49,6 +50,37 @@ def temperature_kernel(shape: tuple[int, ...], lengths: tuple[float, ...], veloc
     nz = qabs > 0
     out[nz] = 1.0 / (thermal.conductivity_package * lam[nz])
     return out
+
+
+def _lengths(q: np.ndarray, lengths) -> tuple[float, ...]:
+    if np.ndim(lengths) == 0:
+        side = positive_scalar("lengths", lengths, unit="mm")
+        return (side,) if q.ndim == 1 else (side * q.shape[0] / q.shape[1], side)
+    lens = tuple(positive_scalar("lengths", x, unit="mm") for x in lengths)
+    if len(lens) != q.ndim:
+        raise InputError(f"lengths: expected {q.ndim} period(s), got {len(lens)}")
+    return lens
+
+
+def _inputs(flux, lengths, velocity, thermal):
+    q = finite_array("flux", flux, ndim=(1, 2), min_size=2)
+    if isinstance(velocity, bool) or not np.isfinite(velocity):
+        raise InputError(f"velocity: expected a finite number in mm/s, got {velocity!r}")
+    return q, _lengths(q, lengths), float(velocity), thermal or ThermalProperties()
+
+
+def subsurface_temperature(flux, lengths, velocity: float, depth: float,
+                           thermal: ThermalProperties | None = None) -> np.ndarray:
+    """Steady temperature rise [K] at ``depth`` [mm] ≥ 0 under the surface: each mode of
+    :func:`surface_temperature` decays as ``e^{−λ z}`` (module docstring). The rubber a
+    surface mode of wavenumber ``q`` deforms lies within ``~1/q`` of the surface; this is
+    the temperature it has there. Other arguments as :func:`surface_temperature`."""
+    q, lens, v, thermal = _inputs(flux, lengths, velocity, thermal)
+    z = positive_scalar("depth", depth, allow_zero=True, unit="mm")
+    qabs, qx = wavevectors(q.shape, lens)
+    decay = np.exp(-thermal_admittance(qabs, qx, v, thermal.diffusivity) * z)
+    kern = temperature_kernel(q.shape, lens, v, thermal) * decay
+    return inverse(kern * forward(q), q.shape)
 
 
 def surface_temperature(flux, lengths, velocity: float,
@@ -74,16 +106,5 @@ def surface_temperature(flux, lengths, velocity: float,
         ``T − T_background`` [K] on the grid; its mean over the period is 0 (module
         docstring: the mean flux heats the background, not the pattern).
     """
-    q = finite_array("flux", flux, ndim=(1, 2), min_size=2)
-    thermal = thermal or ThermalProperties()
-    if np.ndim(lengths) == 0:
-        side = positive_scalar("lengths", lengths, unit="mm")
-        lens = (side,) if q.ndim == 1 else (side * q.shape[0] / q.shape[1], side)
-    else:
-        lens = tuple(positive_scalar("lengths", x, unit="mm") for x in lengths)
-        if len(lens) != q.ndim:
-            raise InputError(f"lengths: expected {q.ndim} period(s), got {len(lens)}")
-    if isinstance(velocity, bool) or not np.isfinite(velocity):
-        raise InputError(f"velocity: expected a finite number in mm/s, got {velocity!r}")
-    kern = temperature_kernel(q.shape, lens, float(velocity), thermal)
-    return inverse(kern * forward(q), q.shape)
+    q, lens, v, thermal = _inputs(flux, lengths, velocity, thermal)
+    return inverse(temperature_kernel(q.shape, lens, v, thermal) * forward(q), q.shape)
