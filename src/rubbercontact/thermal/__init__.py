@@ -5,9 +5,12 @@ temperature.
 units out; :data:`FILLED_SBR` the default), ``surface_temperature`` (the steady temperature
 of a periodic heat flux sliding over the rubber, by FFT, :mod:`.kernel`) and the closed
 forms of uniform moving sources (:mod:`.spots`) that the mean-field flash temperature
-(:mod:`rubbercontact.meanfield.flash`) is built from.
+(:mod:`rubbercontact.meanfield.flash`) is built from; the heat and temperature of a solved
+half-space contact and its flash temperature self-consistent with its friction
+(``contact_heating``, ``flash_contact``, :mod:`.contact`).
 """
 
+from .contact import ContactFlash, ContactHeating, contact_heating, flash_contact
 from .kernel import (
     subsurface_temperature,
     surface_temperature,
@@ -20,4 +23,5 @@ from .spots import band_centre_temperature, band_mean_temperature, disc_centre_t
 __all__ = ["ThermalProperties", "FILLED_SBR", "surface_temperature", "subsurface_temperature",
            "temperature_kernel",
            "thermal_admittance", "band_centre_temperature", "band_mean_temperature",
-           "disc_centre_temperature"]
+           "disc_centre_temperature", "contact_heating", "flash_contact", "ContactHeating",
+           "ContactFlash"]

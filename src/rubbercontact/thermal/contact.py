@@ -1,0 +1,198 @@
+r"""Flash temperature of a half-space (or hybrid) sliding contact, iterated with its friction.
+
+Heat
+----
+The friction stress is spread over the contact as the pressure, ``τ(x) = μ p(x)``, so the
+heat flux into the rubber is ``Q(x) = μ p(x) v`` [mW/mm²]: its mean is ``μ σ0 v``, the
+frictional power per unit nominal area (the energy balance), and it is released where
+the rubber touches. (The hysteretic dissipation is released in the rubber's bulk within
+about a wavelength of the surface, ahead of and under the contact; spreading it as the
+pressure is the classical flash-temperature assumption of Jaeger, Archard and Greenwood.)
+All of it enters the rubber. Its steady temperature is :func:`.kernel.surface_temperature`
+(mean removed: the background is the run's temperature).
+
+Coupling
+--------
+The linear half-space has one modulus, so the contact has one temperature: the mean rise
+over the contact, ``T_c`` (:attr:`ContactHeating.contact_rise`). The solve is repeated at
+the reduced speed ``a_T(T0 + T_c) v`` (by time–temperature superposition the rubber at
+``T0 + T_c`` sliding at ``v`` is the reference rubber at ``a_T v``), the heat at the true
+``v``, until ``T_c`` is the rise its own friction gives: the scalar root of
+``F(T) − T`` (bracketed from the isothermal estimate ``F(0)``, then Brent's method). A
+hybrid run passes a ``solve`` that evaluates its high-slope law at the same reduced
+speed. What this leaves out: the temperature varies over the contact and with depth,
+and each scale of a rough surface sees its own (:mod:`rubbercontact.meanfield.flash`
+resolves that per magnification); in full contact the rise averages to zero over the
+contact and the contact is at the background temperature.
+"""
+
+from __future__ import annotations
+
+from collections.abc import Callable
+from dataclasses import dataclass, field
+
+import numpy as np
+from scipy.optimize import brentq
+
+from .._validation import positive_scalar
+from ..errors import ConvergenceError, InputError
+from ..materials.shift import ShiftLaw, shift_law_from_dict
+from .kernel import surface_temperature
+from .properties import FILLED_SBR, ThermalProperties
+
+
+@dataclass(frozen=True)
+class ContactHeating:
+    """The frictional heat of a sliding contact and its steady temperature rise.
+
+    Attributes
+    ----------
+    heat_flux
+        ``Q = μ p v`` [mW/mm²] on the solver's grid.
+    temperature
+        Surface temperature rise above the background [K] on the grid (zero mean).
+    contact_rise
+        Mean rise over the contact (``p > 0``) [K].
+    peak_rise
+        Largest rise [K].
+    mean_heat_flux
+        ``<Q>`` [mW/mm²] (= ``μ σ0 v``).
+    velocity
+        The true sliding speed [mm/s] the heat was computed at.
+    """
+
+    heat_flux: np.ndarray
+    temperature: np.ndarray
+    contact_rise: float
+    peak_rise: float
+    mean_heat_flux: float
+    velocity: float
+
+
+def _lengths(result) -> tuple[float, ...]:
+    def period(c: np.ndarray) -> float:
+        return float((c[1] - c[0]) * c.size)
+
+    return (period(result.x),) if result.y is None else (period(result.y), period(result.x))
+
+
+def contact_heating(result, velocity: float | None = None,
+                    thermal: ThermalProperties | None = None) -> ContactHeating:
+    """Heat and temperature of a solved sliding contact (module docstring).
+
+    Parameters
+    ----------
+    result
+        A :class:`~rubbercontact.halfspace.SlidingResult` (``pressure``, ``x``, ``y``,
+        ``friction``).
+    velocity
+        The true sliding speed [mm/s], > 0 (default ``result.velocity``; give it when the
+        solve ran at a reduced speed ``a_T v``).
+    thermal
+        The compound (default: filled SBR).
+    """
+    thermal = thermal or FILLED_SBR
+    v = positive_scalar("velocity", result.velocity if velocity is None else velocity,
+                        unit="mm/s")
+    p = np.asarray(result.pressure, float)
+    flux = abs(float(result.friction)) * p * v
+    temp = surface_temperature(flux, _lengths(result), v, thermal)
+    touching = p > 0
+    rise = float(temp[touching].mean()) if touching.any() else 0.0
+    return ContactHeating(flux, temp, rise, float(temp.max()), float(flux.mean()), v)
+
+
+@dataclass(frozen=True)
+class ContactFlash:
+    """A sliding contact at its own flash temperature.
+
+    Attributes
+    ----------
+    result
+        The solve at the converged reduced speed ``a_T(T0 + T_c) v``.
+    isothermal
+        The solve at the background temperature.
+    heating
+        :class:`ContactHeating` of ``result`` at the true speed.
+    contact_temperature
+        ``T0 + T_c`` [°C].
+    background_temperature
+        ``T0`` [°C].
+    shift_factor
+        ``a_T(T0 + T_c)`` relative to the shift law's reference [-].
+    residual
+        ``|F(T_c) − T_c|`` [K] at the end. The tolerance bounds ``T_c`` (the bracket);
+        the residual can exceed it where the discrete contact set jumps between two
+        temperatures closer than the tolerance.
+    evaluations
+        ``(T, F(T))`` of every solve, in order [K].
+    """
+
+    result: object
+    isothermal: object
+    heating: ContactHeating
+    contact_temperature: float
+    background_temperature: float
+    shift_factor: float
+    residual: float
+    evaluations: tuple = field(default_factory=tuple)
+
+
+def flash_contact(solve: Callable[[float], object], velocity: float, shift: ShiftLaw | dict,
+                  thermal: ThermalProperties | None = None, temperature: float | None = None,
+                  tolerance: float = 1e-2, max_solves: int = 30) -> ContactFlash:
+    """The contact temperature and friction of a sliding contact, self-consistent.
+
+    Parameters
+    ----------
+    solve
+        ``solve(reduced_speed) -> SlidingResult``: the contact of the rubber *at the shift
+        law's reference temperature* sliding at ``reduced_speed`` [mm/s], e.g.
+        ``lambda u: rc.halfspace.solve_sliding(z, L, material, u, sigma0)``.
+    velocity
+        The true sliding speed ``v`` [mm/s], > 0.
+    shift
+        The material's time–temperature shift law.
+    thermal
+        The compound (default: filled SBR).
+    temperature
+        Background ``T0`` [°C] (default: the shift law's reference).
+    tolerance
+        On ``T_c`` [K] (1e-2 K moves a WLF shift by ~1e-3 decades).
+    max_solves
+        Solves allowed before :class:`~rubbercontact.errors.ConvergenceError`.
+    """
+    v = positive_scalar("velocity", velocity, unit="mm/s")
+    law = shift_law_from_dict(shift)
+    t0 = law.t_ref if temperature is None else float(temperature)
+    tol = positive_scalar("tolerance", tolerance, unit="K")
+    thermal = thermal or FILLED_SBR
+    if not callable(solve):
+        raise InputError(f"solve: expected a function of the reduced speed, got {solve!r}")
+    seen: dict[float, tuple] = {}
+
+    def evaluate(rise: float) -> float:
+        if rise not in seen:
+            if len(seen) >= max_solves:
+                raise ConvergenceError(
+                    f"flash temperature: no self-consistent contact temperature in "
+                    f"{max_solves} solves at {v:g} mm/s; raise max_solves",
+                    diagnostics={"evaluations": [(t, s[2]) for t, s in seen.items()]})
+            a_t = float(law.shift(t0 + rise))
+            res = solve(a_t * v)
+            heat = contact_heating(res, v, thermal)
+            seen[rise] = (res, heat, heat.contact_rise, a_t)
+        return seen[rise][2] - rise
+
+    lo, hi = 0.0, 0.0
+    if evaluate(0.0) > tol:
+        hi = max(seen[0.0][2], tol)
+        while evaluate(hi) > 0:                 # F is bounded: a root lies beyond
+            lo, hi = hi, 2 * hi
+        rise = float(brentq(evaluate, lo, hi, xtol=tol / 4, rtol=1e-12, maxiter=max_solves))
+        evaluate(rise)                          # Brent's answer is its last point: cached
+    else:
+        rise = 0.0
+    res, heat, f_rise, a_t = seen[rise]
+    return ContactFlash(res, seen[0.0][0], heat, t0 + rise, t0, a_t, abs(f_rise - rise),
+                        tuple((t, s[2]) for t, s in seen.items()))
