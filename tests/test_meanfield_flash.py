@@ -161,3 +161,43 @@ def test_bad_input():
         FlashOptions(relaxation=0.0)
     with pytest.raises(InputError, match="flash"):
         flash_friction_curve(psd, HOT_SBR, SPEEDS, 0.3, flash={"temperature": 20})
+
+
+def test_the_tread_heats_as_a_half_space_under_the_mean_flux():
+    """With a contact time t_c the background rises by the mean over t_c of the surface
+    temperature of a half-space under the uniform flux μσ0v, (4/3) μσ0v √(D t_c/π)/K
+    (Carslaw & Jaeger §2.9: 2q√(Dt/π)/K at t), on top of the spots' flash: exactly, for a
+    modulus that does not depend on temperature. This part grows as σ0 (the spots' part
+    does not, at small loads), so the flash now grows with the load."""
+    psd, mat = _psd(2), ConstantModulus()
+    th = FlashOptions().thermal
+    base = FlashOptions(shift=WLF)
+    timed = FlashOptions(shift=WLF, contact_time=0.02)
+    rises = []
+    for p in (1e-4, 2e-4):
+        off = flash_friction_curve(psd, mat, [1e3], p, flash=base)
+        on = flash_friction_curve(psd, mat, [1e3], p, flash=timed)
+        expected = (4 / 3 * off.friction[0] * p * 1e3 * np.sqrt(th.diffusivity * 0.02 / np.pi)
+                    / th.conductivity_package)
+        assert on.tread_rise[0] == pytest.approx(expected, rel=1e-12)
+        assert on.flash_temperature[0] - off.flash_temperature[0] == pytest.approx(
+            expected, rel=1e-9)
+        rises.append(on.flash_temperature[0])
+    assert rises[1] > rises[0]
+
+
+@pytest.mark.parametrize("dimension", [1, 2])
+def test_the_modulus_tables_read_the_prony_series(dimension):
+    """The cubic tables against the angular averages summed directly at random
+    frequencies over 12 decades: 4-point Lagrange in log ω at 400 points per decade has
+    error ~h⁴ f''''/24 with h = ln10/400: < 1e-9 relative."""
+    from rubbercontact.meanfield.moduli import ModulusTables, _angles
+
+    tables = ModulusTables(SBR, 0.5, dimension, 48, -2.0, 10.0, 1.0)
+    omega = 10.0 ** np.random.default_rng(1).uniform(-2, 10, 500)
+    cos_phi, w = _angles(dimension, 48)
+    e_r = SBR.complex_modulus(omega[:, None] * cos_phi) / 0.75
+    np.testing.assert_allclose(tables("power", omega), np.sum(w * np.abs(e_r) ** 2, -1),
+                               rtol=1e-9)
+    np.testing.assert_allclose(tables("loss", omega), np.sum(w * cos_phi * e_r.imag, -1),
+                               rtol=1e-9)

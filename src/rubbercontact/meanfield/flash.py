@@ -50,8 +50,13 @@ temperature (the rubber a scale deforms lies within ``~1/q`` of the surface; at 
 Péclet number the flash of the finest spots is thinner than that and this overstates
 their heating); the heat is released uniformly in the contact of its node (in full
 contact, ``A = 1``, there is no flash, only the background); the spot size is a constant
-of the model; the heating of the tread as a whole (the background, the run's
-temperature) is the user's. The limits are exact: an infinitely conducting rubber, or one
+of the model. The heating of the tread as a whole is the background's: by default the
+run's temperature; with :attr:`FlashOptions.contact_time` ``t_c`` (a tread element's time
+in the footprint, a lab test's sliding time) the mean flux ``μσ0v`` heats the nominal
+contact as a half-space under a uniform flux, ``2μσ0v√(Dt/π)/K`` at the time ``t``
+(Carslaw & Jaeger §2.9), on average over the contact ``(4/3)μσ0v√(Dt_c/π)/K``, added
+to every node (the cumulative or background temperature of Fortunato, Ciaravola &
+Persson 2015). The limits are exact: an infinitely conducting rubber, or one
 whose modulus does not depend on temperature, gives the isothermal theory.
 
 Solution
@@ -60,10 +65,10 @@ A fixed point on the node temperatures ``T_i``, ``T = T0 + ΔT(T)``, by Anderson
 (:func:`_iterate`) until the residual ``max_i |T0 + ΔT_i(T) − T_i|`` is below
 :attr:`FlashOptions.tolerance` [K] at every speed, continued in the speed from the slowest
 (:func:`_continuation`). Each step reads the modulus off tables in ``log ω``
-(:class:`_Tables`: cubic, < 1e-9 relative; the patch spectrum's loss on the very nodes of
-:mod:`.patches`), since every node has its own shift at every step; the isothermal theory
-beside it is read off the same tables (it is :func:`.friction_curve`'s to 1e-8,
-tests/test_meanfield_flash.py).
+(:class:`.moduli.ModulusTables`: cubic, < 1e-9 relative; the patch spectrum's loss on
+the very nodes of :mod:`.patches`), since every node has its own shift at every step;
+the isothermal theory beside it is read off the same tables (it is
+:func:`.friction_curve`'s to 1e-8, tests/test_meanfield_flash.py).
 """
 
 from __future__ import annotations
@@ -80,12 +85,11 @@ from ..thermal.properties import FILLED_SBR, ThermalProperties
 from ..thermal.spots import band_centre_temperature, disc_centre_temperature
 from .contact import contact_fraction, g_cumulative
 from .friction import friction_contributions, local_fraction
-from .patches import LOSS_PER_DECADE, _rows
+from .moduli import ModulusTables
+from .patches import _rows
 from .psd import PSD
 from .solve import MeanFieldOptions, _check
 
-#: Points per decade of the modulus tables the iterations read.
-TABLE_PER_DECADE = 400
 #: Hottest node temperature above the background [K] the tables cover.
 HOTTEST = 1e4
 #: Highest harmonic of a node the patch table covers (the patch table's, :mod:`.patches`,
@@ -119,6 +123,9 @@ class FlashOptions:
     spot_radius
         ``q R`` of a contact spot at the node ``q`` [-] (module docstring; π/2: half a
         wavelength across).
+    contact_time
+        Time the rubber slides in nominal contact [s] (module docstring); ``None``: the
+        background is the run's temperature, not heated by the sliding.
     relaxation
         Initial under-relaxation of the fixed point, in (0, 1].
     tolerance
@@ -132,6 +139,7 @@ class FlashOptions:
     temperature: float | None = None
     shift: ShiftLaw | dict | None = None
     spot_radius: float = np.pi / 2
+    contact_time: float | None = None
     relaxation: float = 0.5
     tolerance: float = 1e-3
     max_iterations: int = 500
@@ -141,6 +149,8 @@ class FlashOptions:
             raise InputError(f"thermal: expected ThermalProperties, got "
                              f"{type(self.thermal).__name__}")
         positive_scalar("spot_radius", self.spot_radius)
+        if self.contact_time is not None:
+            positive_scalar("contact_time", self.contact_time, unit="s")
         positive_scalar("tolerance", self.tolerance, unit="K")
         if not (isinstance(self.relaxation, int | float) and 0 < self.relaxation <= 1):
             raise InputError(f"relaxation: must lie in (0, 1], got {self.relaxation!r}")
@@ -171,6 +181,9 @@ class FlashCurve:
     heat_flux
         ``Σ_j w_j = μ σ0 v`` [mW/mm²] per speed: the frictional power into the rubber per
         unit nominal area.
+    tread_rise
+        The background's rise ``(4/3)μσ0v√(Dt_c/π)/K`` [K] per speed (0 without
+        ``contact_time``), included in ``node_temperature`` and ``flash_temperature``.
     background_temperature
         ``T0`` [°C].
     mean_pressure
@@ -192,64 +205,12 @@ class FlashCurve:
     node_temperature: np.ndarray
     flash_temperature: np.ndarray
     heat_flux: np.ndarray
+    tread_rise: np.ndarray
     background_temperature: float
     mean_pressure: float
     iterations: np.ndarray
     residual: np.ndarray
     inputs: dict = field(default_factory=dict)
-
-
-class _Tables:
-    """The modulus on log grids of ``ω``, read by linear interpolation in ``log ω``:
-    ``Σ_φ w_φ |E_r(ω cos φ)|²`` and ``Σ_φ w_φ cos φ Im E_r(ω cos φ)`` at
-    :data:`TABLE_PER_DECADE` points per decade (cubic: relative error < 1e-9), and the loss
-    ``−2 Im[1/E_r(ω)]`` on the very nodes :func:`.patches.patch_loss` reads (so the patch
-    spectrum is the same number in the iterations as in the exact pass)."""
-
-    def __init__(self, material, nu: float, dimension: int, angles: int, lo: float, hi: float,
-                 harmonics: float):
-        self.step = 1.0 / TABLE_PER_DECADE
-        self.lo = lo - self.step                    # one node below: the cubic's stencil
-        omega = 10.0 ** (self.lo + self.step * np.arange(int((hi - lo) / self.step) + 4))
-        cos_phi, weights = _angles(dimension, angles)
-        e_r = material.complex_modulus(omega[:, None] * cos_phi) / (1.0 - nu**2)
-        self.power = np.sum(weights * np.abs(e_r) ** 2, axis=-1)
-        self.loss = np.sum(weights * cos_phi * e_r.imag, axis=-1)
-        self.loss_nodes = np.arange(np.floor(lo * LOSS_PER_DECADE),
-                                    np.ceil((hi + harmonics) * LOSS_PER_DECADE) + 2)
-        e1 = material.complex_modulus(10.0 ** (self.loss_nodes / LOSS_PER_DECADE))
-        self.patch = -2.0 * np.imag((1.0 - nu**2) / e1)
-
-    @staticmethod
-    def _read(table: np.ndarray, x: np.ndarray) -> np.ndarray:
-        i = np.clip(x.astype(int), 0, table.size - 2)
-        t = np.clip(x - i, 0.0, 1.0)
-        return (1 - t) * table[i] + t * table[i + 1]
-
-    def __call__(self, name: str, omega: np.ndarray) -> np.ndarray:
-        """``power`` or ``loss`` at ``omega`` [rad/s], by 4-point Lagrange interpolation
-        in ``log ω`` (error ``~h⁴``, < 1e-9 relative at :data:`TABLE_PER_DECADE`)."""
-        table = getattr(self, name)
-        x = (np.log10(np.maximum(omega, 1e-300)) - self.lo) / self.step
-        i = np.clip(x.astype(int), 1, table.size - 3)
-        t = np.clip(x - i, 0.0, 1.0)
-        return (-t * (t - 1) * (t - 2) / 6 * table[i - 1]
-                + (t + 1) * (t - 1) * (t - 2) / 2 * table[i]
-                - (t + 1) * t * (t - 2) / 2 * table[i + 1]
-                + (t + 1) * t * (t - 1) / 6 * table[i + 2])
-
-    def patch_loss(self, omega: np.ndarray) -> np.ndarray:
-        """``−2 Im[1/E_r(ω)]`` [1/MPa] (0 at ``ω = 0``)."""
-        x = np.log10(np.maximum(omega, 1e-300)) * LOSS_PER_DECADE - self.loss_nodes[0]
-        return np.where(omega > 0, self._read(self.patch, x), 0.0)
-
-
-def _angles(dimension: int, angles: int) -> tuple[np.ndarray, np.ndarray]:
-    """The directions of :func:`.contact.half_space_compliance` (cos φ, weights)."""
-    if dimension == 1:
-        return np.ones(1), np.ones(1)
-    x, w = np.polynomial.legendre.leggauss(int(angles))
-    return np.cos(np.pi / 4 * (x + 1)), w / 2
 
 
 @dataclass(frozen=True)
@@ -262,7 +223,8 @@ class _Problem:
     law: ShiftLaw
     t0: float
     spot_rise: np.ndarray          # Γ_l [K per mW/mm²], (speeds, nodes)
-    tables: _Tables
+    tread_rise: float              # background rise per unit mean flux [K per mW/mm²]
+    tables: ModulusTables
 
     def omega(self, temperature: np.ndarray, rows) -> np.ndarray:
         a = 10.0 ** np.asarray(self.law.log10_shift(temperature))
@@ -291,7 +253,8 @@ class _Problem:
         cum = np.cumsum(w[:, ::-1], axis=-1)[:, ::-1]                       # W_l
         before = np.concatenate([np.ones_like(area[:, :1]), area[:, :-1]], axis=-1)
         step = np.maximum(1.0 / area - 1.0 / before, 0.0)
-        return np.cumsum(step * self.spot_rise[rows] * cum, axis=-1)
+        return (np.cumsum(step * self.spot_rise[rows] * cum, axis=-1)
+                + self.tread_rise * cum[:, :1])
 
     def residual(self, temperature: np.ndarray, rows):
         """``T0 + ΔT(T) − T`` [K] at the speeds ``rows``."""
@@ -421,12 +384,17 @@ def _setup(psd, material, velocities, mean_pressure, nu, options, flash) -> _Pro
     radius = flash.spot_radius / psd.wavenumbers
     spot = disc_centre_temperature if psd.dimension == 2 else band_centre_temperature
     rise = spot(radius, v[:, None], flash.thermal)
+    tread = 0.0
+    if flash.contact_time is not None:
+        th = flash.thermal
+        tread = 4 / 3 * np.sqrt(th.diffusivity * flash.contact_time / np.pi) / (
+            th.conductivity_package)
     tables = _tables(psd, material, v, float(nu), opts.angles, law, t0)
-    return _Problem(psd, v, sigma0, float(nu), opts, law, t0, rise, tables)
+    return _Problem(psd, v, sigma0, float(nu), opts, law, t0, rise, tread, tables)
 
 
 def _tables(psd: PSD, material, velocities: np.ndarray, nu: float, angles: int,
-            law: ShiftLaw, t0: float) -> _Tables:
+            law: ShiftLaw, t0: float) -> ModulusTables:
     """Tables spanning every frequency the iterations can reach: node temperatures lie
     between ``T0`` (heat only warms) and ``T0 +`` :data:`HOTTEST` K, and the patch
     spectrum reads harmonics up to :data:`HARMONICS` of a node. Beyond the ends the tables
@@ -435,7 +403,7 @@ def _tables(psd: PSD, material, velocities: np.ndarray, nu: float, angles: int,
     q = psd.wavenumbers
     lo = np.log10(q[0] * velocities.min() * min(a_hot, a_cold)) - 0.1
     hi = np.log10(q[-1] * velocities.max() * max(a_hot, a_cold)) + 0.1
-    return _Tables(material, nu, psd.dimension, angles, lo, hi, np.log10(HARMONICS))
+    return ModulusTables(material, nu, psd.dimension, angles, lo, hi, np.log10(HARMONICS))
 
 
 def flash_friction_curve(psd: PSD, material, velocities, mean_pressure: float,
@@ -488,9 +456,11 @@ def flash_friction_curve(psd: PSD, material, velocities, mean_pressure: float,
               "material": getattr(material, "name", ""), **asdict(prob.opts),
               "thermal": flash.thermal.as_dict(), "shift": prob.law.as_dict(),
               "spot_radius": flash.spot_radius, "tolerance_K": flash.tolerance,
+              "contact_time_s": flash.contact_time,
               "geometry": "diffusion"}
     return FlashCurve(
         prob.velocities, mu, iso_parts.sum(axis=-1), area[:, -1], iso_area[:, -1],
         psd.wavenumbers, temp, temp[:, -1] - prob.t0,
-        mu * prob.sigma0 * prob.velocities, prob.t0, prob.sigma0, its, resid,
+        mu * prob.sigma0 * prob.velocities, prob.tread_rise * mu * prob.sigma0 * prob.velocities,
+        prob.t0, prob.sigma0, its, resid,
         inputs)
