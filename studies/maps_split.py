@@ -249,7 +249,8 @@ def report(rows: list[dict]) -> str:
     for kind, periods in KINDS:
         text, errors = table(rows, kind, periods)
         all_errors[(kind, periods)] = errors
-        out += [render("maps_split", f"table_{kind}", periods=periods), text]
+        block = {"crate": "table_crate", "band": "table_band"}[kind]
+        out += [render("maps_split", block, periods=periods), text]
     out += [render("maps_split", "summary"), summary(all_errors),
             render("maps_split", "resolution"), resolution(rows),
             render("maps_split", "cost", cost=cost(rows))]
