@@ -201,3 +201,17 @@ def test_the_modulus_tables_read_the_prony_series(dimension):
                                rtol=1e-9)
     np.testing.assert_allclose(tables("loss", omega), np.sum(w * cos_phi * e_r.imag, -1),
                                rtol=1e-9)
+
+
+@pytest.mark.parametrize("dimension", [1, 2])
+def test_the_flash_has_a_limit_as_the_nodes_get_dense(dimension):
+    """The rise is built from the steps dA of the contact fraction, not from the number of
+    nodes: at 16 and 32 nodes per decade it differs by < 1 % (measured 0.5 % in 1D,
+    0.3 % in 2D at 1e3–1e5 mm/s; 8 → 16 moved it by 1 %, so the halving is there)."""
+    out = []
+    for per_decade in (16, 32):
+        psd = mf.PSD.self_affine(hurst=0.8, qr=2 * np.pi / 10, q1=2 * np.pi / 1e-3,
+                                 rms_slope=0.5, dimension=dimension,
+                                 nodes_per_decade=per_decade)
+        out.append(flash_friction_curve(psd, HOT_SBR, [1e3, 1e5], 0.3).flash_temperature)
+    np.testing.assert_allclose(out[1], out[0], rtol=1e-2)
