@@ -65,24 +65,35 @@ def _spread(ds: xr.Dataset, k: str) -> xr.DataArray:
     return ds[k].std("realization").where(n > 1)
 
 
+def _with_spread(mean, sd) -> str:
+    """``0.5157 ±0.071``: the mean to four decimals, the spread to two digits (none when
+    fewer than two realizations ran)."""
+    sd = float(sd)
+    return f"{float(mean):.4f} " + ("" if np.isnan(sd) else f"±{sd:.2g}")
+
+
 def _per_speed(ds: xr.Dataset, v: float) -> list[str]:
+    """One row per load and model (a table as narrow as a terminal, whatever the models):
+    the phase average of μ and A, each ± its spread between realizations."""
     lines = [f"v = {v:g} mm/s: phase average over {ds.sizes['realization']} realizations "
              f"± the spread between them (standard deviation)"]
-    cols = _columns(ds)
-    spread = {"friction": _spread(ds, "friction"),
-              "contact_fraction": _spread(ds, "contact_fraction")}
-    wid = {m: max(10, len(m) + 3) for m in ds["model"].values}
-    lines.append(f"  {'sigma0 [MPa]':>12} " + " ".join(f"{h:>{w + 9}}" for _, h, _, w in cols))
+    mu, area = mean_of(ds, "friction"), mean_of(ds, "contact_fraction")
+    sd_mu, sd_area = _spread(ds, "friction"), _spread(ds, "contact_fraction")
+    total = mean_of(ds, "friction_total") if "friction_total_mean" in ds else None
+    width = max(len(str(m)) for m in ds["model"].values)
+    head = f"  {'sigma0 [MPa]':>12}  {'model':<{width}}  {'mu':<15}  {'A_c/A_0':<16}"
+    lines.append(head + "  mu+adh" if total is not None else head.rstrip())
     for p in ds["pressure"].values:
-        row = [f"  {p:12.4g}"]
-        for m, h, arr, w in cols:
+        for k, m in enumerate(ds["model"].values):
             at = {"model": m, "velocity": v, "pressure": p}
-            key = "contact_fraction" if h.endswith(" A") else "friction"
-            sd = float(spread[key].sel(at)) if key in ds and not h.endswith("adh") else np.nan
-            pm = f"{'' if np.isnan(sd) else f'±{sd:.2g}':<8}"
-            row.append(f"{float(arr.sel(at)):{w}.4f} {pm}")
-        lines.append(" ".join(row))
+            row = (f"  {f'{p:.4g}' if k == 0 else '':>12}  {m:<{width}}  "
+                   f"{_with_spread(mu.sel(at), sd_mu.sel(at)):<15}  "
+                   f"{_with_spread(area.sel(at), sd_area.sel(at)):<16}")
+            if total is not None:
+                row += f"  {float(total.sel(at)):.4f}"
+            lines.append(row.rstrip())
     if "friction_at_area_mean" in ds:
+        wid = {m: max(10, len(m) + 3) for m in ds["model"].values}
         lines.append(f"  {'A_c/A_0':>12} " + " ".join(f"{m + ' mu':>{wid[m]}}"
                                                       for m in ds["model"].values))
         mu_at = mean_of(ds, "friction_at_area")
