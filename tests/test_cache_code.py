@@ -24,6 +24,9 @@ FN = "toyrc.tasks:kernel"
 
 FILES = {
     "__init__.py": '"""Toy package."""\n',
+    "sub/__init__.py": 'from .laws import scale\n',
+    "sub/laws.py": 'def scale(x):\n    return 2.0 * x\n',
+    "sub/other.py": 'def unused():\n    return 0\n',
     "physics.py": '''
         """Helpers."""
 
@@ -40,12 +43,13 @@ FILES = {
         import xarray as xr
 
         from .physics import friction
+        from .sub import scale
 
         SCALE = 2.0
 
 
         def kernel(velocity):
-            return xr.Dataset({"mu": ((), SCALE * friction(velocity))})
+            return xr.Dataset({"mu": ((), SCALE * friction(scale(velocity) / 2.0))})
 
 
         def other_task(velocity):
@@ -65,7 +69,7 @@ def _write(root: Path, name: str, text: str) -> None:
 
 @pytest.fixture
 def toy(tmp_path, monkeypatch):
-    (tmp_path / "toyrc").mkdir()
+    (tmp_path / "toyrc" / "sub").mkdir(parents=True)
     for name, text in FILES.items():
         _write(tmp_path, name, text)
     monkeypatch.syspath_prepend(str(tmp_path))
@@ -133,6 +137,18 @@ def test_cache_reports_and_prunes_entries_of_other_code(toy, tmp_path):
     assert (report.current, report.other) == (1, 1)
     assert cache.prune() == 1
     assert cache.code_report().other == 0 and _mu(cache)[1] == "cache"
+
+
+def test_a_name_from_a_package_counts_through_its_defining_module(toy):
+    # `from .sub import scale`: sub/laws.py defines it and counts; a new export of the
+    # package, or a module of it the task does not use, does not.
+    before = code_digest(FN)
+    _edit(toy, "sub/__init__.py", "from .laws import scale\n",
+          "from .laws import scale\nfrom .other import unused\n")
+    _edit(toy, "sub/other.py", "return 0", "return 1")
+    assert code_digest(FN) == before
+    _edit(toy, "sub/laws.py", "2.0 * x", "3.0 * x")
+    assert code_digest(FN) != before
 
 
 def test_package_digest_follows_any_module(toy):

@@ -9,7 +9,10 @@ read from the source instead:
   functions, classes and constants that it uses, transitively (a task module may hold
   several tasks: editing the FEM task does not invalidate the half-space task's results);
 * every **module of the same package** that the slice imports, with the modules those
-  import, and so on, with the parent packages' ``__init__`` (Python runs them on import).
+  import, and so on (:func:`module_closure`): a name taken from a package counts through
+  the submodule that defines it, and a package's ``__init__`` (Python runs it on import)
+  through its statements other than imports — so a new export of a package leaves the
+  keys of tasks that do not use it.
 
 Imports are found by reading the source (``import`` and ``from ... import`` at any depth,
 absolute and relative), never by running it; a dynamic ``importlib.import_module(name)``
@@ -38,12 +41,25 @@ __all__ = ["code_digest", "module_closure", "package_digest"]
 
 
 @dataclass(frozen=True)
+class _Import:
+    """``module`` imported, with the ``names`` taken from it (None: the module itself, or
+    ``*``: whatever of it is used)."""
+
+    module: str
+    names: tuple[str, ...] | None
+
+
+@dataclass(frozen=True)
 class _Parsed:
-    """One source file read once: its tree, its docstring-free digest and its imports."""
+    """One source file read once: its tree, its docstring-free digest (whole, and without
+    its import statements for a package's ``__init__``), its imports and, for a package,
+    the import that binds each name it re-exports."""
 
     tree: ast.Module
     digest: str
-    imports: tuple[str, ...]
+    own: str
+    imports: tuple[_Import, ...]
+    exports: dict[str, _Import]
 
 
 _FILES: dict[tuple[str, int, int], _Parsed] = {}
@@ -80,24 +96,46 @@ def _is_package(path: Path) -> bool:
     return path.name == "__init__.py"
 
 
-def _imports(node: ast.AST, module: str, is_package: bool) -> list[str]:
-    """Absolute names of the modules (or module attributes) imported anywhere in ``node``."""
-    package = module if is_package else module.rpartition(".")[0]
-    out: list[str] = []
+def _base(sub: ast.ImportFrom, module: str, is_package: bool) -> str:
+    if not sub.level:
+        return sub.module or ""
+    parts = (module if is_package else module.rpartition(".")[0]).split(".")
+    base = ".".join(parts[: len(parts) - sub.level + 1])
+    return f"{base}.{sub.module}" if sub.module else base
+
+
+def _imports(node: ast.AST, module: str, is_package: bool) -> list[_Import]:
+    """The imports anywhere in ``node``, with absolute module names."""
+    out: list[_Import] = []
     for sub in ast.walk(node):
         if isinstance(sub, ast.Import):
-            out.extend(alias.name for alias in sub.names)
+            out.extend(_Import(alias.name, None) for alias in sub.names)
         elif isinstance(sub, ast.ImportFrom):
-            if sub.level:
-                parts = package.split(".")
-                base = ".".join(parts[: len(parts) - sub.level + 1])
-                base = f"{base}.{sub.module}" if sub.module else base
-            else:
-                base = sub.module or ""
-            out.append(base)
-            # ``from pkg import sub`` imports the submodule when ``sub`` is one.
-            out.extend(f"{base}.{alias.name}" for alias in sub.names if alias.name != "*")
+            names = tuple(alias.name for alias in sub.names)
+            out.append(_Import(_base(sub, module, is_package), None if "*" in names else names))
     return out
+
+
+def _exports(tree: ast.Module, module: str) -> dict[str, _Import]:
+    """For a package's ``__init__``: the top-level ``from X import name`` binding each name."""
+    out: dict[str, _Import] = {}
+    for stmt in tree.body:
+        if isinstance(stmt, ast.ImportFrom):
+            base = _base(stmt, module, True)
+            for alias in stmt.names:
+                if alias.name != "*":
+                    out[alias.asname or alias.name] = _Import(base, (alias.name,))
+    return out
+
+
+def _own(tree: ast.Module) -> ast.Module:
+    """The statements of a module that are not imports or ``__all__``: what an
+    ``__init__`` adds beyond the names it gathers from its submodules."""
+    body = [s for s in tree.body
+            if not isinstance(s, (ast.Import, ast.ImportFrom))
+            and not (isinstance(s, ast.Assign)
+                     and any(isinstance(t, ast.Name) and t.id == "__all__" for t in s.targets))]
+    return ast.Module(body=body, type_ignores=[])
 
 
 def _parse(path: Path, module: str) -> _Parsed:
@@ -111,10 +149,16 @@ def _parse(path: Path, module: str) -> _Parsed:
             raise InputError(f"cache key: cannot read the source of {module} ({path}): "
                              f"{exc}") from exc
         stripped = _strip_docstrings(ast.parse(ast.unparse(tree)))
-        digest = hashlib.sha256(_dump(stripped).encode()).hexdigest()
-        parsed = _Parsed(tree, digest, tuple(_imports(tree, module, _is_package(path))))
+        package = _is_package(path)
+        parsed = _Parsed(tree, _sha(_dump(stripped)), _sha(_dump(_own(stripped))),
+                         tuple(_imports(tree, module, package)),
+                         _exports(tree, module) if package else {})
         _FILES[memo] = parsed
     return parsed
+
+
+def _sha(text: str) -> str:
+    return hashlib.sha256(text.encode()).hexdigest()
 
 
 def _in_package(name: str, root: str) -> bool:
@@ -127,22 +171,42 @@ def _with_parents(name: str, root: str) -> list[str]:
             if _in_package(".".join(parts[:i]), root)]
 
 
-def module_closure(names: list[str], root: str) -> dict[str, str]:
-    """``{module: digest}`` of ``names`` and every module of package ``root`` they import,
-    transitively, with their parent packages."""
+def module_closure(imports: list[_Import], root: str) -> dict[str, str]:
+    """``{module: digest}`` of what ``imports`` bring in from package ``root``, transitively.
+
+    A module imported as a whole (``import pkg.mod``, ``from pkg import mod``) counts with
+    its source and everything it imports. Names taken from a package
+    (``from ..roughness import SineSeries``) count through the submodule that defines them
+    (the package ``__init__``'s re-export is followed), plus the ``__init__``'s own
+    statements other than imports; so are the parent packages of every module counted,
+    which Python runs on import. A new export added to a package therefore does not
+    change the digest of tasks that do not use it.
+    """
     seen: dict[str, str] = {}
-    todo = [p for n in names for p in _with_parents(n, root)]
+    done: set[tuple[str, tuple[str, ...] | None]] = set()
+    todo = [(i.module, i.names) for i in imports if _in_package(i.module, root)]
     while todo:
-        name = todo.pop()
-        if name in seen:
+        name, names = todo.pop()
+        if (name, names) in done or name in seen:
             continue
+        done.add((name, names))
         path = _module_file(name)
-        if path is None:  # an attribute imported from a module, not a module
+        if path is None:  # not a module (an attribute of one): its module counts it
             continue
         parsed = _parse(path, name)
-        seen[name] = parsed.digest
-        todo.extend(p for n in parsed.imports if _in_package(n, root)
-                    for p in _with_parents(n, root) if p not in seen)
+        todo.extend((p, ()) for p in _with_parents(name, root)[:-1])
+        if not _is_package(path) or names is None:
+            seen[name] = parsed.digest
+            todo.extend((i.module, i.names) for i in parsed.imports
+                        if _in_package(i.module, root))
+            continue
+        seen.setdefault(f"{name}[own]", parsed.own)
+        for n in names:
+            sub = f"{name}.{n}"
+            if _module_file(sub) is not None:
+                todo.append((sub, None))
+            elif n in parsed.exports and _in_package(parsed.exports[n].module, root):
+                todo.append((parsed.exports[n].module, parsed.exports[n].names))
     return seen
 
 
@@ -212,9 +276,8 @@ def code_digest(function: str) -> str:
     root = module.split(".")[0]
     parsed = _parse(path, module)
     stmts = _slice(_strip_docstrings(ast.parse(ast.unparse(parsed.tree))), name)
-    imported = [n for s in stmts for n in _imports(s, module, _is_package(path))
-                if _in_package(n, root)]
-    parents = [p for p in _with_parents(module, root) if p != module]
+    imported = [i for s in stmts for i in _imports(s, module, _is_package(path))]
+    parents = [_Import(p, ()) for p in _with_parents(module, root) if p != module]
     closure = module_closure(imported + parents, root)
     closure.pop(module, None)  # the task's own module enters through its slice only
     h = hashlib.sha256()
