@@ -18,7 +18,9 @@ over the contact, ``T_c`` (:attr:`ContactHeating.contact_rise`). The solve is re
 the reduced speed ``a_T(T0 + T_c) v`` (by time–temperature superposition the rubber at
 ``T0 + T_c`` sliding at ``v`` is the reference rubber at ``a_T v``), the heat at the true
 ``v``, until ``T_c`` is the rise its own friction gives: the scalar root of
-``F(T) − T`` (bracketed from the isothermal estimate ``F(0)``, then Brent's method). A
+``F(T) − T``, bracketed from the isothermal estimate ``F(0)`` (secant steps beyond it
+while ``F(T) > T``), then Brent's method to the tolerance on ``T``: 3–9 solves per speed
+on a three-wave profile (0.01–10 m/s), the first being the isothermal one. A
 hybrid run passes a ``solve`` that evaluates its high-slope law at the same reduced
 speed. What this leaves out: the temperature varies over the contact and with depth,
 and each scale of a rough surface sees its own (:mod:`rubbercontact.meanfield.flash`
@@ -184,13 +186,22 @@ def flash_contact(solve: Callable[[float], object], velocity: float, shift: Shif
             seen[rise] = (res, heat, heat.contact_rise, a_t)
         return seen[rise][2] - rise
 
-    lo, hi = 0.0, 0.0
-    if evaluate(0.0) > tol:
-        hi = max(seen[0.0][2], tol)
-        while evaluate(hi) > 0:                 # F is bounded: a root lies beyond
-            lo, hi = hi, 2 * hi
-        rise = float(brentq(evaluate, lo, hi, xtol=tol / 4, rtol=1e-12, maxiter=max_solves))
-        evaluate(rise)                          # Brent's answer is its last point: cached
+    g0 = evaluate(0.0)
+    if g0 > tol:
+        lo, g_lo = 0.0, g0
+        hi = max(g0, tol)
+        g_hi = evaluate(hi)
+        while g_hi > 0:                         # F is bounded: a root lies beyond
+            # secant extrapolation through the last two points, at most 4× further
+            step = g_hi * (hi - lo) / (g_lo - g_hi) if g_lo > g_hi else np.inf
+            lo, g_lo, hi = hi, g_hi, hi + min(step, 3.0 * hi)
+            g_hi = evaluate(hi)
+        if abs(g_hi) <= tol:
+            rise = hi
+        else:
+            rise = float(brentq(evaluate, lo, hi, xtol=tol, rtol=1e-12,
+                                maxiter=max_solves))
+            evaluate(rise)                      # Brent's answer is its last point: cached
     else:
         rise = 0.0
     res, heat, f_rise, a_t = seen[rise]
