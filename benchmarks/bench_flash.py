@@ -4,8 +4,12 @@
 speeds over 10 decades (1e-4 – 1e6 mm/s), the self-affine spectrum of
 benchmarks/bench_meanfield.py (5 decades, 1D and 2D), the paper's SBR with the WLF
 "universal" constants C1 = 8.86, C2 = 101.6 K referred to 20 °C (an assumption: the paper
-gives no shift law) and the default filled-SBR thermal properties; best of 3. Prints a
-Markdown section (machine, date, commit) with the timings and the two curves side by side.
+gives no shift law) and the default filled-SBR thermal properties; best of 3. Then the
+half-space (BEM) at its own flash temperature (``thermal.flash_contact``) against the
+isothermal solves, on a 2-decade self-affine profile (10 mm – 0.1 mm, H = 0.8, rms slope
+0.5, N = 2^14 as in examples/speed_sweep.toml) at 0.2 MPa and 11 speeds 1e-3 – 1e4 mm/s.
+Prints a Markdown section (machine, date, commit) with the timings and the curves side
+by side.
 
 Run single-threaded: ``OMP_NUM_THREADS=1 python benchmarks/bench_flash.py [--output FILE]``.
 """
@@ -26,8 +30,12 @@ import numpy as np
 
 import rubbercontact as rc
 from rubbercontact import meanfield as mf
+from rubbercontact.thermal import flash_contact
 
 ROOT = Path(__file__).resolve().parents[1]
+sys.path.insert(0, str(ROOT))
+from studies._meanfield_cases import self_affine_profile  # noqa: E402
+
 SBR = rc.materials.sbr()
 MATERIAL = rc.materials.GeneralizedMaxwell(SBR.equilibrium_modulus, SBR.moduli,
                                            SBR.relaxation_times, name="SBR (Table 1), WLF",
@@ -54,6 +62,28 @@ def _cpu() -> str:
     except OSError:
         pass
     return platform.processor() or "unknown CPU"
+
+
+def _halfspace() -> tuple[list[str], float, float]:
+    """Isothermal and flash half-space solves per speed: table rows, total walls."""
+    z, _ = self_affine_profile(n=2**14, length=10.0, lam_min=0.1, hurst=0.8, rolloff=4,
+                               slope=0.5, seed=1)
+
+    def solve(u: float):
+        return rc.halfspace.solve_sliding(z, 10.0, MATERIAL, u, 0.2)
+
+    rows, wall_iso, wall_flash = [], 0.0, 0.0
+    for v in np.logspace(-3, 4, 11):
+        t0 = time.perf_counter()
+        iso = solve(v)
+        t1 = time.perf_counter()
+        out = flash_contact(solve, v, MATERIAL.shift)
+        t2 = time.perf_counter()
+        wall_iso, wall_flash = wall_iso + t1 - t0, wall_flash + t2 - t1
+        rows.append(f"| {v:.3g} | {iso.friction:.3f} | {out.result.friction:.3f} | "
+                    f"{out.contact_temperature - 20.0:.2f} | {len(out.evaluations)} | "
+                    f"{out.residual:.2g} | {t1 - t0:.2f} s | {t2 - t1:.2f} s |")
+    return rows, wall_iso, wall_flash
 
 
 def main(argv: list[str] | None = None) -> int:
@@ -83,6 +113,7 @@ def main(argv: list[str] | None = None) -> int:
         curves.append(f"| {dim}D | peak | {out.friction_isothermal[k_iso]:.3f} at "
                       f"{SPEEDS[k_iso]:.3g} mm/s | {out.friction[k_fl]:.3f} at "
                       f"{SPEEDS[k_fl]:.3g} mm/s | {out.flash_temperature[k_fl]:.1f} | |")
+    hs_rows, hs_iso, hs_flash = _halfspace()
     commit = subprocess.run(["git", "rev-parse", "--short", "HEAD"], capture_output=True,
                             text=True, cwd=ROOT).stdout.strip()
     text = "\n".join([
@@ -101,7 +132,14 @@ def main(argv: list[str] | None = None) -> int:
         "`flash_friction_curve` returns the isothermal curve (at the background 20 °C) "
         "beside the flash one:", "",
         "| spectrum | v [mm/s] | μ isothermal | μ flash | ΔT finest spots [K] | "
-        "A isothermal / flash |", "|---|---|---|---|---|---|", *curves])
+        "A isothermal / flash |", "|---|---|---|---|---|---|", *curves, "",
+        "Half-space at its own contact temperature (`thermal.flash_contact`: the solve "
+        "repeated at a_T(T0 + T_c) v until T_c is the contact's mean rise; the first "
+        "solve is the isothermal one, solved again here for the timing), 2-decade "
+        f"self-affine profile, N = 2^14, 0.2 MPa: {hs_flash:.1f} s against "
+        f"{hs_iso:.1f} s isothermal ({hs_flash / hs_iso:.1f}×).", "",
+        "| v [mm/s] | μ isothermal | μ flash | T_c − T0 [K] | solves | residual [K] | "
+        "isothermal | flash |", "|---|---|---|---|---|---|---|---|", *hs_rows])
     print(text)
     if args.output:
         args.output.write_text(text + "\n")
