@@ -483,8 +483,9 @@ def default_config() -> RunConfig:
 #: an empty result cache. Both FEM uses (the law cell and the full cell) solve the steady
 #: state directly (fem.solver = "steady"): creep-settled by construction. The law stops at
 #: 2 MPa: at 4 MPa its cell sheared as a whole (a friction stress above E∞/3) and the points
-#: were excluded as non-monotone, so the table ended at 2 MPa anyway. The full FEM runs on one realization, the cheap models on eight: the
-#: FEM's phase average is estimated with the VHS as control variate (fem.realizations),
+#: were excluded as non-monotone, so the table ended at 2 MPa anyway. The full FEM runs on
+#: one realization, the cheap models on eight: the FEM's phase average is estimated with
+#: the VHS as control variate (fem.realizations),
 #: the workflow that makes the FEM comparison affordable. The eq. 28 figures the default
 #: prints are a demonstration (one FEM realization, three loads), not the validation
 #: (VALIDATION.md).
