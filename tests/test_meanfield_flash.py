@@ -232,3 +232,12 @@ def test_persson_2006_trend_the_flash_turns_friction_over():
     assert np.all(np.diff(out.friction / out.friction_isothermal) < 0)
     k = int(np.argmax(out.friction))
     assert 0 < k < speeds.size - 1
+
+
+def test_options_name_the_bad_field():
+    with pytest.raises(InputError, match="temperature"):
+        FlashOptions(temperature="hot")
+    with pytest.raises(InputError, match="contact_time"):
+        FlashOptions(contact_time=-1.0)
+    with pytest.raises(InputError, match="temperature"):
+        FlashOptions(temperature=-300.0)

@@ -157,6 +157,10 @@ class FlashOptions:
         if isinstance(self.max_iterations, bool) or int(self.max_iterations) < 1:
             raise InputError(f"max_iterations: must be >= 1, got {self.max_iterations!r}")
         if self.temperature is not None:
+            if isinstance(self.temperature, bool) or not isinstance(self.temperature,
+                                                                     int | float):
+                raise InputError(f"temperature: expected a number in °C, got "
+                                 f"{self.temperature!r}")
             positive_scalar("temperature", self.temperature + 273.15, unit="K")
 
 
@@ -252,6 +256,7 @@ class _Problem:
         w = parts * self.sigma0 * self.velocities[rows, None]
         cum = np.cumsum(w[:, ::-1], axis=-1)[:, ::-1]                       # W_l
         before = np.concatenate([np.ones_like(area[:, :1]), area[:, :-1]], axis=-1)
+        area = np.maximum(area, 1e-300)         # erf underflows only at absurd G
         step = np.maximum(1.0 / area - 1.0 / before, 0.0)
         return (np.cumsum(step * self.spot_rise[rows] * cum, axis=-1)
                 + self.tread_rise * cum[:, :1])

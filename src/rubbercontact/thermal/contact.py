@@ -145,6 +145,8 @@ class ContactFlash:
         than the tolerance).
     evaluations
         ``(T, F(T))`` of every solve, in order [K].
+    inputs
+        The thermal properties, the shift law, the speed and the tolerance (provenance).
     """
 
     result: object
@@ -155,6 +157,7 @@ class ContactFlash:
     shift_factor: float
     residual: float
     evaluations: tuple = field(default_factory=tuple)
+    inputs: dict = field(default_factory=dict)
 
 
 def flash_contact(solve: Callable[[float], object], velocity: float, shift: ShiftLaw | dict,
@@ -217,5 +220,7 @@ def flash_contact(solve: Callable[[float], object], velocity: float, shift: Shif
     else:
         rise = 0.0
     res, heat, f_rise, a_t = seen[rise]
+    inputs = {"velocity": v, "thermal": thermal.as_dict(), "shift": law.as_dict(),
+              "tolerance_K": tol}
     return ContactFlash(res, seen[0.0][0], heat, t0 + rise, t0, a_t, abs(f_rise - rise),
-                        tuple((t, s[2]) for t, s in seen.items()))
+                        tuple((t, s[2]) for t, s in seen.items()), inputs)
