@@ -6,14 +6,16 @@ Persson (J. Phys.: Condens. Matter 18, 7789, 2006) gives each magnification ``ζ
 own contact temperature ``T_q``: the frictional heat of the scales that form the contact
 spots seen at ``ζ`` is released in those spots and diffuses into the rubber, and each
 scale dissipates with the modulus at its own temperature, ``E(q v cos φ, T_q) =
-E_ref(a_T(T_q) q v cos φ)``, in the friction *and* in the pressure power that sets the
-contact area; the whole is solved self-consistently with ``μ``. We follow that structure —
-the per-scale temperature, the shift law in both the area and the friction, the
+E_ref(a_T(T_q) q v cos φ)``; the whole is solved self-consistently with ``μ``. We follow
+that structure — the per-scale temperature through the shift law (used here in the
+pressure power that sets the contact area as well as in the friction), the
 self-consistency, the run's temperature as the background (the mean flux heats the whole
 tread, which a steady half-space cannot describe) — but take the diffusion step from the
 exact moving heat source (:mod:`rubbercontact.thermal`) instead of Persson's approximate
-kernel, through the model of the contact below, so that the theory reduces to closed forms
-we can test (Jaeger's moving sources) and uses no constant besides the spot size.
+diffusion factor, through the model of the contact below: the theory then reduces to
+closed forms we can test (Jaeger's moving sources) and has one constant, the spot size.
+We chose it over transcribing the paper because its every step is checked here; the
+price is that the spot size is a modelling choice (Persson's, half a wavelength across).
 
 The contact as a cascade of spots
 ---------------------------------
@@ -55,8 +57,8 @@ run's temperature; with :attr:`FlashOptions.contact_time` ``t_c`` (a tread eleme
 in the footprint, a lab test's sliding time) the mean flux ``μσ0v`` heats the nominal
 contact as a half-space under a uniform flux, ``2μσ0v√(Dt/π)/K`` at the time ``t``
 (Carslaw & Jaeger §2.9), on average over the contact ``(4/3)μσ0v√(Dt_c/π)/K``, added
-to every node (the cumulative or background temperature of Fortunato, Ciaravola &
-Persson 2015). The limits are exact: an infinitely conducting rubber, or one
+to every node (the background heating of Fortunato et al., J. Phys.: Condens. Matter 27,
+175008, 2015, in its simplest form). The limits are exact: an infinitely conducting rubber, or one
 whose modulus does not depend on temperature, gives the isothermal theory.
 
 Solution
