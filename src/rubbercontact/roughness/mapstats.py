@@ -13,8 +13,9 @@ lay (infinite for a map uniform in one direction).
 
 On a periodic map these are spectral (exact for a trigonometric polynomial, what the
 half-space solver sees); on a non-periodic (measured) map the slopes are first differences
-over the pairs of measured points (the line-scan convention of
-:func:`rubbercontact.roughness.rms_slope`; filled dropouts excluded, no seam).
+on the 2×2 blocks of measured points, centred in the block (the line-scan convention of
+:func:`rubbercontact.roughness.rms_slope` along each axis; filled dropouts excluded, no
+seam).
 """
 
 from __future__ import annotations
