@@ -66,8 +66,8 @@ Solution
 A fixed point on the node temperatures ``T_i``, ``T = T0 + ΔT(T)``, by Anderson mixing
 (:func:`_iterate`) until the residual ``max_i |T0 + ΔT_i(T) − T_i|`` is below
 :attr:`FlashOptions.tolerance` [K] at every speed, continued in the speed from the slowest
-(:func:`_continuation`). Each step reads the modulus off tables in ``log ω``
-(:class:`.moduli.ModulusTables`: cubic, < 1e-9 relative; the patch spectrum's loss on
+along a ladder of speeds (:func:`_continuation`). Each step reads the modulus off tables
+in ``log ω`` (:class:`.moduli.ModulusTables`: cubic, < 1e-9 relative; the patch spectrum's loss on
 the very nodes of :mod:`.patches`), since every node has its own shift at every step;
 the isothermal theory beside it is read off the same tables (it is
 :func:`.friction_curve`'s to 1e-8, tests/test_meanfield_flash.py).
@@ -76,7 +76,9 @@ the isothermal theory beside it is read off the same tables (it is
 from __future__ import annotations
 
 import warnings
-from dataclasses import asdict, dataclass, field
+from collections.abc import Callable
+from dataclasses import asdict, dataclass, field, replace
+from functools import partial
 
 import numpy as np
 
@@ -97,8 +99,8 @@ HOTTEST = 1e4
 #: Highest harmonic of a node the patch table covers (the patch table's, :mod:`.patches`,
 #: times the Hertzian rescaling below its smallest fraction, with a margin).
 HARMONICS = 2.0**15 * 1e3
-#: Every how many speeds the continuation solves one in turn (:func:`_continuation`).
-STRIDE = 8
+#: Spacing of the continuation's ladder of speeds [decades] (:func:`_continuation`).
+LADDER_STEP = 0.25
 #: Steps the Anderson mixing remembers.
 MEMORY = 5
 #: Contact temperature [°C] above which a warning says the compound degrades.
@@ -195,7 +197,7 @@ class FlashCurve:
     mean_pressure
         ``σ0`` [MPa].
     iterations
-        Fixed-point steps per speed.
+        Fixed-point steps per speed (of the last stage of the continuation).
     residual
         ``max_i |T_i − T0 − ΔT_i(T)|`` [K] per speed at the end (below the tolerance).
     inputs
@@ -231,6 +233,7 @@ class _Problem:
     spot_rise: np.ndarray          # Γ_l [K per mW/mm²], (speeds, nodes)
     tread_rise: float              # background rise per unit mean flux [K per mW/mm²]
     tables: ModulusTables
+    spot_of: Callable              # speeds [mm/s] (column) -> Γ_l at those speeds
 
     def omega(self, temperature: np.ndarray, rows) -> np.ndarray:
         a = 10.0 ** np.asarray(self.law.log10_shift(temperature))
@@ -343,30 +346,27 @@ def _continuation(prob: _Problem, fopts: FlashOptions) -> tuple[np.ndarray, np.n
                                                                   np.ndarray]:
     """The fixed point at every speed, by continuation in the speed.
 
-    Every :data:`STRIDE`-th speed (ascending) is solved in turn, started from the previous
-    one's rise scaled by ``√(v/v_prev)`` (the high-speed law ``ΔT ∝ μ√v``); the others
-    together, started from the rise interpolated in ``log v`` between them. Started from
-    the isothermal heat instead, a fast speed overshoots by orders of magnitude (its
-    isothermal μ belongs to the cold rubber) and the mixing wanders."""
+    A ladder of speeds :data:`LADDER_STEP` decades apart across the requested range is
+    solved rung by rung from the slowest, each rung started from the previous one's rise
+    scaled by ``√(v/v_prev)`` (the high-speed law ``ΔT ∝ μ√v``); then the requested speeds
+    together, started from the ladder's temperatures interpolated in ``log v``. Started
+    from the isothermal heat instead, a fast speed overshoots by orders of magnitude (its
+    isothermal μ belongs to the cold rubber) and the mixing wanders; from a rung two
+    decades below, it takes hundreds of steps. Returns (T, residual, steps of the last
+    stage) per requested speed."""
     v = prob.velocities
-    order = np.argsort(v)
-    coarse = np.unique(np.concatenate([order[::STRIDE], order[-1:]]))
-    coarse = coarse[np.argsort(v[coarse])]
-    temp = np.full((v.size, prob.psd.size), prob.t0)
-    its, resid = np.zeros(v.size, int), np.zeros(v.size)
-    rise, v_prev = np.zeros(prob.psd.size), None
-    for k in coarse:
-        guess = prob.t0 + (rise * np.sqrt(v[k] / v_prev) if v_prev else rise)
-        out, res, n = _iterate(prob, guess[None], fopts, np.array([k]))
-        temp[k], its[k], resid[k] = out[0], n[0], res[0]
-        rise, v_prev = out[0] - prob.t0, v[k]
-    rest = np.setdiff1d(np.arange(v.size), coarse)
-    if rest.size:
-        x, xp = np.log(v[rest]), np.log(v[coarse])
-        guess = np.stack([np.interp(x, xp, temp[coarse, i]) for i in range(prob.psd.size)],
-                         axis=-1)
-        temp[rest], resid[rest], its[rest] = _iterate(prob, guess, fopts, rest)
-    return temp, resid, its
+    lo, hi = np.log10(v.min()), np.log10(v.max())
+    rungs = np.logspace(lo, hi, max(2, int(np.ceil((hi - lo) / LADDER_STEP)) + 1))
+    ladder = replace(prob, velocities=rungs, spot_rise=prob.spot_of(rungs[:, None]))
+    temps = np.full((rungs.size, prob.psd.size), prob.t0)
+    rise = np.zeros(prob.psd.size)
+    for k in range(rungs.size):
+        guess = prob.t0 + (rise * np.sqrt(rungs[k] / rungs[k - 1]) if k else rise)
+        temps[k] = _iterate(ladder, guess[None], fopts, np.array([k]))[0][0]
+        rise = temps[k] - prob.t0
+    x, xp = np.log(v), np.log(rungs)
+    guess = np.stack([np.interp(x, xp, temps[:, i]) for i in range(prob.psd.size)], axis=-1)
+    return _iterate(prob, guess, fopts, np.arange(v.size))
 
 
 def _setup(psd, material, velocities, mean_pressure, nu, options, flash) -> _Problem:
@@ -388,16 +388,16 @@ def _setup(psd, material, velocities, mean_pressure, nu, options, flash) -> _Pro
     law = shift_law_from_dict(raw)
     t0 = law.t_ref if flash.temperature is None else float(flash.temperature)
     law.log10_shift(t0)                                     # validity at T0
-    radius = flash.spot_radius / psd.wavenumbers
-    spot = disc_centre_temperature if psd.dimension == 2 else band_centre_temperature
-    rise = spot(radius, v[:, None], flash.thermal)
+    spot = partial(disc_centre_temperature if psd.dimension == 2 else band_centre_temperature,
+                   flash.spot_radius / psd.wavenumbers, thermal=flash.thermal)
     tread = 0.0
     if flash.contact_time is not None:
         th = flash.thermal
         tread = 4 / 3 * np.sqrt(th.diffusivity * flash.contact_time / np.pi) / (
             th.conductivity_package)
     tables = _tables(psd, material, v, float(nu), opts.angles, law, t0)
-    return _Problem(psd, v, sigma0, float(nu), opts, law, t0, rise, tread, tables)
+    return _Problem(psd, v, sigma0, float(nu), opts, law, t0, spot(v[:, None]), tread, tables,
+                    spot)
 
 
 def _tables(psd: PSD, material, velocities: np.ndarray, nu: float, angles: int,
