@@ -510,7 +510,9 @@ def test_a_newton_step_does_not_lift_a_touching_cell_off_the_surface():
                                norm=float(np.linalg.norm(r)),
                                contact=SimpleNamespace(force=force))
 
-    cell = SimpleNamespace(evaluate=evaluate, jvp=lambda ev, v: d * v)
+    # penalty contact: no barrier, no step filter
+    model = SimpleNamespace(barrier=None, feasible_step=lambda U, dU, shift: 1.0)
+    cell = SimpleNamespace(evaluate=evaluate, jvp=lambda ev, v: d * v, model=model)
     pre = SimpleNamespace(solve=lambda b, gauge: b)
     opts = SteadyOptions()
     touching = evaluate(np.zeros(3), 0.0, 1.0, "face")

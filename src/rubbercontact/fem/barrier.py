@@ -13,11 +13,11 @@ with ``g`` the exact normal gap to the analytic surface (:func:`.contact.closest
 ``−κ b'(g) n`` grows without bound as the face approaches, so no state with finite
 residual penetrates. A state with any contact point at ``g ≤ 0`` has a NaN residual
 (inadmissible, like an inverted element), and the Newton line search never gets there:
-:func:`feasible_step` bounds the step by conservative advancement (a point at distance
-``d`` from the surface that moves less than ``d`` cannot reach it), so no point crosses
-the surface even between the trial states.
+:func:`feasible_step` bounds the step by conservative advancement (a lower bound of
+each point's vertical gap along the step, from the surface's largest curvature), so no
+point crosses the surface even between the trial states.
 
-Sizing (:func:`barrier_law`): ``d̂`` is a small fraction of the smallest element, and
+Sizing (:func:`barrier_law`): ``d̂`` is a small fraction of the face's resolution, and
 ``κ`` puts the gap under the reference pressure ``p_ref`` at ``d̂/10``
 (``−b'(d̂/10) = 12.2 d̂``); under a local pressure ``p ≫ p_ref`` the gap is about
 ``κ d̂²/p``. Points within ``d̂`` of the surface carry force: they are the contact.
@@ -92,61 +92,53 @@ class BarrierLaw:
         return gap, force, stiff, energy
 
 
-def barrier_law(h_min: float, reference_pressure: float, distance: float = 1e-3,
+def barrier_law(scale: float, reference_pressure: float, distance: float = 0.1,
                 stiffness: float = 1.0) -> BarrierLaw:
-    """The barrier of a cell with smallest element ``h_min`` [mm] under ``p̄`` [MPa].
+    """The barrier of a face resolved to ``scale`` [mm] under ``p̄`` [MPa].
 
-    ``d̂ = distance · h_min``; ``κ`` puts the gap at ``d̂/10`` under ``stiffness · p̄``.
+    ``d̂ = distance · scale``; ``κ`` puts the gap at ``d̂/10`` under ``stiffness · p̄``.
     """
-    dhat = float(distance) * float(h_min)
+    dhat = float(distance) * float(scale)
     kappa = float(stiffness) * float(reference_pressure) / (_FORCE_AT_TENTH * dhat)
     return BarrierLaw(dhat, kappa)
 
 
-def distance_bound(surface: SineSeries, shift: float, px: np.ndarray, py: np.ndarray,
-                   near: float) -> np.ndarray:
-    """A lower bound of each point's distance to the surface [mm] (negative below it).
-
-    Points vertically within ``near`` of the graph get the exact normal gap (closest
-    point); the others the vertical gap times ``cos θ_max``, which the distance to a
-    graph of slope at most ``tan θ_max`` never falls below.
-    """
-    vgap = py - surface.heights(px + shift)
-    slope_max = float(np.sum(surface.wavenumbers * surface.amplitudes))
-    d = vgap / np.sqrt(1.0 + slope_max**2)
-    cand = np.flatnonzero(vgap < near)
-    if cand.size:
-        _, g, _, _, _ = closest_point(surface, shift, px[cand], py[cand])
-        d[cand] = np.where(vgap[cand] > 0.0, g, np.minimum(g, vgap[cand]))
-    return d
-
-
 def feasible_step(surface: SineSeries, shift: float, p0: np.ndarray, dp: np.ndarray,
-                  near: float, eta: float = 0.9, iterations: int = 40) -> float:
+                  eta: float = 0.9, iterations: int = 60) -> float:
     """The largest ``t ≤ 1`` found such that the points ``p0 + τ dp`` ``(k, 2)`` [mm] stay
-    above the surface for every ``τ ≤ t`` (conservative advancement).
+    above the graph of the surface for every ``τ ≤ t`` (conservative advancement).
 
-    The distance to a curve is 1-Lipschitz: a point at distance ``d`` that moves by less
-    than ``d`` does not reach the curve. Each pass advances ``t`` by ``η`` times the
-    smallest ``d_i / |dp_i|``, re-measuring the distances, until ``t`` reaches 1 or stops
-    growing (a point heading into the surface: ``t`` tends to its time of impact, from
-    below). Points already on or below the surface give 0.
+    Along its path a point's vertical gap ``f(τ) = y(τ) − z(x(τ) + s)`` has
+    ``f'' = −z'' dx² ≥ −c dx²`` with ``c = Σ k² a`` the largest curvature of the graph, so
+    ``f(τ + h) ≥ f + f' h − c dx² h²/2``: no crossing before the first positive root of
+    that bound. Each point advances by ``η`` times that root, re-evaluated, until it
+    reaches 1 or stops (its time of impact, approached from below); the step is the
+    smallest point's. Unlike the distance bound ``|Δp| < g`` this lets a point slide along
+    the surface at a small gap (a contact moving along a flank). Points already on or
+    below the surface give 0.
     """
-    speed = np.hypot(dp[:, 0], dp[:, 1])
-    moving = speed > 0
-    if not np.any(moving):
-        return 1.0
-    p0, dp, speed = p0[moving], dp[moving], speed[moving]
-    t = 0.0
+    x0, y0 = p0[:, 0], p0[:, 1]
+    dx, dy = dp[:, 0], dp[:, 1]
+    c = float(np.sum(surface.wavenumbers**2 * surface.amplitudes))
+    a = 0.5 * c * dx * dx
+    t = np.zeros(x0.size)
+    moving = np.ones(x0.size, bool)
     for _ in range(iterations):
-        p = p0 + t * dp
-        d = distance_bound(surface, shift, p[:, 0], p[:, 1], near)
-        if np.any(d <= 0.0):
-            return 0.0 if t == 0.0 else t
-        dt = eta * float(np.min(d / speed))
-        if t + dt >= 1.0:
-            return 1.0
-        if dt <= 1e-6 * max(t, 1e-12):
+        idx = np.flatnonzero(moving)
+        if idx.size == 0:
             break
-        t += dt
-    return t
+        x = x0[idx] + t[idx] * dx[idx] + shift
+        f = y0[idx] + t[idx] * dy[idx] - surface.heights(x)
+        if np.any(f <= 0.0):
+            # on or below the graph: at the start, or round-off at an impact
+            return float(min(np.min(t[idx][f <= 0.0]), np.min(t)))
+        fp = dy[idx] - surface.slopes(x) * dx[idx]
+        ai = a[idx]
+        with np.errstate(divide="ignore", invalid="ignore"):
+            root = np.where(ai > 0.0, (fp + np.sqrt(fp * fp + 4.0 * ai * f)) / (2.0 * ai),
+                            np.where(fp < 0.0, -f / fp, np.inf))
+        h = eta * root
+        t[idx] = np.minimum(t[idx] + h, 1.0)
+        done = (t[idx] >= 1.0) | (h <= 1e-9)
+        moving[idx[done]] = False
+    return float(np.min(t, initial=1.0))

@@ -173,7 +173,7 @@ class CellModel:
         p0 = face_points(pos, w, m)
         # the points are linear in the nodes: their moves are the nodes' moves interpolated
         dp = face_points(dpos, 0.0, m)
-        return feasible_step(self.surface, shift, p0, dp, near=self.cell.hx)
+        return feasible_step(self.surface, shift, p0, dp)
 
     def add_contact_forces(self, r: np.ndarray, cs: ContactState) -> None:
         """Residual = ∂Π/∂u: the contact force acts ON the rubber, so subtract it."""

@@ -175,7 +175,9 @@ class FemOptions:
     contact
         ``"penalty"`` or ``"barrier"`` (:data:`CONTACTS`).
     barrier_distance
-        The barrier's reach ``d̂`` as a fraction of the smallest element (barrier only).
+        The barrier's reach ``d̂`` as a fraction of the face's resolution: the smaller of
+        the smallest element and the chord sag ``h² max|z''|/8`` of a face segment on the
+        surface (barrier only; points within ``d̂`` count as contact).
     barrier_stiffness
         The barrier's stiffness: the gap is ``d̂/10`` under this multiple of ``p̄``
         (barrier only; see :func:`~.barrier.barrier_law`).
@@ -202,7 +204,7 @@ class FemOptions:
     penalty_factor: float = 100.0
     contact_smoothing: float = 0.1
     contact: str = "penalty"
-    barrier_distance: float = 1e-3
+    barrier_distance: float = 0.1
     barrier_stiffness: float = 1.0
     bulk_modulus: float | None = None
     history_order: int = 2
@@ -233,7 +235,7 @@ class FemOptions:
                              f"{self.contact!r}")
         positive_scalar("barrier_distance", self.barrier_distance)
         if not self.barrier_distance < 0.5:
-            raise InputError(f"barrier_distance: must be < 0.5 (of the smallest element), got "
+            raise InputError(f"barrier_distance: must be < 0.5 (of the face's resolution), got "
                              f"{self.barrier_distance}")
         positive_scalar("barrier_stiffness", self.barrier_stiffness)
         if self.bulk_modulus is not None:

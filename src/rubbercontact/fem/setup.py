@@ -70,9 +70,14 @@ def build_cell(surface: SineSeries, material: GeneralizedMaxwell, mean_pressure:
     hx = L0 / nx
     barrier = None
     if options.contact == "barrier":
+        # The reach is small against the face's own resolution (the smallest element,
+        # and the chord sag of a segment on the most curved crest, below which gaps
+        # already count as contact): points within it count as contact.
         rows = periodic_cell(L0, options.height_ratio * L0, nx, ny, grading=options.grading)
-        barrier = barrier_law(min(hx, float(np.diff(rows.y_nodes).min())), mean_pressure,
-                              options.barrier_distance, options.barrier_stiffness)
+        sag = hx**2 * float(np.sum(surface.wavenumbers**2 * surface.amplitudes)) / 8.0
+        scale = min(hx, float(np.diff(rows.y_nodes).min()), sag)
+        barrier = barrier_law(scale, mean_pressure, options.barrier_distance,
+                              options.barrier_stiffness)
         # the straight face must start above the whole surface, within the barrier's reach
         # of its crest so that it carries the plate from the first iteration
         y0 = _surface_top(surface) + 0.5 * barrier.dhat
@@ -95,9 +100,15 @@ def build_cell(surface: SineSeries, material: GeneralizedMaxwell, mean_pressure:
 
 
 def _surface_top(surface: SineSeries) -> float:
-    """The surface's highest point [mm]: the best of 64 samples per shortest wave, raised
-    by the chord sag bound ``Δ² max|z''|/8`` the sampling can miss."""
+    """The surface's highest point [mm]: every sampled local maximum (64 samples per
+    shortest wave) polished by Newton on ``z' = 0``, the highest kept."""
     n = 64 * int(np.ceil(surface.period / float(np.min(surface.wavelengths))))
     x = np.arange(n) * surface.period / n
-    curv = float(np.sum(surface.wavenumbers**2 * surface.amplitudes))
-    return float(surface.heights(x).max()) + (surface.period / n) ** 2 * curv / 8.0
+    z = surface.heights(x)
+    peak = np.flatnonzero((z >= np.roll(z, 1)) & (z >= np.roll(z, -1)))
+    xp = x[peak]
+    for _ in range(20):
+        curv = surface.curvatures(xp)
+        step = np.where(curv < 0, surface.slopes(xp) / np.where(curv < 0, curv, -1.0), 0.0)
+        xp = xp - np.clip(step, -surface.period / n, surface.period / n)
+    return float(max(surface.heights(xp).max(), z.max()))
