@@ -91,3 +91,7 @@ def test_bad_input():
         flash_contact("solve", 1.0, WLF)
     with pytest.raises(InputError, match="law"):
         flash_contact(_solve(), 1.0, {"law": "VFT"})
+    with pytest.raises(InputError, match="temperature"):
+        flash_contact(_solve(), 1.0, WLF, temperature="warm")
+    with pytest.raises(InputError, match="singularity"):
+        flash_contact(_solve(), 1.0, WLF, temperature=-90.0)

@@ -186,7 +186,11 @@ def flash_contact(solve: Callable[[float], object], velocity: float, shift: Shif
     """
     v = positive_scalar("velocity", velocity, unit="mm/s")
     law = shift_law_from_dict(shift)
+    if temperature is not None and (isinstance(temperature, bool)
+                                    or not isinstance(temperature, int | float)):
+        raise InputError(f"temperature: expected a number in °C, got {temperature!r}")
     t0 = law.t_ref if temperature is None else float(temperature)
+    law.log10_shift(t0)                                     # validity at T0
     tol = positive_scalar("tolerance", tolerance, unit="K")
     thermal = thermal or FILLED_SBR
     if not callable(solve):
