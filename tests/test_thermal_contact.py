@@ -95,3 +95,14 @@ def test_bad_input():
         flash_contact(_solve(), 1.0, WLF, temperature="warm")
     with pytest.raises(InputError, match="singularity"):
         flash_contact(_solve(), 1.0, WLF, temperature=-90.0)
+
+
+def test_the_background_shifts_the_isothermal_solve():
+    """At T0 = 40 °C the isothermal solve runs at a_T(40 °C) v (the rubber at 40 °C is the
+    reference rubber at that speed), and the contact is at T0 + its rise."""
+    v = 1e3
+    out = flash_contact(_solve(), v, WLF, temperature=40.0)
+    ref = _solve()(WLF.shift(40.0) * v)
+    assert out.isothermal.friction == pytest.approx(ref.friction, rel=1e-12)
+    assert out.background_temperature == 40.0
+    assert out.contact_temperature > 40.0
