@@ -17,13 +17,13 @@ Surfaces (square maps of side ``L = 2 λ_ls``, sliding along x; SBR, 10 mm/s, ha
   ``crate``: the paper's wave along x plus the same wave along y (random phases), periodic on
   the cell, which is then the map's high-slope part itself: the scale split alone, as in
   1D; or ``band``: the isotropic octave band of ``λ_hs`` with random phases, which the cell
-  (one or two periods ``λ_hs`` in x and y) holds only on its coarse lattice.
+  (one, two or four periods ``λ_hs`` in x and y) holds only on its coarse lattice.
 
 Grids: 16 points per ``λ_hs`` (64² … 512²), the cell at the same spacing; a resolution check
 at 32 points per ``λ_hs`` for ratios 2 and 4. Rows are kept in
 ``docs/validation/maps_split.jsonl`` (a rerun resumes).
 
-Run (about 10 min on one core)::
+Run (about 25 min on one core)::
 
     OMP_NUM_THREADS=1 .venv/bin/python -m studies maps_split \
         --report docs/validation/maps_split.md
@@ -67,7 +67,7 @@ PRESSURES = (0.15, 0.35)
 SEEDS = (1, 2)
 VELOCITY = 10.0
 #: (high-slope band, cell periods) of the main table
-KINDS = (("crate", 1), ("band", 1), ("band", 2))
+KINDS = (("crate", 1), ("band", 1), ("band", 2), ("band", 4))
 POINTS = 16
 CHECK_POINTS = 32
 ROOT = Path(__file__).resolve().parent.parent

@@ -90,7 +90,8 @@ def test_a_high_slope_part_periodic_on_the_cell_is_the_cell():
     hm = HeightMap(crate + 0.01 * np.sin(2 * np.pi * x[None, :]), (lx, lx), periodic=True)
     for periods in (1, 2):
         sp = split_map(hm, 1.0, cell_points=16 * periods, cell_periods=periods)
-        assert sp.cell_period == pytest.approx(0.125 * periods)
+        assert sp.cell_period == pytest.approx(0.125)
+        assert sp.cell_side == pytest.approx(0.125 * periods)
         assert sp.cell.source["phases"] == "the map's"
         np.testing.assert_allclose(sp.cell.heights, sp.high.heights[:16 * periods, :16 * periods],
                                    atol=1e-15)

@@ -8,8 +8,9 @@ with it the hybrid's error against the VHS on the whole map is its scale split a
 FEM cell will fill the same slot with a table of the same keys and ``dimension = 2``.
 
 The low-slope map is solved by the 2D BEM with the law ``σ_hs(ū)`` (plus the Lennard-Jones
-wall if asked) and the law's ``Δτ_hs``, ``α_hs`` read at the pressure averaged over one cell
-(:mod:`.windowing2d`), or pointwise (the paper's eqs. 6, 8) with ``window=False``.
+wall if asked) and the law's ``Δτ_hs``, ``α_hs`` read at the pressure averaged over a box of
+one high-slope period ``λ_c`` (:mod:`.windowing2d`), or pointwise (the paper's eqs. 6, 8)
+with ``window=False``.
 
 Laws carry their dimension: a table without ``dimension = 2`` is a plane-strain (1D) law,
 whose ``σ_hs(ū)`` is per unit width of a line contact, and is refused on a map.
@@ -43,7 +44,8 @@ class MapHybridOptions:
         The low-slope solve's law besides the high-slope table: the table alone, or the
         integrated Lennard-Jones wall plus the table (the 1D hybrid's default).
     window : bool
-        Read ``Δτ_hs``, ``α_hs`` at the pressure averaged over one cell (default) or pointwise.
+        Read ``Δτ_hs``, ``α_hs`` at the pressure averaged over a box of one high-slope period
+        (default) or pointwise.
     nu : float
         Poisson's ratio.
     tol : float

@@ -1,8 +1,9 @@
 """The high-slope law read at the low-slope pressure averaged over one high-slope cell (maps).
 
 The 2D form of :mod:`rubbercontact.hybrid.windowing`: on a map the law's averaging cell is a
-box of one high-slope period ``λ_c`` in x and in y (the cell the map's law is computed on,
-:mod:`rubbercontact.roughness.mapsplit`), so::
+box of one high-slope period ``λ_c`` in x and in y (the period of the cell the map's law is
+computed on, :mod:`rubbercontact.roughness.mapsplit`; a cell of several periods is a larger
+sample of the same crests, the window stays one period), so::
 
     μ_hs = <Δτ_hs(σ̄(x, y))>/σ0,   A_c = <α_hs(σ̄(x, y))>,   σ̄ = box_{λc×λc} * σ_ls.
 

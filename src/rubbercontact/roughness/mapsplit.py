@@ -68,6 +68,11 @@ class MapSplit:
 
     @property
     def cell_period(self) -> float:
+        """``λ_c`` [mm], the period of the longest high-slope band (0 without one)."""
+        return 0.0 if self.cell is None else self.cell.source["cell_period_mm"]
+
+    @property
+    def cell_side(self) -> float:
         """The cell's side [mm] (``cell_periods × λ_c``; 0 without a high-slope band)."""
         return 0.0 if self.cell is None else self.cell.lengths[1]
 
@@ -199,7 +204,8 @@ def _cell(modes, lam: float, periods: int, n: int, seed, note: dict
         grid = 0.5 * (grid + np.roll(grid[::-1, ::-1], 1, axis=(0, 1)))   # P(−K) = P(K)
         z = realize(grid, seed)
     cell = HeightMap(z, (side, side), periodic=True,
-                     source={**note, "part": "high-slope cell", "cell_side_mm": side,
+                     source={**note, "part": "high-slope cell", "cell_period_mm": lam,
+                             "cell_side_mm": side,
                              "phases": "the map's" if on_lattice else f"random, seed {seed}"})
     half = (ky > 0) | ((ky == 0) & (kx > 0))
     power = grid[nn.ravel() % n, mm.ravel() % n]
