@@ -228,6 +228,36 @@ def resolution(rows: list[dict]) -> str:
     return "\n".join(lines)
 
 
+def findings(rows: list[dict], all_errors: dict) -> dict:
+    """The numbers the findings quote, from the rows."""
+    def pct(x: float) -> str:
+        return f"{100 * x:.0f} %"
+
+    crate = all_errors.get(("crate", 1), {})
+    out = {f"crate_{m}": ", ".join(pct(np.mean(crate[(r, m)])) if (r, m) in crate else "–"
+                                   for r in RATIOS) for m in ("hybrid", "windowed")}
+    cells = []
+    for kind, periods in KINDS[1:]:
+        e = all_errors.get((kind, periods), {})
+        vals = [x for r in RATIOS for x in e.get((r, "hybrid"), [])]
+        cells.append(pct(np.mean(vals)) if vals else "–")
+    out["band_cells"] = ", ".join(cells)
+    main = [r for r in rows if r["points"] == POINTS]
+    for name in ("mu", "area"):
+        change = np.mean([r[f"meanfield_{name}"] / r[f"vhs_{name}"] - 1 for r in main])
+        out[f"mf_{name}"] = f"{100 * change:+.0f} %"
+    moves = []
+    for r32 in (r for r in rows if r["points"] == CHECK_POINTS):
+        key = ("kind", "cell_periods", "ratio", "m2_ls", "seed", "pressure")
+        r16 = [r for r in rows if r["points"] == POINTS and all(r[k] == r32[k] for k in key)]
+        for m in ("hybrid", "windowed"):
+            if r16:
+                moves.append(abs(r32[m + "_mu"] / r32["vhs_mu"] - r16[0][m + "_mu"]
+                                 / r16[0]["vhs_mu"]))
+    out["resolution"] = f"{100 * max(moves):.1f}" if moves else "–"
+    return out
+
+
 def cost(rows: list[dict]) -> str:
     parts = []
     for n in sorted({r["n"] for r in rows}):
@@ -252,6 +282,7 @@ def report(rows: list[dict]) -> str:
         block = {"crate": "table_crate", "band": "table_band"}[kind]
         out += [render("maps_split", block, periods=periods), text]
     out += [render("maps_split", "summary"), summary(all_errors),
+            render("maps_split", "findings", **findings(rows, all_errors)),
             render("maps_split", "resolution"), resolution(rows),
             render("maps_split", "cost", cost=cost(rows))]
     return "\n\n".join(out) + "\n"
