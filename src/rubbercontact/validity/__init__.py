@@ -19,6 +19,7 @@ from .assess import (
     summarize,
 )
 from .classes import CLASSES, QUANTITIES, Condition, ValidatedClass
+from .run import assess_run
 
 __all__ = ["CLASSES", "QUANTITIES", "Condition", "Note", "SpeedPoint", "SurfaceStats",
-           "ValidatedClass", "as_attrs", "assess", "loss_peak_frequency", "summarize"]
+           "ValidatedClass", "as_attrs", "assess", "assess_run", "loss_peak_frequency", "summarize"]

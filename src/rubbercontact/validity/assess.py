@@ -15,7 +15,7 @@ from __future__ import annotations
 
 import math
 from collections.abc import Sequence
-from dataclasses import dataclass
+from dataclasses import dataclass, replace
 from functools import cache
 
 import numpy as np
@@ -230,6 +230,11 @@ def assess(model: str, surface: SurfaceStats, points: Sequence[SpeedPoint] = (),
         raise InputError(f"validity: unknown model {model!r}; choose one of "
                          f"{', '.join(CLASSES)}")
     cls = CLASSES[model]
+    if cls.reduces_to and not surface.values()["m2_high"].size:
+        # no high-slope wave: the model is the one it reduces to, on the same surface
+        base = CLASSES[cls.reduces_to]
+        cls = replace(base, model=model, name=f"{base.name}, as {base.model} without a "
+                                              f"high-slope wave")
     surface_values = surface.values()
     on_surface = [n for c in cls.conditions if c.quantity not in SPEED_QUANTITIES
                   for n in _check(cls, c, surface_values[c.quantity], surface)]
@@ -261,7 +266,7 @@ def _at_speed(cls: ValidatedClass, surface: SurfaceStats, p: SpeedPoint, scale: 
             notes.extend(_check(cls, c, values, surface, p, scale))
     found = p.departure()
     # the VHS is the reference the others depart from
-    if cls.model != "vhs" and found is not None and abs(found[0]) > cls.tolerance:
+    if cls.reference != "the full FEM" and found is not None and abs(found[0]) > cls.tolerance:
         notes.append(_departure(cls, p, found, on_surface + notes))
     return notes
 
@@ -340,8 +345,11 @@ def summarize(notes: Sequence[Note]) -> tuple[str, ...]:
             lines.append(worst.text)
             continue
         v = sorted(n.velocity for n in group)
-        lines.append(f"{model} at {len(group)} speeds ({v[0]:.3g} … {v[-1]:.3g} mm/s), worst "
-                     f"at {worst.velocity:.3g} mm/s: {worst.reason}")
+        t = sorted({n.temperature for n in group if n.temperature is not None})
+        what = "speeds" if not t else "(speed, temperature) points"
+        span = f"{v[0]:.3g} … {v[-1]:.3g} mm/s" + (f", {t[0]:g} … {t[-1]:g} °C" if t else "")
+        worst_at = Note(model, "", "", worst.velocity, worst.temperature).text[len(model):]
+        lines.append(f"{model} at {len(group)} {what} ({span}), worst{worst_at}{worst.reason}")
     return tuple(lines)
 
 

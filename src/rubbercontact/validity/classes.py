@@ -139,6 +139,8 @@ class ValidatedClass:
         The largest relative μ error against the reference measured inside the class.
     report
         The report of the tolerance.
+    reduces_to
+        The model it is without a high-slope wave (a law model: no law to read), or "".
     """
 
     model: str
@@ -147,6 +149,7 @@ class ValidatedClass:
     reference: str
     tolerance: float
     report: str
+    reduces_to: str = ""
 
 
 def _band(wavelengths: tuple[float, float], speeds: tuple[float, float]) -> tuple[float, float]:
@@ -173,12 +176,12 @@ def _classes() -> dict[str, ValidatedClass]:
             "hybrid", "scale-separated split, the section 3 law",
             (Condition("split_ratio", low=POINTWISE_RATIO, report=SPLIT_REPORT), split_low,
              high, contact3, hs_speeds, law),
-            "the VHS", POINTWISE_TOLERANCE, SPLIT_REPORT),
+            "the VHS", POINTWISE_TOLERANCE, SPLIT_REPORT, reduces_to="vhs"),
         "hybrid-windowed": ValidatedClass(
             "hybrid-windowed", "octave split or wider, the section 3 law",
             (Condition("split_ratio", low=WINDOWED_RATIO, report=SPLIT_REPORT), split_low,
              high, contact3, hs_speeds, law),
-            "the VHS", WINDOWED_TOLERANCE, SPLIT_REPORT),
+            "the VHS", WINDOWED_TOLERANCE, SPLIT_REPORT, reduces_to="vhs"),
         "meanfield": ValidatedClass(
             "meanfield", "random octave ladders",
             (Condition("m2", high=LADDER_SLOPE, report=MEANFIELD_REPORT),
@@ -195,7 +198,7 @@ def _classes() -> dict[str, ValidatedClass]:
              Condition("contact", *SEPARATED_CONTACT, report=MEANFIELD_REPORT),
              Condition("frequency_high", *_band((SEPARATED_HIGH_WAVELENGTH,) * 2, SPLIT_SPEEDS),
                        report=MEANFIELD_REPORT), law),
-            "the VHS", SEPARATED_TOLERANCE, MEANFIELD_REPORT),
+            "the VHS", SEPARATED_TOLERANCE, MEANFIELD_REPORT, reduces_to="meanfield"),
     }
 
 

@@ -1,0 +1,90 @@
+"""A run's results against the validated classes: the notes of every model it computed.
+
+:func:`assess_run` reads from a results dataset and its set-up what :func:`~.assess.assess`
+takes (the waves and the split, each model's realization-mean friction and contact fraction
+per load beside the VHS's, the highest local pressure the law was read at against the law's
+highest FEM point, the rubber's loss peak at each temperature) and returns the notes.
+"""
+
+from __future__ import annotations
+
+import numpy as np
+import xarray as xr
+
+from .assess import Note, SpeedPoint, SurfaceStats, assess, loss_peak_frequency
+
+
+def assess_run(ds: xr.Dataset, setup) -> tuple[Note, ...]:
+    """The notes of every model of a run (``rubbercontact.pipeline.run``'s results).
+
+    Parameters
+    ----------
+    ds
+        The results: ``friction`` and ``contact_fraction`` on ``(model, [temperature,]
+        velocity, realization, pressure)``, ``max_local_pressure`` for the law models, the
+        law table (``law_*``) when a model read one.
+    setup
+        The run's :class:`~rubbercontact.pipeline.setup.RunSetup` (the base surface, the
+        split threshold, the rubber at its reference temperature, the speeds' shift factors).
+
+    Returns
+    -------
+    tuple of Note
+        Per model in the run's order, :func:`assess`'s notes; speeds are the run's (not the
+        reduced ones), with the temperature in a run with temperatures.
+    """
+    stats = SurfaceStats.from_series(setup.base, setup.config.surface.m2_threshold)
+    peak = loss_peak_frequency(setup.material)
+    law = _law(ds)
+    notes: list[Note] = []
+    for model in setup.models:
+        if model not in ds["model"].values:
+            continue
+        for temperature, shift in _temperatures(ds, setup):
+            points = [_point(ds, model, float(v), temperature, shift, law)
+                      for v in ds["velocity"].values]
+            found = assess(model, stats, points, peak / shift)
+            # the surface's notes once per model, not once per temperature
+            notes.extend(n for n in found if n.velocity is not None or n not in notes)
+    return tuple(notes)
+
+
+def _temperatures(ds: xr.Dataset, setup) -> list[tuple[float | None, float]]:
+    """``(temperature, a_T)`` of each temperature of the run (``(None, 1)`` isothermal)."""
+    if "temperature" not in ds.dims:
+        return [(None, 1.0)]
+    shifts = np.asarray(setup.speeds.shift_factors, float)
+    return [(float(t), float(a)) for t, a in zip(ds["temperature"].values, shifts,
+                                                  strict=True)]
+
+
+def _law(ds: xr.Dataset) -> xr.Dataset | None:
+    if "law_pressure" not in ds.coords:
+        return None
+    from ..hybrid.lawio import law_from_results
+
+    return law_from_results(ds)
+
+
+def _point(ds: xr.Dataset, model: str, v: float, temperature: float | None, shift: float,
+           law: xr.Dataset | None) -> SpeedPoint:
+    """What the run has for ``model`` at speed ``v`` (and ``temperature``)."""
+    where = {"velocity": v} | ({} if temperature is None else {"temperature": temperature})
+
+    def mean(name: str, m: str) -> tuple[float, ...]:
+        values = ds[name].sel(model=m, **where)
+        return tuple(np.atleast_1d(values.mean("realization", skipna=True).values).tolist())
+
+    mu = mean("friction", model)
+    ref = mean("friction", "vhs") if "vhs" in ds["model"].values else ()
+    local = top = None
+    if law is not None and "max_local_pressure" in ds:
+        reached = ds["max_local_pressure"].sel(model=model, **where).values
+        if np.isfinite(reached).any():
+            from ..hybrid.lawtable import law_top
+
+            local, top = float(np.nanmax(reached)), law_top(law, v * shift)
+    return SpeedPoint(v, contact=mean("contact_fraction", model), friction=mu if ref else (),
+                      friction_vhs=ref, local_pressure=local, law_top=top,
+                      temperature=temperature)
+
