@@ -186,6 +186,17 @@ def test_law_coverage_and_summary_fold_the_speeds():
     assert attrs == {"validity_hybrid-windowed": line}
 
 
+def test_meanfield_class_is_octave_ladders():
+    """Waves of 3 and 1 mm, a ratio of 3: outside the ladders' octave spacing; 2 and 1 mm
+    are inside."""
+    point = _point(10.0)
+    third = va.SurfaceStats.from_series(_series((3.0, 0.2), (1.0, 0.2)))
+    (note,) = va.assess("meanfield", third, [point], SBR_PEAK)
+    assert note.condition == "spacing" and "ratio up to 3," in note.text
+    octave = va.SurfaceStats.from_series(_series((2.0, 0.2), (1.0, 0.2)))
+    assert va.assess("meanfield", octave, [point], SBR_PEAK) == ()
+
+
 def test_condition_excess():
     """The factor by which the worst value lies outside; 1 inside or without values."""
     c = va.Condition("contact", 0.01, 0.1)

@@ -265,8 +265,7 @@ def _at_speed(cls: ValidatedClass, surface: SurfaceStats, p: SpeedPoint, scale: 
             values = _speed_values(c.quantity, surface, p, scale)
             notes.extend(_check(cls, c, values, surface, p, scale))
     found = p.departure()
-    # the VHS is the reference the others depart from
-    if cls.reference != "the full FEM" and found is not None and abs(found[0]) > cls.tolerance:
+    if cls.departs and found is not None and abs(found[0]) > cls.tolerance:
         notes.append(_departure(cls, p, found, on_surface + notes))
     return notes
 
