@@ -21,7 +21,14 @@ from functools import cache
 import numpy as np
 
 from ..errors import InputError
-from .classes import CLASSES, QUANTITIES, SPEED_QUANTITIES, Condition, ValidatedClass
+from .classes import (
+    CLASSES,
+    MU_NOISE,
+    QUANTITIES,
+    SPEED_QUANTITIES,
+    Condition,
+    ValidatedClass,
+)
 
 
 @dataclass(frozen=True)
@@ -122,15 +129,18 @@ class SpeedPoint:
             raise InputError(f"speed {self.velocity:g} mm/s: give local_pressure and law_top "
                              f"together (MPa), or neither")
 
-    def departure(self) -> tuple[float, float, float] | None:
-        """The load where μ departs most from the VHS: (relative departure, μ, μ_VHS)."""
+    def departure(self, tolerance: float) -> tuple[float, float, float] | None:
+        """The load where μ departs most from the VHS beyond ``tolerance`` (relative) plus
+        the half-space's noise floor :data:`~.classes.MU_NOISE`: (that excess, >= 0, 1 at
+        the bound; μ; μ_VHS), or None without a comparison."""
         mu, ref = np.asarray(self.friction, float), np.asarray(self.friction_vhs, float)
-        ok = np.isfinite(mu) & np.isfinite(ref) & (np.abs(ref) > 0)
+        ok = np.isfinite(mu) & np.isfinite(ref)
         if not ok.any():
             return None
-        rel = mu[ok] / ref[ok] - 1
-        i = int(np.argmax(np.abs(rel)))
-        return float(rel[i]), float(mu[ok][i]), float(ref[ok][i])
+        mu, ref = mu[ok], ref[ok]
+        excess = np.abs(mu - ref) / (tolerance * np.abs(ref) + MU_NOISE)
+        i = int(np.argmax(excess))
+        return float(excess[i]), float(mu[i]), float(ref[i])
 
 
 @dataclass(frozen=True)
@@ -264,8 +274,8 @@ def _at_speed(cls: ValidatedClass, surface: SurfaceStats, p: SpeedPoint, scale: 
         if c.quantity in SPEED_QUANTITIES:
             values = _speed_values(c.quantity, surface, p, scale)
             notes.extend(_check(cls, c, values, surface, p, scale))
-    found = p.departure()
-    if cls.departs and found is not None and abs(found[0]) > cls.tolerance:
+    found = p.departure(cls.tolerance)
+    if cls.departs and found is not None and found[0] > 1.0:
         notes.append(_departure(cls, p, found, on_surface + notes))
     return notes
 
@@ -319,16 +329,16 @@ def _what(c: Condition, values: np.ndarray, surface: SurfaceStats, p: SpeedPoint
 def _departure(cls: ValidatedClass, p: SpeedPoint, found: tuple[float, float, float],
                outside: list[Note]) -> Note:
     """μ departs from the VHS beyond the class's tolerance: say so, and why, in one line."""
-    rel, mu, ref = found
+    excess, mu, ref = found
     if outside:
         worst = max(outside, key=lambda n: n.excess)
         more = f"; {len(outside) - 1} more condition(s)" if len(outside) > 1 else ""
         where = f"and the run lies outside its validated class ({cls.name}): {worst.detail}{more}"
     else:
         where = f"inside its validated class ({cls.name}): check the run ({cls.report})"
-    reason = (f"μ {mu:.3g} departs from the VHS's {ref:.3g} by {rel:+.0%}, beyond the "
-              f"{cls.tolerance:.0%} measured against {cls.reference}, {where}")
-    return Note(cls.model, "vhs", reason, p.velocity, p.temperature, abs(rel) / cls.tolerance)
+    reason = (f"μ {mu:.3g} departs from the VHS's {ref:.3g} beyond the {cls.tolerance:.0%} "
+              f"measured against {cls.reference}, {where}")
+    return Note(cls.model, "vhs", reason, p.velocity, p.temperature, excess)
 
 
 def summarize(notes: Sequence[Note]) -> tuple[str, ...]:
@@ -346,10 +356,15 @@ def summarize(notes: Sequence[Note]) -> tuple[str, ...]:
         v = sorted(n.velocity for n in group)
         t = sorted({n.temperature for n in group if n.temperature is not None})
         what = "speeds" if not t else "(speed, temperature) points"
-        span = f"{v[0]:.3g} … {v[-1]:.3g} mm/s" + (f", {t[0]:g} … {t[-1]:g} °C" if t else "")
+        span = _span(v, "mm/s", ".3g") + (", " + _span(t, "°C", "g") if t else "")
         worst_at = Note(model, "", "", worst.velocity, worst.temperature).text[len(model):]
         lines.append(f"{model} at {len(group)} {what} ({span}), worst{worst_at}{worst.reason}")
     return tuple(lines)
+
+
+def _span(values: list[float], unit: str, fmt: str) -> str:
+    lo, hi = format(values[0], fmt), format(values[-1], fmt)
+    return f"{lo} {unit}" if lo == hi else f"{lo} … {hi} {unit}"
 
 
 def as_attrs(model: str, notes: Sequence[Note]) -> dict[str, str]:

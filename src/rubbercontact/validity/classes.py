@@ -61,6 +61,11 @@ SEPARATED_CONTACT = (0.02, 0.2)
 SEPARATED_HIGH_WAVELENGTH = 1.0 / 16    # mm, at SPLIT_SPEEDS
 SEPARATED_TOLERANCE = 0.07
 
+#: Absolute μ below which a departure from the VHS is the half-space grids' noise, not a
+#: model's: the hybrids' grid moves μ by this much at the slowest speeds on the asphalt
+#: (docs/guide/models.md, "Grids of the half-space models").
+MU_NOISE = 1.5e-4
+
 #: Relative slack of a bound against the rounding of a value computed from its inputs.
 ROUNDING = 1e-9
 
