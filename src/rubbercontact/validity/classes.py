@@ -175,7 +175,7 @@ def _classes() -> dict[str, ValidatedClass]:
     contact3 = Condition("contact", *SECTION3_CONTACT, report=SECTION3_REPORT)
     split_low = Condition("m2_low", high=SPLIT_LOW_SLOPE, report=SECTION3_REPORT)
     return {
-        "vhs": ValidatedClass("vhs", "per-wave m2 up to the FEM sweep's", (slope,),
+        "vhs": ValidatedClass("vhs", "slopes within the FEM sweep's", (slope,),
                               "the full FEM", VHS_FEM_TOLERANCE, SECTION3_REPORT,
                               departs=False),
         "fem": ValidatedClass("fem", "the section 3 surface's slopes and areas",
