@@ -98,3 +98,17 @@ def test_law_run_names_the_extrapolated_law(tmp_path):
     assert reached > 0.5 and note.excess == pytest.approx(reached / 0.5)
     assert f"{reached:.3g} MPa" in note.text and "0.5 MPa" in note.text
     assert np.isclose(note.velocity, 10.0)
+
+
+def test_a_run_says_where_a_model_left_its_class(tmp_path):
+    # The run itself carries the notes (results attrs, one line each) and its summary prints
+    # them: the mean-field on section 3 (m2 1.33 > 0.6), nothing for the VHS.
+    from rubbercontact.io.results import read_results, write_results
+    from rubbercontact.plotting.summary import summary_table
+
+    ds = rc.pipeline.run(_config(tmp_path, velocities=[10.0]), progress=False)
+    assert ds.attrs["validity_vhs"] == ""
+    (line,) = ds.attrs["validity_meanfield"].splitlines()
+    assert line.startswith("meanfield: outside its validated class") and "m2" in line
+    path = write_results(ds, tmp_path / "r.nc")
+    assert line in summary_table(read_results(path))

@@ -130,8 +130,20 @@ def run(config: RunConfig | dict | str | Path, *, runner: Runner | None = None,
     ds = spread_over_temperatures(ds, setup.speeds)
     if stage is not None and not setup.speeds.isothermal:
         ds = add_law(ds, stage_law, on="law_velocity")
+    ds = _with_validity(ds, setup)
     timings["total"] = time.perf_counter() - t_start
     return _describe(ds, setup, timings, per_model_time)
+
+
+def _with_validity(ds: xr.Dataset, setup: RunSetup) -> xr.Dataset:
+    """Each model's notes where the run leaves its validated class, one line each, in
+    ``attrs["validity_<model>"]`` ("" inside; :mod:`rubbercontact.validity`)."""
+    from ..validity import as_attrs, assess_run
+
+    notes = assess_run(ds, setup)
+    for m in setup.models:
+        ds.attrs.update(as_attrs(m, notes))
+    return ds
 
 
 def _check_coverage(ds: xr.Dataset, law: xr.Dataset, models: list[str]) -> None:

@@ -43,7 +43,17 @@ def summary_table(ds: xr.Dataset) -> str:
     else:
         for v in ds["velocity"].values:
             lines += _per_speed(ds, v)
-    return "\n".join(lines)
+    return "\n".join(lines + _validity(ds))
+
+
+def _validity(ds: xr.Dataset) -> list[str]:
+    """The run's notes where a model left the class it was validated on (one line each)."""
+    notes = [line for k, v in ds.attrs.items() if k.startswith("validity_")
+             for line in str(v).splitlines() if line]
+    if not notes:
+        return []
+    return ["", "outside the validated class (docs/guide/models.md, 'Where each model was "
+                "validated'):", *(f"  {n}" for n in notes)]
 
 
 def _columns(ds: xr.Dataset) -> list[tuple[str, str, xr.DataArray, int]]:
