@@ -241,3 +241,14 @@ def test_the_layout_check_catches_a_covering_legend_and_a_clipped_title():
     fig.canvas.draw()
     with pytest.raises(AssertionError, match="beyond the figure|clipped"):
         check_layout(fig)
+
+
+def test_four_speeds_make_a_grid_not_a_strip(captured, tmp_path):
+    ds = results(velocities=(1.0, 3.0, 10.0, 30.0))
+    figures.plot_friction_vs_pressure(ds, tmp_path / "fig9.png")
+    figures.plot_high_slope_friction(ds, tmp_path / "fig7.png")
+    for fig in captured.values():
+        check_layout(fig)
+        w, h = fig.get_size_inches()
+        assert 0.5 <= w / h <= 2.0
+        assert sum(ax.get_visible() for ax in fig.axes) == 4

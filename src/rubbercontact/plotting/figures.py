@@ -34,6 +34,20 @@ def panel_indices(n: int, most: int = MAX_PANELS) -> list[int]:
     return sorted({int(round(x)) for x in np.linspace(0, n - 1, most)})
 
 
+def panel_grid(n: int, size: tuple[float, float]):
+    """A figure of ``n`` panels of ``size`` [in]: one row up to two, else a near-square
+    grid (four panels in a row made a 2704 x 520 strip); the axes in reading order, the
+    grid's spare cells hidden."""
+    plt = _plt()
+    cols = n if n <= 2 else int(np.ceil(np.sqrt(n)))
+    rows = int(np.ceil(n / cols))
+    fig, axes = plt.subplots(rows, cols, figsize=(size[0] * cols, size[1] * rows),
+                             squeeze=False)
+    for ax in axes.flat[n:]:
+        ax.set_visible(False)
+    return fig, list(axes.flat[:n])
+
+
 def law_speeds(ds: xr.Dataset) -> tuple[str, np.ndarray]:
     """The dimension of the law's speeds (``law_velocity`` in a run with temperatures) and
     the speeds to draw (at most :data:`MAX_PANELS`)."""
@@ -138,14 +152,13 @@ def _friction_panels(ds: xr.Dataset, path: Path, x_of, xlabel: str, xlog: bool) 
     With the FEM on a subset of the realizations its points are the control-variate
     estimates of its phase average (``*_phase_mean``), the error bars its own spread.
     """
-    plt = _plt()
     ds = isothermal_view(ds)
     if ds.sizes["pressure"] == 1:
         return _one_load_panel(ds, path, x_of, xlabel, xlog)
     shown = panel_indices(ds.sizes["velocity"])
-    fig, axes = plt.subplots(1, len(shown), figsize=(5.2 * len(shown), 4.4), squeeze=False)
+    fig, axes = panel_grid(len(shown), (5.2, 4.4))
     mu = mean_of(ds, "friction")
-    for ax, iv in zip(axes[0], shown, strict=True):
+    for ax, iv in zip(axes, shown, strict=True):
         v = ds["velocity"].values[iv]
         for m in ds["model"].values:
             sel = ds.sel(model=m, velocity=v)
@@ -161,7 +174,7 @@ def _friction_panels(ds: xr.Dataset, path: Path, x_of, xlabel: str, xlog: bool) 
             title += f"\ne: eq. 28 error vs fem{_error_basis(ds)}"
         ax.set_title(title, fontsize=9)
         ax.grid(alpha=0.3)
-    return _save(fig, path, legends=list(axes[0]))
+    return _save(fig, path, legends=axes)
 
 
 #: Markers of the speeds in a one-load figure.
@@ -215,10 +228,9 @@ def plot_high_slope_friction(ds: xr.Dataset, path: Path) -> Path | None:
     """Fig. 7: friction vs pressure on the high-slope scale alone, VHS vs FEM."""
     if "law_friction" not in ds:
         return None
-    plt = _plt()
     dim, speeds = law_speeds(ds)
-    fig, axes = plt.subplots(1, len(speeds), figsize=(5.2 * len(speeds), 4), squeeze=False)
-    for ax, v in zip(axes[0], speeds, strict=True):
+    fig, axes = panel_grid(len(speeds), (5.2, 4.0))
+    for ax, v in zip(axes, speeds, strict=True):
         p = ds["law_pressure"].values
         mu = ds["law_friction"].sel({dim: v}).values
         kept = _law_kept(ds, {dim: v}, p.size)
@@ -238,7 +250,7 @@ def plot_high_slope_friction(ds: xr.Dataset, path: Path) -> Path | None:
         ax.set_ylabel("friction coefficient μ_hs [-]")
         ax.set_title(f"high-slope scale, v = {speed_text(v)}", fontsize=10)
         ax.grid(alpha=0.3)
-    return _save(fig, path, legends=list(axes[0]))
+    return _save(fig, path, legends=axes)
 
 
 def plot_pressure_profiles(ds: xr.Dataset, path: Path) -> Path | None:
