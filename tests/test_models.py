@@ -85,3 +85,32 @@ def test_result_dataset_has_units_and_the_pressure_dimension():
     assert list(ds["pressure"].values) == [0.1, 0.3]          # ascending
     assert ds["friction"].attrs["units"] == "1" and ds["mean_separation"].attrs["units"] == "mm"
     assert ds.attrs["model"] == "vhs" and list(ds["status"].values) == ["ok", "ok"]
+
+
+def test_a_script_and_a_run_share_their_tasks(tmp_path):
+    # The models write the same tasks as a run's plan (one writer of the arguments), so a
+    # script reuses a run's cache entries and the reverse; the mean-field's defaults and
+    # the config's agree (they drifted before).
+    from rubbercontact.pipeline import make_runner
+    from rubbercontact.pipeline.execute import as_config
+    from rubbercontact.pipeline.setup import resolve
+
+    cfg = as_config({"surface": {"preset": "section3"}, "velocities": [10.0],
+                     "loads": {"pressures": [0.2, 0.35]}, "realizations": 2,
+                     "models": ["vhs", "meanfield"], "halfspace": {"n": 512},
+                     "execution": {"workers": 1, "cache": str(tmp_path / "cache")},
+                     "output": {"directory": str(tmp_path / "out")}})
+    keys: set[str] = set()
+    runner = make_runner(cfg, progress=False)
+
+    def recording(tasks, description="sweep"):
+        keys.update(t.key() for t in tasks)
+        return runner(tasks, description)
+
+    rc.pipeline.run(cfg, runner=recording)
+    setup = resolve(cfg)
+    mat, p = setup.material, np.array([0.2, 0.35])
+    vhs = VHS(HalfspaceOptions(n=512, nu=cfg.material.nu)).tasks(setup.realizations[1], mat,
+                                                                   10.0, p)
+    mf = MeanField(nu=cfg.material.nu).tasks(setup.base, mat, 10.0, p)
+    assert {t.key() for t in vhs + mf} <= keys

@@ -32,11 +32,15 @@ class FEM(TaskModel):
         self.options = make_options(options, **changes)
 
     def tasks(self, surface, material, velocity, pressures):
+        from ..pipeline.setup import translated_to_zero_phase
         from ..sweep import Task
 
         if not isinstance(surface, SineSeries):
             raise InputError(f"surface: the FEM takes a SineSeries, got {type(surface).__name__}")
         opts = self.options.to_dict()
+        # translated as a run's full FEM is (the same answer on a periodic cell), so that a
+        # script and a run share the cache entry
+        surface = translated_to_zero_phase(surface)
         return [Task(FEM_TASK, {"surface": surface.as_dict(),
                                 "material": _material_dict(material), "velocity": velocity,
                                 "mean_pressure": float(p), "options": opts},

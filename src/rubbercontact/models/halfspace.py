@@ -84,6 +84,23 @@ def _loads_result(name: str, results: list, velocity: float, pressures: np.ndarr
                          dict(attrs))
 
 
+def loads_kwargs(surface: SineSeries, period: float, material: Any, velocity: float,
+                 pressures, options: HalfspaceOptions, *, n: int | None = None,
+                 interface_law: dict | None = None, hs_window: float | None = None,
+                 keep_profile: bool = False) -> dict:
+    """Arguments of one :func:`~rubbercontact.hybrid.tasks.halfspace_loads_task`: the VHS
+    (no law) or the hybrid's low-slope solve. The one place they are written, for the
+    models and for a run's plan alike, so that both share cache entries."""
+    kw = {"surface": surface.as_dict(), "period": float(period),
+          "material": _material_dict(material), "velocity": float(velocity),
+          "mean_pressures": [float(p) for p in pressures], "n": int(n or options.n),
+          "nu": options.nu, "law": options.law, "tol": options.tol,
+          "interface_law": interface_law, "keep_profile": bool(keep_profile)}
+    if hs_window is not None:
+        kw["hs_window"] = float(hs_window)
+    return kw
+
+
 class VHS(TaskModel):
     """The viscoelastic half-space (BEM) on the whole surface (``"vhs"``)."""
 
@@ -95,11 +112,8 @@ class VHS(TaskModel):
     def tasks(self, surface, material, velocity, pressures):
         from ..sweep import Task
 
-        surf, o = _surface(surface), self.options
-        kw = {"surface": surf.as_dict(), "period": surf.period,
-              "material": _material_dict(material), "velocity": velocity,
-              "mean_pressures": pressures.tolist(), "n": o.n, "nu": o.nu, "law": o.law,
-              "tol": o.tol}
+        surf = _surface(surface)
+        kw = loads_kwargs(surf, surf.period, material, velocity, pressures, self.options)
         return [Task(LOADS_TASK, kw, label=f"vhs v={velocity:g}")]
 
     def collect(self, results, velocity, pressures):
@@ -163,13 +177,10 @@ class Hybrid(TaskModel):
         if high.size == 0:
             raise InputError(f"surface: no wave has m2 > {self.m2_threshold:g}; without a "
                              f"high-slope scale the hybrid is the VHS (use VHS)")
-        kw = {"surface": low.as_dict(), "period": surf.period,
-              "material": _material_dict(material), "velocity": velocity,
-              "mean_pressures": pressures.tolist(),
-              "n": low_slope_points(o.n, surf, low) if low.size else o.n, "nu": o.nu,
-              "law": o.law, "tol": o.tol, "interface_law": self.table(velocity)}
-        if self.reading == "windowed":
-            kw["hs_window"] = float(high.period)
+        kw = loads_kwargs(low, surf.period, material, velocity, pressures, o,
+                          n=low_slope_points(o.n, surf, low),
+                          interface_law=self.table(velocity),
+                          hs_window=float(high.period) if self.reading == "windowed" else None)
         return [Task(LOADS_TASK, kw, label=f"{self.name} v={velocity:g}")]
 
     def collect(self, results, velocity, pressures):

@@ -43,7 +43,7 @@ class MeanField(TaskModel):
         opts = {k: v for k, v in asdict(self.options).items() if k in _TASK_OPTIONS}
         return [Task(MEANFIELD_TASK, {"surface": data, "material": _material_dict(material),
                                       "velocity": velocity, "mean_pressure": float(p),
-                                      "nu": self.nu, **opts},
+                                      "nu": self.nu, "interface_law": None, **opts},
                      label=f"meanfield v={velocity:g} p={p:.4g}") for p in pressures]
 
     def collect(self, results, velocity, pressures):

@@ -99,19 +99,19 @@ def halfspace_kwargs(cfg: RunConfig, model: str, real: SineSeries, low: SineSeri
     """Keyword arguments of one half-space task at every load (VHS, or the hybrid's
     low-slope solve, on ``halfspace.hybrid_n`` points or the grid of
     :func:`~rubbercontact.hybrid.grid.low_slope_points`)."""
+    from ..models.halfspace import HalfspaceOptions, loads_kwargs
+
     hsc = cfg.halfspace
     surf = real if (model == "vhs" or not has_high) else low
     n = hsc.n
     if model in HYBRID_MODELS and has_high:
         # the low-slope solve on its own grid (rubbercontact.hybrid.grid)
         n = hsc.hybrid_n or low_slope_points(hsc.n, real, low)
-    kw = {"surface": surf.as_dict(), "period": setup.period, "material": task_material(material),
-          "velocity": v, "mean_pressures": [float(p) for p in pressures], "n": n,
-          "nu": cfg.material.nu, "law": hsc.law, "tol": hsc.tol,
-          "interface_law": table if model in HYBRID_MODELS else None, "keep_profile": keep}
-    if model == "hybrid-windowed" and has_high:
-        kw["hs_window"] = float(setup.hs0.period)
-    return kw
+    options = HalfspaceOptions(n=hsc.n, nu=cfg.material.nu, law=hsc.law, tol=hsc.tol)
+    window = (float(setup.hs0.period) if model == "hybrid-windowed" and has_high else None)
+    return loads_kwargs(surf, setup.period, material, v, pressures, options, n=n,
+                        interface_law=table if model in HYBRID_MODELS else None,
+                        hs_window=window, keep_profile=keep)
 
 
 def meanfield_surfaces(setup: RunSetup) -> dict:
