@@ -15,6 +15,7 @@ half an hour single-threaded::
 from __future__ import annotations
 
 import argparse
+import re
 import time
 import warnings
 from pathlib import Path
@@ -37,6 +38,18 @@ REPORT = ROOT / "docs" / "validation" / "steep_cells.md"
 PRESSURES = (0.1, 0.3, 1.0, 3.0, 10.0)
 VELOCITIES = (1.0, 3.0, 10.0, 30.0, 100.0)
 MESH = (40, 30)
+#: Part ``contact``: the hard points of the law grid, penalty against barrier contact, on a
+#: mesh that resolves each cell (station 1: 32 columns per 0.25 mm wave, graded ×4 toward
+#: the face; stations 0+1: the grid's 40 × 30), and the quasi-static limit (1e-3 mm/s,
+#: where the friction must vanish) at one pressure on the same mesh.
+CONTACT_POINTS = (("station 1", 0.3, 1.0), ("station 1", 1.0, 10.0), ("station 1", 3.0, 10.0),
+                  ("station 1", 10.0, 1.0), ("station 1", 0.3, 1e-3),
+                  ("stations 0+1", 3.0, 10.0), ("stations 0+1", 10.0, 1.0),
+                  ("stations 0+1", 10.0, 10.0), ("stations 0+1", 3.0, 30.0),
+                  ("stations 0+1", 1.0, 1e-3))
+CONTACT_MESH = {"station 1": {"mesh": (128, 30), "grading": 4.0},
+                "stations 0+1": {"mesh": (40, 30), "grading": 1.0}}
+CONTACTS = ("penalty", "barrier")
 
 
 def cells() -> dict[str, rc.roughness.SineSeries]:
@@ -54,15 +67,18 @@ def cells() -> dict[str, rc.roughness.SineSeries]:
     return out
 
 
-def run_point(cell: str, surface, p: float, v: float, fallback: bool = True) -> dict:
+def run_point(cell: str, surface, p: float, v: float, fallback: bool = True,
+              **options) -> dict:
     """One point; with ``fallback=False`` a steady failure is recorded as ``steady failed``
-    (the library would then run the transient test, minutes per point on these cells)."""
+    (the library would then run the transient test, minutes per point on these cells).
+    ``options`` change the FEM options (default: the grid's mesh)."""
+    options = {"mesh": MESH, **options}
     t0 = time.process_time()
     with warnings.catch_warnings(record=True) as caught:
         warnings.simplefilter("always")
         try:
-            res = rc.fem.steady_sliding(surface, rc.materials.sbr(), p, v, mesh=MESH,
-                                        fallback=fallback)
+            res = rc.fem.steady_sliding(surface, rc.materials.sbr(), p, v, fallback=fallback,
+                                        **options)
         except rc.errors.RubberContactError as exc:
             steady = isinstance(exc, rc.errors.ConvergenceError) and not fallback
             tried = (getattr(exc, "diagnostics", None) or {}).get("tried", [])
@@ -72,7 +88,7 @@ def run_point(cell: str, surface, p: float, v: float, fallback: bool = True) -> 
                     "tried": "; ".join(tried)}
     s = res.stats
     return {"cell": cell, "pressure": p, "velocity": v, "solver": s.solver,
-            "status": s.status, "cpu_s": time.process_time() - t0,
+            "status": s.status, "cpu_s": time.process_time() - t0, "impaled": s.impaled,
             "friction": res.friction, "contact_fraction": res.contact_fraction,
             "bulk_shear": s.bulk_shear, "newton": s.newton_iterations,
             "continuation_steps": s.continuation_steps, "tried": "; ".join(s.tried),
@@ -84,7 +100,7 @@ def report(rows: list[dict], surfaces: dict) -> str:
     for name, surf in surfaces.items():
         waves = ", ".join(f"{lam:g} mm (m2 = {m:.2f})"
                           for lam, m in zip(surf.wavelengths, surf.rms_slopes(), strict=True))
-        mine = [r for r in rows if r["cell"] == name]
+        mine = [r for r in rows if r["cell"] == name and "part" not in r]
         ok = [r for r in mine if r["solver"] == "steady"]
         cpu = np.array([r["cpu_s"] for r in ok]) if ok else np.array([np.nan])
         lines += [render("steep_cells", "cell", cell_name=name, waves=waves, period=surf.period,
@@ -112,7 +128,50 @@ def report(rows: list[dict], surfaces: dict) -> str:
             lines.append(f"| {p:g} | " + " | ".join(cells_) + " |")
         lines.append("")
     lines.append(render("steep_cells", "footer"))
+    lines += ["", *contact_report([r for r in rows if r.get("part") == "contact"])]
     return "\n".join(lines) + "\n"
+
+
+def _outcome(r: dict | None) -> str:
+    if r is None:
+        return "–"
+    if r["solver"] != "steady":
+        # "steady FEM solve failed: memory 64x30: stopped at λ = 0.46 (step ...): why"
+        stop = re.search(r"failed: (.+?): stopped at λ = ([0-9.e-]+) \(step [^)]*\): (.*)",
+                         r["status"])
+        what = (f"{stop[1]} at λ = {float(stop[2]):.3g} ({stop[3]})" if stop
+                else r["status"][:80])
+        return f"stopped: {what}, {r['cpu_s']:.0f} s"
+    flag = " (impaled)" if r.get("impaled") else ""
+    return f"μ {r['friction']:.3f}, A {r['contact_fraction']:.3f}{flag}, {r['cpu_s']:.0f} s"
+
+
+def contact_report(rows: list[dict]) -> list[str]:
+    """Part ``contact``: penalty against barrier at the hard points, side by side."""
+    head = "| cell, mesh | p̄ [MPa] | v [mm/s] | " + " | ".join(CONTACTS) + " |"
+    lines = [render("steep_cells", "contact"), "", head, "|---|---|---|" + "---|" * len(CONTACTS)]
+    for name, p, v in CONTACT_POINTS:
+        m = CONTACT_MESH[name]
+        mesh = f"{m['mesh'][0]} × {m['mesh'][1]}" + (f" ×{m['grading']:g}"
+                                                      if m["grading"] != 1 else "")
+        got = [next((r for r in rows if (r["cell"], r["pressure"], r["velocity"],
+                                         r["contact"]) == (name, p, v, c)), None)
+               for c in CONTACTS]
+        lines.append(f"| {name}, {mesh} | {p:g} | {v:g} | "
+                     + " | ".join(_outcome(r) for r in got) + " |")
+    lines += ["", render("steep_cells", "contact_footer")]
+    return lines
+
+
+def run_contact(path: Path, surfaces: dict, done: set) -> None:
+    """Part ``contact`` (resumable, one row per point and contact)."""
+    for name, p, v in CONTACT_POINTS:
+        for contact in CONTACTS:
+            if (name, p, v, contact) in done:
+                continue
+            row = run_point(name, surfaces[name], p, v, False, contact=contact,
+                            **CONTACT_MESH[name])
+            append_row(path, {**row, "part": "contact", "contact": contact})
 
 
 def main(argv: list[str] | None = None) -> int:
@@ -122,10 +181,17 @@ def main(argv: list[str] | None = None) -> int:
     ap.add_argument("--report-only", action="store_true")
     ap.add_argument("--no-fallback", dest="fallback", action="store_false",
                     help="record a steady failure without running the transient fallback")
+    ap.add_argument("--part", choices=("grid", "contact"), default="grid",
+                    help="the law grid (default) or penalty against barrier at hard points")
     args = ap.parse_args(argv)
     surfaces = cells()
-    done = {(r["cell"], r["pressure"], r["velocity"]) for r in read_rows(args.rows)}
-    if not args.report_only:
+    rows = read_rows(args.rows)
+    done = {(r["cell"], r["pressure"], r["velocity"]) for r in rows if "part" not in r}
+    if args.part == "contact" and not args.report_only:
+        run_contact(args.rows, surfaces, {(r["cell"], r["pressure"], r["velocity"],
+                                           r["contact"]) for r in rows
+                                          if r.get("part") == "contact"})
+    elif not args.report_only:
         for name, surf in surfaces.items():
             for v in VELOCITIES:
                 for p in PRESSURES:
