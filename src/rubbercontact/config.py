@@ -258,10 +258,26 @@ class AdhesionConfig(_Strict):
         return self
 
 
+class FlashTemperatureConfig(_Strict):
+    """The flash temperature of the contact spots, self-consistent with the friction
+    (:mod:`rubbercontact.meanfield.flash`; the compound's ``[material.thermal]``)."""
+
+    enabled: bool = Field(False, description="compute mu(v) with the flash temperature beside "
+                                             "the isothermal one (mean-field models)")
+    contact_time: PositiveFloat | None = Field(
+        None, description="time the rubber slides in nominal contact [s]: the tread's "
+                          "background heating (default: none, the run's temperature)")
+    spot_radius: PositiveFloat = Field(
+        float(np.pi / 2), description="q R of a contact spot at the wavenumber q [-]")
+    tolerance: PositiveFloat = Field(1e-3, description="fixed point's tolerance [K]")
+    max_iterations: int = Field(500, ge=1, le=100_000, description="fixed-point steps")
+
+
 class FrictionConfig(_Strict):
     """Contributions to friction beyond the hysteresis the models compute."""
 
     adhesion: AdhesionConfig | None = None
+    flash_temperature: FlashTemperatureConfig = FlashTemperatureConfig()
 
 
 class ExecutionConfig(_Strict):

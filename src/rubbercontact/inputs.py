@@ -28,7 +28,14 @@ from dataclasses import dataclass, field
 from pathlib import Path
 from typing import Annotated, Any, Literal
 
-from pydantic import BaseModel, ConfigDict, Field, ValidationError, model_validator
+from pydantic import (
+    BaseModel,
+    ConfigDict,
+    Field,
+    ValidationError,
+    field_validator,
+    model_validator,
+)
 
 from .errors import InputError
 from .roughness.presets import PRESETS
@@ -122,6 +129,21 @@ class MaterialSpec(Strict):
         None, description="time-temperature shift law: law = 'WLF', c1, c2 [K] (t_ref [°C]) "
                           "or law = 'Arrhenius', activation_energy [J/mol]")
     nu: float = Field(0.5, ge=0.0, le=0.5, description="Poisson's ratio of the half-space [-]")
+    thermal: dict[str, Any] | None = Field(
+        None, description="the compound's conductivity [W/(m·K)], density [kg/m³], "
+                          "specific_heat [J/(kg·K)] (and source); default: a filled SBR")
+
+    @field_validator("thermal")
+    @classmethod
+    def _thermal(cls, value: dict | None) -> dict | None:
+        from .materials.spec import load_thermal
+
+        try:
+            load_thermal({"thermal": value})
+        except InputError as exc:
+            raise ValueError(str(exc).removeprefix("material.thermal: ")
+                             .removeprefix("thermal.")) from None
+        return value
 
     @model_validator(mode="after")
     def _one_source(self) -> MaterialSpec:
@@ -140,7 +162,8 @@ class MaterialSpec(Strict):
 
     def load_spec(self) -> dict:
         """The plain-data table :func:`rubbercontact.materials.load_material` reads."""
-        keys = (*_MATERIAL_SOURCES, "name", *_DMA_ONLY, "reference_temperature", "shift")
+        keys = (*_MATERIAL_SOURCES, "name", *_DMA_ONLY, "reference_temperature", "shift",
+                "thermal")
         spec = {k: getattr(self, k) for k in keys if getattr(self, k) is not None}
         if self.equilibrium_modulus is not None:
             spec.update(moduli=list(self.moduli), relaxation_times=list(self.relaxation_times))

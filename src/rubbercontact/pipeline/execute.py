@@ -4,8 +4,8 @@ Steps (each in its module): resolve and check the set-up (:mod:`.setup`, :mod:`.
 the loads (:mod:`.loads`), the high-slope law (:mod:`.lawstage`), the model tasks (one per
 model, speed and realization over every load for the half-space models; :mod:`.plan`),
 their results stacked (:mod:`.assemble`), the
-adhesive part (:mod:`.adhesion`), statistics and eq. 28 (:mod:`.statistics`), and the
-spread over temperatures (:mod:`.temperature`).
+adhesive part (:mod:`.adhesion`), statistics and eq. 28 (:mod:`.statistics`), the
+spread over temperatures (:mod:`.temperature`) and the flash temperature (:mod:`.flash`).
 """
 
 from __future__ import annotations
@@ -23,6 +23,7 @@ from ..hybrid.law import check_coverage
 from ..materials import GeneralizedMaxwell
 from .adhesion import AdhesionLaw, add_adhesion
 from .assemble import add_law, add_profiles, assemble, model_times
+from .flash import add_flash, plan_flash
 from .lawstage import add_vhs, build_law
 from .loads import at_areas, pressure_grid_for_areas
 from .plan import model_tasks
@@ -89,6 +90,7 @@ def run(config: RunConfig | dict | str | Path, *, runner: Runner | None = None,
     t_start = time.perf_counter()
     timings: dict[str, float] = {}
     setup = resolve(cfg)                       # every config-level check, before any task
+    flash = plan_flash(setup)                  # None unless [friction.flash_temperature]
     runner = runner or make_runner(cfg, progress, retry_failed)
     material = GeneralizedMaxwell(**task_material(setup.material))   # the series at T_ref
     speeds = setup.speeds.computed
@@ -128,6 +130,9 @@ def run(config: RunConfig | dict | str | Path, *, runner: Runner | None = None,
         ds = add_phase_means(ds, setup.n_fem)
     ds = add_errors(ds)
     ds = spread_over_temperatures(ds, setup.speeds)
+    ds, flash_time = add_flash(ds, setup, flash)
+    if flash is not None:
+        timings["flash"] = flash_time
     if stage is not None and not setup.speeds.isothermal:
         ds = add_law(ds, stage_law, on="law_velocity")
     ds = _with_validity(ds, setup)

@@ -1,0 +1,128 @@
+"""A run with ``[friction.flash_temperature]``: the mean-field μ(v) with the flash beside
+the isothermal one (:mod:`rubbercontact.pipeline.flash`).
+
+Checked against what the flash did not produce: the run's own isothermal friction, which
+an infinitely conducting rubber must reproduce (no temperature rise, so the same theory at
+the same speeds), a run without the table (identical), and the physics of frictional
+heating (the heat ``μσ0v`` grows with the speed, and so does the flash).
+"""
+
+import json
+
+import numpy as np
+import pytest
+
+import rubbercontact as rc
+from rubbercontact.cli import main
+from rubbercontact.errors import InputError
+
+WLF = {"law": "WLF", "c1": 8.86, "c2": 101.6}
+#: The isothermal theory the flash solver reads off its modulus tables agrees with the
+#: direct solve to 1e-8 (meanfield/flash.py, tests/test_meanfield_flash.py); with a rise of
+#: ~1e-11 K the shift moves ω by ~1e-12: both well below this [relative].
+SOLVER_RTOL = 1e-6
+#: A conductivity [W/(m·K)] 4e12 × the filled SBR's: the spots' rise scales as 1/K, so the
+#: 30 K flash of the default compound at 10 m/s becomes ~1e-11 K.
+INFINITE_K = 1e12
+
+
+def _config(tmp_path, flash: dict | None = None, **over) -> dict:
+    cfg = {"surface": {"wavelengths": [0.125, 0.25, 0.5, 1.0],
+                       "amplitudes": [0.005, 0.01, 0.02, 0.04]},
+           "material": {"preset": "sbr", "reference_temperature": 20.0, "shift": WLF},
+           "loads": {"pressures": [0.3, 1.0]},
+           "velocities": {"from": 1e-2, "to": 1e4, "points": 7},
+           "models": ["meanfield"], "meanfield": {"geometry": "diffusion"},
+           "execution": {"workers": 1, "cache": str(tmp_path / "cache")},
+           "output": {"directory": str(tmp_path / "out")}}
+    if flash is not None:
+        cfg["friction"] = {"flash_temperature": flash}
+    cfg.update(over)
+    return cfg
+
+
+def _run(cfg: dict):
+    return rc.pipeline.run(cfg, progress=False)
+
+
+def test_an_infinitely_conducting_rubber_has_the_isothermal_friction(tmp_path):
+    mat = {"preset": "sbr", "reference_temperature": 20.0, "shift": WLF,
+           "thermal": {"conductivity": INFINITE_K}}
+    ds = _run(_config(tmp_path, {"enabled": True}, material=mat))
+    assert ds["friction_flash"].dims == ("model", "velocity", "pressure")
+    iso = ds["friction"].isel(realization=0)
+    np.testing.assert_allclose(ds["friction_flash"], iso, rtol=SOLVER_RTOL)
+    np.testing.assert_allclose(ds["contact_fraction_flash"],
+                               ds["contact_fraction"].isel(realization=0), rtol=SOLVER_RTOL)
+    assert np.all(np.abs(ds["flash_temperature"].values) < 1e-6)
+    thermal = json.loads(ds.attrs["flash_thermal"])
+    assert thermal["conductivity"] == INFINITE_K and thermal["source"] == "given"
+
+
+def test_with_temperatures_each_temperature_is_its_isothermal_run_at_infinite_conductivity(
+        tmp_path):
+    # the flash is computed at the true speeds at each T; the run's isothermal friction at
+    # the reduced speeds a_T v: the same theory by time-temperature superposition
+    mat = {"preset": "sbr", "reference_temperature": 20.0, "shift": WLF,
+           "thermal": {"conductivity": INFINITE_K}}
+    ds = _run(_config(tmp_path, {"enabled": True}, material=mat, temperatures=[0.0, 40.0],
+                      loads={"pressures": [0.3]}))
+    assert ds["friction_flash"].dims == ("model", "temperature", "velocity", "pressure")
+    np.testing.assert_allclose(ds["friction_flash"], ds["friction"].isel(realization=0),
+                               rtol=SOLVER_RTOL)
+
+
+def test_the_flash_grows_with_speed_and_lowers_the_friction_of_the_glassy_side(tmp_path):
+    ds = _run(_config(tmp_path, {"enabled": True}))
+    rise = ds["flash_temperature"].sel(model="meanfield").values        # (speed, load)
+    assert np.all(np.diff(rise, axis=0) > 0) and np.all(rise > 0)
+    # a hotter rubber is a slower one: past the isothermal peak (the glassy side, where μ
+    # falls with the speed) heating lowers μ; at 1e-2 mm/s the heat is negligible
+    mu, mu_iso = ds["friction_flash"].values[0], ds["friction"].values[0, :, 0]
+    np.testing.assert_allclose(mu[0], mu_iso[0], rtol=1e-4)
+    assert np.all(mu[-1] < mu_iso[-1])
+    assert json.loads(ds.attrs["timings_s"])["flash"] > 0
+
+
+def test_flash_off_is_the_run_without_the_table(tmp_path):
+    off = _run(_config(tmp_path / "off", {"enabled": False}))
+    none = _run(_config(tmp_path / "none"))
+    assert set(off.data_vars) == set(none.data_vars)
+    assert not any("flash" in k for k in (*off.data_vars, *off.attrs))
+    for k in none.data_vars:
+        if k != "wall_time":
+            np.testing.assert_array_equal(off[k].values, none[k].values)
+
+
+def test_half_space_models_are_named_in_a_note_and_left_without_the_flash(tmp_path):
+    cfg = _config(tmp_path, {"enabled": True}, models=["vhs", "meanfield"],
+                  halfspace={"n": 256}, velocities=[1.0, 100.0], loads={"pressures": [0.3]})
+    ds = _run(cfg)
+    assert ds.attrs["flash_note"].count("\n") == 0 and "vhs" in ds.attrs["flash_note"]
+    assert np.all(np.isnan(ds["friction_flash"].sel(model="vhs")))
+    assert np.all(np.isfinite(ds["friction_flash"].sel(model="meanfield")))
+
+
+@pytest.mark.parametrize("over, match", [
+    ({"material": {"preset": "sbr", "thermal": {"conductivity": -1.0}}}, "conductivity"),
+    ({"material": {"preset": "sbr", "thermal": {"conduct": 0.2}}}, "unknown key"),
+    ({"friction": {"flash_temperature": {"enabled": True, "contact_time": 0.0}}},
+     "contact_time"),
+    ({"friction": {"flash_temperature": {"enabled": True}},
+      "material": {"preset": "sbr"}}, "shift law"),
+    ({"friction": {"flash_temperature": {"enabled": True}}, "meanfield": {}}, "diffusion"),
+])
+def test_bad_flash_input_is_one_line(tmp_path, over, match):
+    with pytest.raises(InputError, match=match) as err:
+        _run(_config(tmp_path, **over))
+    assert "\n" not in str(err.value)
+
+
+def test_cli_exits_2_on_bad_thermal_input(tmp_path, capsys):
+    path = tmp_path / "run.toml"
+    path.write_text('velocities = [1.0]\nmodels = ["meanfield"]\n'
+                    '[surface]\nwavelengths = [0.5]\namplitudes = [0.01]\n'
+                    '[loads]\npressures = [0.3]\n'
+                    '[material]\npreset = "sbr"\n[material.thermal]\ndensity = 0\n')
+    assert main(["run", str(path), "--check"]) == 2
+    assert "density" in capsys.readouterr().err
