@@ -15,6 +15,8 @@ import pytest
 import rubbercontact as rc
 from rubbercontact.cli import main
 from rubbercontact.errors import InputError
+from rubbercontact.pipeline.statistics import friction_peak
+from rubbercontact.plotting.summary import summary_table
 
 WLF = {"law": "WLF", "c1": 8.86, "c2": 101.6}
 #: The isothermal theory the flash solver reads off its modulus tables agrees with the
@@ -82,6 +84,23 @@ def test_the_flash_grows_with_speed_and_lowers_the_friction_of_the_glassy_side(t
     np.testing.assert_allclose(mu[0], mu_iso[0], rtol=1e-4)
     assert np.all(mu[-1] < mu_iso[-1])
     assert json.loads(ds.attrs["timings_s"])["flash"] > 0
+
+
+def test_the_summary_prints_both_peaks_and_the_compound(tmp_path):
+    ds = _run(_config(tmp_path, {"enabled": True}, loads={"pressures": [0.3]},
+                      velocities={"from": 1.0, "to": 1e4, "points": 9}))
+    text = summary_table(ds)
+    assert "Mark, Physical Properties of Polymers" in text and "meanfield mu flash" in text
+    lines = text.splitlines()
+    flash = [x for x in lines if x.startswith("  peak of meanfield with flash")]
+    iso = [x for x in lines if x.startswith("  peak of meanfield:")]
+    assert len(flash) == len(iso) == 1
+    v = ds["velocity"].values
+    peak = friction_peak(v, ds["friction_flash"].sel(model="meanfield").values[:, 0])
+    assert f"mu = {peak.friction:.4f} at v = {peak.velocity:.4g} mm/s" in flash[0]
+    # the heated rubber is softer (slower) on both legs of the curve: a lower peak
+    iso_peak = friction_peak(v, ds["friction"].sel(model="meanfield").values[:, 0, 0])
+    assert peak.friction < iso_peak.friction
 
 
 def test_flash_off_is_the_run_without_the_table(tmp_path):

@@ -38,6 +38,7 @@ def summary_table(ds: xr.Dataset) -> str:
         lines.append("adhesion: mu_adh = tau_f A_c/sigma0 with "
                      + json.loads(ds.attrs["adhesion"])["formula"]
                      + "; 'mu+adh' is the hysteretic mu plus mu_adh")
+    lines += _flash_heading(ds)
     if "temperature" in ds.dims or ds.sizes["velocity"] >= CURVE_SPEEDS:
         lines += _curves(ds)
     else:
@@ -66,7 +67,49 @@ def _columns(ds: xr.Dataset) -> list[tuple[str, str, xr.DataArray, int]]:
         cols += [(m, f"{m} mu", mu, w), (m, f"{m} A", area, w - 1)]
         if total is not None:
             cols.append((m, f"{m} mu+adh", total, max(w, len(m) + 7)))
+        if m in _flash_models(ds):
+            cols += [(m, f"{m} mu flash", ds["friction_flash"], max(w, len(m) + 9)),
+                     (m, f"{m} dT [K]", ds["flash_temperature"], max(w, len(m) + 7))]
     return cols
+
+
+def _flash_models(ds: xr.Dataset) -> list[str]:
+    """The models with a friction computed with the flash temperature."""
+    if "friction_flash" not in ds:
+        return []
+    return [m for m in ds["model"].values
+            if bool(ds["friction_flash"].sel(model=m).notnull().any())]
+
+
+def _flash_heading(ds: xr.Dataset) -> list[str]:
+    """What 'mu flash' and 'dT' are, the compound's thermal properties, the run's note."""
+    if "flash_thermal" not in ds.attrs:
+        return []
+    import json
+
+    th = json.loads(ds.attrs["flash_thermal"])
+    lines = [f"flash temperature: 'mu flash' with the contact spots heated by the friction, "
+             f"'dT' their rise [K]; K = {th['conductivity']:g} W/(m K), rho = "
+             f"{th['density']:g} kg/m3, c = {th['specific_heat']:g} J/(kg K) "
+             f"({th['source']})"]
+    if ds.attrs.get("flash_note"):
+        lines.append(ds.attrs["flash_note"])
+    return lines
+
+
+def _flash_peak(at_t: xr.Dataset, m: str, p: float) -> str | None:
+    """The line of the peak of ``m``'s μ(v) with the flash temperature (None without)."""
+    from ..pipeline.statistics import friction_peak
+
+    if m not in _flash_models(at_t):
+        return None
+    peak = friction_peak(at_t["velocity"].values,
+                         at_t["friction_flash"].sel(model=m, pressure=p).values)
+    if peak is None:
+        return f"  peak of {m} with flash temperature: n/a (fewer than two finite points)"
+    where = "" if peak.interior else " (at the end of the range)"
+    return (f"  peak of {m} with flash temperature: mu = {peak.friction:.4f} at v = "
+            f"{peak.velocity:.4g} mm/s{where}")
 
 
 def _spread(ds: xr.Dataset, k: str) -> xr.DataArray:
@@ -102,6 +145,12 @@ def _per_speed(ds: xr.Dataset, v: float) -> list[str]:
             if total is not None:
                 row += f"  {float(total.sel(at)):.4f}"
             lines.append(row.rstrip())
+    for m in _flash_models(ds):
+        for p in ds["pressure"].values:
+            at = {"model": m, "velocity": v, "pressure": p}
+            lines.append(f"  {m} with flash temperature at {p:.4g} MPa: mu = "
+                         f"{float(ds['friction_flash'].sel(at)):.4f}, dT = "
+                         f"{float(ds['flash_temperature'].sel(at)):.3g} K")
     if "friction_at_area_mean" in ds:
         wid = {m: max(10, len(m) + 3) for m in ds["model"].values}
         lines.append(f"  {'A_c/A_0':>12} " + " ".join(f"{m + ' mu':>{wid[m]}}"
@@ -149,4 +198,7 @@ def _curves(ds: xr.Dataset) -> list[str]:
                                                  "lie beyond)"
                 lines.append(f"  peak of {m}: mu = {peak.friction:.4f} at v = "
                              f"{peak.velocity:.4g} mm/s{where}")
+                flash = _flash_peak(at_t, m, p)
+                if flash is not None:
+                    lines.append(flash)
     return lines
