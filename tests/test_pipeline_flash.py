@@ -145,3 +145,27 @@ def test_cli_exits_2_on_bad_thermal_input(tmp_path, capsys):
                     '[material]\npreset = "sbr"\n[material.thermal]\ndensity = 0\n')
     assert main(["run", str(path), "--check"]) == 2
     assert "density" in capsys.readouterr().err
+
+
+def test_the_speed_figure_draws_the_flash_curve_dashed_beside_the_isothermal_one(
+        tmp_path, monkeypatch):
+    import matplotlib
+
+    matplotlib.use("Agg")
+    import matplotlib.pyplot as plt
+
+    from rubbercontact.plotting import speed
+
+    figs = []
+    monkeypatch.setattr(speed, "_save", lambda fig, path, **kw: figs.append(fig) or path)
+    ds = _run(_config(tmp_path, {"enabled": True}, loads={"pressures": [0.3]},
+                      temperatures=[20.0, 60.0], velocities=[1.0, 100.0, 1e4]))
+    speed.plot_friction_vs_speed(ds, tmp_path / "mu.png")
+    for ax, t in zip(figs[0].axes, (20.0, 60.0), strict=True):
+        lines = {line.get_label(): line for line in ax.lines}
+        dashed = lines["meanfield: with flash temperature"]
+        assert dashed.get_linestyle() == "--" and lines["meanfield"].get_linestyle() == "-"
+        np.testing.assert_array_equal(
+            dashed.get_ydata(), ds["friction_flash"].sel(model="meanfield", temperature=t,
+                                                         pressure=0.3).values)
+    plt.close("all")

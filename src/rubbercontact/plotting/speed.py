@@ -3,7 +3,8 @@
 One panel per load (at most :data:`MAX_LOADS`, spread over the loads) and, with
 temperatures, one row per temperature (at most :data:`MAX_TEMPERATURES`): each model's
 mean friction over log v, the hybrid models' ``μ_ls`` (dashed) and ``μ_hs`` (dotted), and
-with ``[friction.adhesion]`` the adhesive ``μ_adh`` (dash-dot) and the sum (thin).
+with ``[friction.adhesion]`` the adhesive ``μ_adh`` (dash-dot) and the sum (thin), with
+``[friction.flash_temperature]`` the friction with the flash temperature (dashed, thick).
 """
 
 from __future__ import annotations
@@ -70,6 +71,7 @@ def plot_friction_vs_speed(ds: xr.Dataset, path: Path) -> Path | None:
         split = {k: ds[k].mean("realization") for k in ("friction_ls", "friction_hs")}
     adh = mean_of(ds, "friction_adhesion") if "friction_adhesion_mean" in ds else None
     total = mean_of(ds, "friction_total") if "friction_total_mean" in ds else None
+    flash = ds["friction_flash"] if "friction_flash" in ds else None
 
     def draw(ax, at_t, v, p):
         sel = {"pressure": p}
@@ -87,6 +89,9 @@ def plot_friction_vs_speed(ds: xr.Dataset, path: Path) -> Path | None:
                 ax.plot(v, adh.sel(model=m, **sel), "-.", color=col, lw=1, label=f"{m}: μ_adh")
                 ax.plot(v, total.sel(model=m, **sel), "-", color=col, lw=0.6,
                         label=f"{m}: μ + μ_adh")
+            if flash is not None and bool(flash.sel(model=m).notnull().any()):
+                ax.plot(v, flash.sel(model=m, **sel), "--", color=col, lw=1.8,
+                        label=f"{m}: with flash temperature")
 
     return _speed_axes(ds, path, draw, "friction coefficient μ [-]",
                        "Friction against sliding speed (mean over realizations)")
