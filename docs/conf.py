@@ -43,6 +43,8 @@ templates_path = ["_templates"]
 # validation/<case>/report.md are the pieces of VALIDATION.md (included whole by
 # validation_report.md), written for the repository root's relative paths.
 exclude_patterns = ["_build", "validation/reference-cache/**", "validation/*/report.md",
+                    # included verbatim by findings.md and the README, not a page
+                    "validation/headline.md",
                     "auto_examples/*.ipynb", "auto_examples/*.py", "auto_examples/*.zip",
                     "auto_examples/*.json"]
 
