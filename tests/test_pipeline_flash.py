@@ -74,15 +74,15 @@ def test_with_temperatures_each_temperature_is_its_isothermal_run_at_infinite_co
                                rtol=SOLVER_RTOL)
 
 
-def test_the_flash_grows_with_speed_and_lowers_the_friction_of_the_glassy_side(tmp_path):
+def test_the_flash_grows_with_speed_and_vanishes_with_it(tmp_path):
     ds = _run(_config(tmp_path, {"enabled": True}))
     rise = ds["flash_temperature"].sel(model="meanfield").values        # (speed, load)
     assert np.all(np.diff(rise, axis=0) > 0) and np.all(rise > 0)
-    # a hotter rubber is a slower one: past the isothermal peak (the glassy side, where μ
-    # falls with the speed) heating lowers μ; at 1e-2 mm/s the heat is negligible
+    # v -> 0: no heat, the isothermal theory; at 1e-2 mm/s the rise is ~1e-5 K, which
+    # moves the WLF shift by ~1e-6 decades, far below this tolerance
     mu, mu_iso = ds["friction_flash"].values[0], ds["friction"].values[0, :, 0]
+    assert np.all(rise[0] < 1e-3)
     np.testing.assert_allclose(mu[0], mu_iso[0], rtol=1e-4)
-    assert np.all(mu[-1] < mu_iso[-1])
     assert json.loads(ds.attrs["timings_s"])["flash"] > 0
 
 
@@ -98,7 +98,8 @@ def test_the_summary_prints_both_peaks_and_the_compound(tmp_path):
     v = ds["velocity"].values
     peak = friction_peak(v, ds["friction_flash"].sel(model="meanfield").values[:, 0])
     assert f"mu = {peak.friction:.4f} at v = {peak.velocity:.4g} mm/s" in flash[0]
-    # the heated rubber is softer (slower) on both legs of the curve: a lower peak
+    # the flash lowers the maximum of μ(v) (Persson, J. Phys.: Condens. Matter 18, 7789,
+    # 2006): the scales that dissipate most are the hottest, moved to their rubbery side
     iso_peak = friction_peak(v, ds["friction"].sel(model="meanfield").values[:, 0, 0])
     assert peak.friction < iso_peak.friction
 
