@@ -170,3 +170,19 @@ def test_the_speed_figure_draws_the_flash_curve_dashed_beside_the_isothermal_one
             dashed.get_ydata(), ds["friction_flash"].sel(model="meanfield", temperature=t,
                                                          pressure=0.3).values)
     plt.close("all")
+
+
+def test_the_plan_names_the_flash_and_check_catches_its_inputs(tmp_path, capsys):
+    from rubbercontact.cli.run import describe_plan
+
+    cfg = rc.config.parse_config(_config(tmp_path, {"enabled": True},
+                                         models=["vhs", "meanfield"]))
+    line = [x for x in describe_plan(cfg).splitlines() if x.startswith("flash")]
+    assert len(line) == 1 and "not yet for vhs" in line[0]
+    path = tmp_path / "run.toml"
+    path.write_text('velocities = [1.0]\nmodels = ["meanfield"]\n'
+                    '[surface]\nwavelengths = [0.5]\namplitudes = [0.01]\n'
+                    '[loads]\npressures = [0.3]\n[material]\npreset = "sbr"\n'
+                    '[friction.flash_temperature]\nenabled = true\n')
+    assert main(["run", str(path), "--check"]) == 2
+    assert "shift law" in capsys.readouterr().err

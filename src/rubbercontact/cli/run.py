@@ -95,6 +95,17 @@ DEFAULT_RUN_NOTE = ("built-in default: a reduced demonstration of the paper's §
                     "validated eq. 28 errors are in README.md and VALIDATION.md")
 
 
+def _flash_plan(setup) -> list[str]:
+    """The flash temperature's line of the plan (checks its inputs; none when off)."""
+    from ..pipeline.flash import plan_flash
+
+    plan = plan_flash(setup)
+    if plan is None:
+        return []
+    return [f"flash temperature: {', '.join(plan.models) or 'no model'}, one mu(v) per "
+            f"temperature and load" + (f"; {plan.note}" if plan.note else "")]
+
+
 def describe_plan(cfg) -> str:
     """What a run of ``cfg`` will compute (after :func:`rubbercontact.pipeline.resolve`)."""
     from ..pipeline import resolve
@@ -118,6 +129,7 @@ def describe_plan(cfg) -> str:
     lines.append(f"loads: pressures {', '.join(f'{p:g}' for p in loads.pressures)} MPa"
                  if loads.pressures is not None
                  else f"loads: {len(loads.contact_areas)} target contact areas")
+    lines += _flash_plan(setup)
     if setup.needs_law:
         if cfg.law.file is not None:
             lines.append(f"law: reused from {cfg.law.file}")
