@@ -104,10 +104,29 @@ def test_the_summary_prints_both_peaks_and_the_compound(tmp_path):
     assert peak.friction < iso_peak.friction
 
 
+def test_per_scale_the_finer_spots_are_hotter_and_the_tread_heats_them_all(tmp_path):
+    # ΔT_i = Σ_{l ≤ i} (1/A_l − 1/A_{l−1}) Γ_l W_l (+ the tread's rise): a sum of terms
+    # ≥ 0 over the coarser levels, so non-decreasing towards the finer nodes, its last
+    # node the finest spots' flash_temperature
+    cold = _run(_config(tmp_path / "a", {"enabled": True}, loads={"pressures": [0.3]}))
+    rise = cold["flash_scale_temperature"].sel(model="meanfield", pressure=0.3).values
+    assert cold["flash_scale_temperature"].dims[-1] == "flash_wavenumber"
+    assert np.all(np.diff(cold["flash_wavenumber"].values) > 0)
+    assert np.all(np.diff(rise, axis=-1) >= -1e-12)
+    np.testing.assert_array_equal(rise[:, -1], cold["flash_temperature"].values[0, :, 0])
+    # a tread sliding 10 ms in the footprint is heated as a whole besides its spots
+    warm = _run(_config(tmp_path / "b", {"enabled": True, "contact_time": 0.01},
+                        loads={"pressures": [0.3]}))
+    fast = warm["velocity"].values > 10.0
+    assert np.all(warm["flash_temperature"].values[0, fast, 0]
+                  > cold["flash_temperature"].values[0, fast, 0])
+    assert json.loads(warm.attrs["flash_options"])["contact_time"] == 0.01
+
+
 def test_flash_off_is_the_run_without_the_table(tmp_path):
     off = _run(_config(tmp_path / "off", {"enabled": False}))
     none = _run(_config(tmp_path / "none"))
-    assert set(off.data_vars) == set(none.data_vars)
+    assert set(off.data_vars) == set(none.data_vars) and set(off.coords) == set(none.coords)
     assert not any("flash" in k for k in (*off.data_vars, *off.attrs))
     for k in none.data_vars:
         if k != "wall_time":

@@ -10,7 +10,9 @@ says so in ``attrs["flash_note"]``, one line.
 
 Variables added (``model, [temperature,] velocity, pressure``; NaN for the models without
 the flash): ``friction_flash``, ``contact_fraction_flash`` and ``flash_temperature`` [K],
-the rise of the finest contact spots above the run's temperature.
+the rise of the finest contact spots above the run's temperature; per scale,
+``flash_scale_temperature`` [K] on ``flash_wavenumber`` [rad/mm] (the ``meanfield``
+spectrum's nodes), the rise of the contact spots seen at each magnification.
 """
 
 from __future__ import annotations
@@ -40,6 +42,11 @@ VARIABLES = {
     "contact_fraction_flash": ("1", "real contact fraction with the flash temperature"),
     "flash_temperature": ("K", "rise of the finest contact spots above the run's "
                                "temperature"),
+}
+#: The per-scale variable, on ``flash_wavenumber`` besides the dims above.
+SCALE_VARIABLES = {
+    "flash_scale_temperature": ("K", "rise of the contact spots at each node of the "
+                                     "spectrum above the run's temperature"),
 }
 
 
@@ -128,6 +135,9 @@ def add_flash(ds: xr.Dataset, setup: RunSetup, plan: FlashPlan | None
     v = setup.speeds.velocities
     shape = (ds.sizes["model"], len(per_t), v.size, pressures.size)
     out = {k: np.full(shape, np.nan) for k in VARIABLES}
+    nodes = (PSD.from_dict(meanfield_surfaces(setup)["meanfield"]).wavenumbers
+             if plan.models else np.empty(0))
+    out["flash_scale_temperature"] = np.full((*shape, nodes.size), np.nan)
     notes, worst = [plan.note] if plan.note else [], 0.0
     for m in plan.models:
         im = list(ds["model"].values).index(m)
@@ -144,7 +154,9 @@ def add_flash(ds: xr.Dataset, setup: RunSetup, plan: FlashPlan | None
                                     ("contact_fraction_flash", curve.contact_fraction),
                                     ("flash_temperature", curve.flash_temperature)):
                     out[key][im, it, :, ip] = values
-    return _with_variables(ds, out, temps is not None, plan, notes, worst), (
+                out["flash_scale_temperature"][im, it, :, ip] = (
+                    curve.node_temperature - curve.background_temperature)
+    return _with_variables(ds, out, nodes, temps is not None, plan, notes, worst), (
         time.perf_counter() - t0)
 
 
@@ -156,14 +168,16 @@ def _curve(psd: PSD, setup: RunSetup, velocities: np.ndarray, pressure: float,
                                 flash=replace(plan.options, temperature=temperature))
 
 
-def _with_variables(ds: xr.Dataset, out: dict, with_temperature: bool, plan: FlashPlan,
-                    notes: list[str], residual: float) -> xr.Dataset:
-    dims = ("model", "temperature", "velocity", "pressure")
-    ds = ds.copy()
-    for key, (units, name) in VARIABLES.items():
+def _with_variables(ds: xr.Dataset, out: dict, nodes: np.ndarray, with_temperature: bool,
+                    plan: FlashPlan, notes: list[str], residual: float) -> xr.Dataset:
+    dims = (("model", "temperature", "velocity", "pressure") if with_temperature
+            else ("model", "velocity", "pressure"))
+    ds = ds.assign_coords(flash_wavenumber=("flash_wavenumber", nodes, {
+        "units": "rad/mm", "long_name": "wavenumber of a node of the meanfield spectrum"}))
+    for key, (units, name) in {**VARIABLES, **SCALE_VARIABLES}.items():
+        on = dims + (("flash_wavenumber",) if key in SCALE_VARIABLES else ())
         values = out[key] if with_temperature else out[key][:, 0]
-        ds[key] = (dims if with_temperature else dims[:1] + dims[2:], values,
-                   {"units": units, "long_name": name})
+        ds[key] = (on, values, {"units": units, "long_name": name})
     options = asdict(plan.options)
     options.pop("thermal")
     options.pop("shift")
