@@ -205,3 +205,13 @@ def test_the_plan_names_the_flash_and_check_catches_its_inputs(tmp_path, capsys)
                     '[friction.flash_temperature]\nenabled = true\n')
     assert main(["run", str(path), "--check"]) == 2
     assert "shift law" in capsys.readouterr().err
+
+
+def test_a_fixed_point_that_does_not_converge_is_a_note_and_nan_not_a_crash(tmp_path):
+    # one step cannot meet 1e-3 K where the rubber heats at all (here ~0.02 K at 1 mm/s)
+    ds = _run(_config(tmp_path, {"enabled": True, "max_iterations": 1},
+                      loads={"pressures": [0.3]}, velocities=[1.0, 1e4]))
+    note = ds.attrs["flash_note"]
+    assert "did not converge" in note and "max_iterations" in note and "\n" not in note
+    assert np.all(np.isnan(ds["friction_flash"].values))
+    assert np.all(np.isfinite(ds["friction"].values))

@@ -147,7 +147,8 @@ def add_flash(ds: xr.Dataset, setup: RunSetup, plan: FlashPlan | None
                 try:
                     curve = _curve(psd, setup, v, float(p), temp, plan)
                 except ConvergenceError as exc:
-                    notes.append(f"{m} at {p:g} MPa: {str(exc).splitlines()[0]}")
+                    at = "" if temp is None else f", {temp:g} °C"
+                    notes.append(f"{m} at {p:g} MPa{at}: {str(exc).splitlines()[0]}")
                     continue
                 worst = max(worst, float(np.max(curve.residual)))
                 for key, values in (("friction_flash", curve.friction),
