@@ -227,6 +227,7 @@ def assess(model: str, surface: SurfaceStats, points: Sequence[SpeedPoint] = (),
         The run's speeds, each with what the run has there (may be empty: the surface alone).
     loss_peak
         The run's rubber's loss-peak frequency [rad/s] (:func:`loss_peak_frequency`);
+        ``math.inf`` for an elastic rubber, which has no hysteresis and so no speed bound;
         needed when ``points`` are given and the class bounds the speed.
 
     Returns
@@ -250,7 +251,7 @@ def assess(model: str, surface: SurfaceStats, points: Sequence[SpeedPoint] = (),
                   for n in _check(cls, c, surface_values[c.quantity], surface)]
     notes = list(on_surface)
     if points:
-        scale = _frequency_scale(cls, loss_peak)
+        scale = None if loss_peak == math.inf else _frequency_scale(cls, loss_peak)
         for p in points:
             notes.extend(_at_speed(cls, surface, p, scale, on_surface))
     return tuple(notes)
@@ -267,10 +268,12 @@ def _frequency_scale(cls: ValidatedClass, loss_peak: float | None) -> float:
     return _sbr_loss_peak() / loss_peak
 
 
-def _at_speed(cls: ValidatedClass, surface: SurfaceStats, p: SpeedPoint, scale: float,
+def _at_speed(cls: ValidatedClass, surface: SurfaceStats, p: SpeedPoint, scale: float | None,
               on_surface: list[Note]) -> list[Note]:
     notes: list[Note] = []
     for c in cls.conditions:
+        if scale is None and c.quantity.startswith("frequency"):
+            continue   # an elastic rubber: no loss peak to measure speeds on
         if c.quantity in SPEED_QUANTITIES:
             values = _speed_values(c.quantity, surface, p, scale)
             notes.extend(_check(cls, c, values, surface, p, scale))

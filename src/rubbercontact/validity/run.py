@@ -8,6 +8,8 @@ highest FEM point, the rubber's loss peak at each temperature) and returns the n
 
 from __future__ import annotations
 
+import math
+
 import numpy as np
 import xarray as xr
 
@@ -34,7 +36,8 @@ def assess_run(ds: xr.Dataset, setup) -> tuple[Note, ...]:
         reduced ones), with the temperature in a run with temperatures.
     """
     stats = SurfaceStats.from_series(setup.base, setup.config.surface.m2_threshold)
-    peak = loss_peak_frequency(setup.material)
+    # an elastic rubber has no loss peak (and no hysteretic friction): no speed bounds
+    peak = math.inf if setup.material.is_elastic else loss_peak_frequency(setup.material)
     law = _law(ds)
     notes: list[Note] = []
     for model in setup.models:
