@@ -142,6 +142,12 @@ def test_plane_strain_law_on_a_map_is_refused(laws):
     assert "\n" not in str(exc.value)
 
 
+def test_hybrid_without_a_high_slope_band_is_refused(laws):
+    split = split_map(extruded(SURF, 128), 5.0)      # no band reaches m2 = 5
+    with pytest.raises(InputError, match="no high-slope band"):
+        solve_map_hybrid(split, laws[0], MAT, V, 0.2)
+
+
 def test_map_solve_needs_a_periodic_map():
     with pytest.raises(InputError, match="periodized"):
         solve_map(HeightMap(extruded(SURF, 64).heights, (1 / 8, 1.0)), MAT, V, 0.2)

@@ -190,6 +190,9 @@ def solve_map_hybrid(split: MapSplit, law: dict, material: GeneralizedMaxwell,
         raise InputError(f"options: expected a MapHybridOptions, got {opts!r}")
     if not isinstance(split, MapSplit):
         raise InputError(f"split: expected a MapSplit, got {type(split).__name__}")
+    if split.cell is None:
+        raise InputError("split: the map has no high-slope band (no law to apply); solve it "
+                         "whole with solve_map (the VHS)")
     table = check_map_law(law)
     sigma0 = positive_scalar("mean_pressure", mean_pressure, unit="MPa")
     low = split.low
