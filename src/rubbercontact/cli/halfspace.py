@@ -162,14 +162,34 @@ def command(
     as_json: bool = typer.Option(False, "--json", help="Machine-readable output."),
     plot: Path | None = typer.Option(None, "--plot", help="Write a PNG: pressure and "
                                      "deformed profile (or μ(v) for a sweep)."),
+    map_file: Path | None = typer.Option(None, "--map", help="Solve on a height map file "
+                                         "(text grid, .npy, x3p, ...) instead of a sine "
+                                         "series; sliding along its x."),
+    map_dx: float | None = typer.Option(None, "--map-dx", help="Pixel size [mm] of a map "
+                                        "file that does not state it (.npy)."),
+    periodize: str = typer.Option("mirror", "--periodize", help="Map: mirror (a measured "
+                                  "map) or none (one period already, e.g. synthetic)."),
 ) -> None:
-    """Solve steady sliding of a rigid sine-series surface on the viscoelastic half-space."""
+    """Solve steady sliding of a rigid sine-series surface (or a height map) on the
+    viscoelastic half-space."""
     from ..halfspace import solve_sliding
 
     cfg = _load_toml(config) if config is not None else {}
+    if map_file is not None:
+        from .mapcli import check_no_sine_options, load_map
+
+        check_no_sine_options(surface=surface, wavelengths=wavelengths,
+                              amplitudes=amplitudes, phases=phases, period=period, n=n)
+        if periodize not in ("mirror", "none"):
+            raise InputError(f"--periodize: expected 'mirror' or 'none', got {periodize!r}")
+        if plot is not None and velocities is None and cfg.get("velocities") is None:
+            raise InputError("--plot: a single solve on a map is not drawn yet; give "
+                             "--velocities for the μ(v) figure")
+        hmap = load_map(map_file, dx=map_dx, periodize=periodize)[1]
     ph = _floats("phases", phases) if phases is not None else cfg.get("phases")
-    surf = _surface(surface or cfg.get("surface"), _floats("wavelengths", wavelengths),
-                    _floats("amplitudes", amplitudes), ph)
+    surf = None if map_file is not None else _surface(
+        surface or cfg.get("surface"), _floats("wavelengths", wavelengths),
+        _floats("amplitudes", amplitudes), ph)
     mat = _material(material or cfg.get("material", "sbr"),
                     modulus if modulus is not None else cfg.get("modulus"),
                     base_dir=config.parent if config is not None else None)
@@ -193,8 +213,13 @@ def command(
     kw = {"period": period if period is not None else cfg.get("period"),
           "n": n if n is not None else cfg.get("n", 4096),
           "nu": nu if nu is not None else cfg.get("nu", 0.5)}
-    results = [solve_sliding(surf, kw["period"], mat, v, p0, law=the_law, n=kw["n"],
-                             nu=kw["nu"]) for v in sweep_list]
+    if map_file is not None:
+        from ..hybrid.maps import solve_map
+
+        results = [solve_map(hmap, mat, v, p0, the_law, nu=kw["nu"]) for v in sweep_list]
+    else:
+        results = [solve_sliding(surf, kw["period"], mat, v, p0, law=the_law, n=kw["n"],
+                                 nu=kw["nu"]) for v in sweep_list]
     rows = [_summary(r) for r in results]
     if as_json:
         typer.echo(json.dumps(rows[0] if len(rows) == 1 and sweep is None else rows, indent=2))

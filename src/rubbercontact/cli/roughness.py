@@ -1,4 +1,5 @@
-"""``rubbercontact roughness ...``: fit sine series to measured line scans."""
+"""``rubbercontact roughness ...``: fit sine series to measured line scans (``fit``); a height
+map's statistics (``map``, :mod:`.mapcli`)."""
 
 from __future__ import annotations
 
@@ -10,9 +11,11 @@ from typing import Literal
 import typer
 
 from ..errors import InputError
+from .mapcli import stats_command
 
 app = typer.Typer(no_args_is_help=True, add_completion=False,
                   pretty_exceptions_enable=False)
+app.command("map")(stats_command)
 
 
 @app.callback()
