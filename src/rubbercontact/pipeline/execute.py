@@ -19,7 +19,6 @@ import numpy as np
 import xarray as xr
 
 from ..config import RunConfig
-from ..hybrid.law import check_coverage
 from ..materials import GeneralizedMaxwell
 from .adhesion import AdhesionLaw, add_adhesion
 from .assemble import add_law, add_profiles, assemble, model_times
@@ -27,7 +26,7 @@ from .flash import add_flash, plan_flash
 from .lawstage import add_vhs, build_law
 from .loads import at_areas, pressure_grid_for_areas
 from .plan import model_tasks
-from .setup import LAW_MODELS, RunSetup, pressure_array, resolve, task_material
+from .setup import RunSetup, pressure_array, resolve, task_material
 from .statistics import add_errors, add_phase_means, add_realization_statistics
 from .temperature import spread_over_temperatures
 
@@ -87,6 +86,10 @@ def run(config: RunConfig | dict | str | Path, *, runner: Runner | None = None,
         table (``law_*``), the surface's waves, and provenance in ``attrs``.
     """
     cfg = as_config(config)
+    if cfg.surface.map is not None:          # areal map: its own small run (.maprun)
+        from .maprun import run_map
+
+        return run_map(cfg)
     t_start = time.perf_counter()
     timings: dict[str, float] = {}
     setup = resolve(cfg)                       # every config-level check, before any task
@@ -120,7 +123,6 @@ def run(config: RunConfig | dict | str | Path, *, runner: Runner | None = None,
         if setup.speeds.isothermal:
             ds = add_law(ds, stage_law)
         per_model_time["law (FEM, counted once)"] = float(np.nansum(stage.law["wall_time"]))
-        _check_coverage(ds, stage.law, setup.models)
     if cfg.friction.adhesion is not None:
         ds = add_adhesion(ds, AdhesionLaw.from_config(cfg.friction.adhesion))
     ds = add_realization_statistics(ds)
@@ -149,19 +151,6 @@ def _with_validity(ds: xr.Dataset, setup: RunSetup) -> xr.Dataset:
     for m in setup.models:
         ds.attrs.update(as_attrs(m, notes))
     return ds
-
-
-def _check_coverage(ds: xr.Dataset, law: xr.Dataset, models: list[str]) -> None:
-    """Warn where a law model's local pressures went past the law's FEM points."""
-    half_space = [m for m in models if m in LAW_MODELS and m != "meanfield-hybrid"]
-    # the same low-slope solve for both half-space variants: check once
-    reached: dict[float, float] = {}
-    for m in half_space[:1] + [m for m in models if m == "meanfield-hybrid"]:
-        for v in ds["velocity"].values:
-            top = float(ds["max_local_pressure"].sel(model=m, velocity=v).max())
-            if np.isfinite(top):
-                reached[float(v)] = max(top, reached.get(float(v), 0.0))
-    check_coverage(law, reached)
 
 
 def _describe(ds: xr.Dataset, setup: RunSetup, timings: dict, per_model_time: dict
