@@ -33,6 +33,9 @@ MODELS = ("vhs", "hybrid", "hybrid-windowed", "fem", "meanfield", "meanfield-hyb
 #: recommend it (the law read at the λ_hs-averaged pressure) and the mean-field theory, all
 #: seconds once the law exists; ``fem`` is the reference, too costly to run unasked.
 DEFAULT_MODELS = ("vhs", "hybrid-windowed", "meanfield")
+#: Models a run on a height map (``[surface.map]``, :mod:`rubbercontact.pipeline.maprun`)
+#: can compare, and its default.
+MAP_MODELS = ("vhs", "meanfield")
 #: Most speeds of a ``velocities`` range.
 MAX_SPEED_POINTS = 400
 
@@ -375,6 +378,24 @@ class RunConfig(_Strict):
         return self
 
     @model_validator(mode="after")
+    def _map_run(self) -> RunConfig:
+        if self.surface.map is None:
+            return self
+        models = self.models if "models" in self.model_fields_set else MAP_MODELS
+        bad = [m for m in models if m not in MAP_MODELS]
+        unsupported = {"models " + ", ".join(bad): bool(bad),
+                       "loads.contact_areas": self.loads.contact_areas is not None,
+                       "realizations > 1": self.realizations > 1,
+                       "temperatures": self.temperatures is not None,
+                       "friction.adhesion": self.friction.adhesion is not None,
+                       "friction.flash_temperature": self.friction.flash_temperature.enabled}
+        given = [k for k, v in unsupported.items() if v]
+        if given:
+            raise ValueError(f"a run on [surface.map] supports models {', '.join(MAP_MODELS)} "
+                             f"at given pressures, one map, isothermal; not {'; '.join(given)}")
+        return self
+
+    @model_validator(mode="after")
     def _meanfield_spectrum(self) -> RunConfig:
         if self.meanfield.spectrum == "profiles":
             if self.surface.profiles is None:
@@ -445,6 +466,12 @@ def _resolve_paths(cfg: RunConfig, base: Path) -> RunConfig:
         if missing:
             raise InputError(f"surface.profiles.files: file(s) not found: {', '.join(missing)}")
         upd["surface"] = cfg.surface.model_copy(update={"profiles": prof})
+    if cfg.surface.map is not None and cfg.surface.map.file is not None:
+        path = fix(cfg.surface.map.file)
+        if not path.is_file():
+            raise InputError(f"surface.map.file: not found: {path}")
+        upd["surface"] = cfg.surface.model_copy(
+            update={"map": cfg.surface.map.model_copy(update={"file": path})})
     for key in ("file", "dma"):
         path = getattr(cfg.material, key)
         if path is not None:

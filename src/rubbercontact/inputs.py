@@ -6,7 +6,9 @@ A **surface** is one of
   ``asphalt_ac8``, ``high_slope_wave``);
 * a sine table: ``wavelengths`` and ``amplitudes`` [mm] (and, on the command line,
   ``phases`` [rad]; a run draws its own random phases);
-* measured profiles (``[surface.profiles]``), fitted with a sine series (paper §2.2).
+* measured profiles (``[surface.profiles]``), fitted with a sine series (paper §2.2);
+* an areal height map (``[surface.map]``: a file or a synthetic self-affine map), run by
+  :mod:`rubbercontact.pipeline.maprun`.
 
 A **material** is the ``[material]`` table of :func:`rubbercontact.materials.load_material`
 (``preset = "sbr"``, a Prony ``file``, a ``dma`` file to fit, or inline
@@ -70,22 +72,62 @@ class ProfileInput(Strict):
     despike: bool = False
 
 
+class SyntheticMapInput(Strict):
+    """A synthetic periodic map (:func:`rubbercontact.roughness.self_affine_map`)."""
+
+    kind: Literal["self-affine"] = "self-affine"
+    size: PositiveFloat = Field(description="side of the square map Lx = Ly [mm]")
+    points: int = Field(ge=16, le=4096, description="points per side")
+    hurst: float = Field(gt=0, lt=1, description="Hurst exponent H [-]")
+    rms_gradient: PositiveFloat = Field(description="rms gradient sqrt(<|grad z|^2>) [-]")
+    seed: int = Field(0, ge=0, description="seed of the phases")
+
+
+class MapInput(Strict):
+    """An areal height map: a file (:func:`rubbercontact.io.read_map`) or a synthetic one."""
+
+    file: Path | None = Field(None, description="map file (relative to the config)")
+    format: Literal["auto", "text", "npy", "topography"] = "auto"
+    unit: Literal["mm", "um", "nm", "m"] | None = Field(
+        None, description="unit of heights and dx when the file does not state it")
+    dx: PositiveFloat | None = Field(None, description="pixel size (in unit) of a .npy map")
+    nan: Literal["error", "fill"] = "error"
+    detrend: Literal["plane", "mean", "none"] | None = Field(
+        None, description="default: plane when mirrored, mean for a periodic map")
+    periodize: Literal["mirror", "none"] = Field(
+        "mirror", description="mirror a measured map, or take it as one period (none)")
+    synthetic: SyntheticMapInput | None = None
+
+    @model_validator(mode="after")
+    def _one_map(self) -> MapInput:
+        if (self.file is None) == (self.synthetic is None):
+            raise ValueError("give exactly one of 'file' and 'synthetic'")
+        if self.synthetic is not None:
+            given = [k for k in ("unit", "dx", "detrend") if getattr(self, k) is not None]
+            if given:
+                raise ValueError(f"{', '.join(given)} apply to a map 'file' only")
+        return self
+
+
 class SurfaceSpec(Strict):
-    """Rough rigid surface: a preset, an explicit sine table, or measured profiles."""
+    """Rough rigid surface: a preset, an explicit sine table, measured profiles, or a map."""
 
     preset: Literal[SURFACE_PRESETS] | None = None
     wavelengths: list[PositiveFloat] | None = Field(None, description="[mm]")
     amplitudes: list[Annotated[float, Field(ge=0)]] | None = Field(None, description="[mm]")
     profiles: ProfileInput | None = None
+    map: MapInput | None = None
     m2_threshold: PositiveFloat = Field(
         1.0, description="rms slope above which a wave is high-slope [-]")
 
     @model_validator(mode="after")
     def _one_source(self) -> SurfaceSpec:
         table = self.wavelengths is not None or self.amplitudes is not None
-        given = [self.preset is not None, table, self.profiles is not None]
+        given = [self.preset is not None, table, self.profiles is not None,
+                 self.map is not None]
         if sum(given) != 1:
-            raise ValueError("give exactly one of 'preset', 'wavelengths'+'amplitudes', 'profiles'")
+            raise ValueError("give exactly one of 'preset', 'wavelengths'+'amplitudes', "
+                             "'profiles', 'map'")
         if (self.wavelengths is None) != (self.amplitudes is None):
             raise ValueError("'wavelengths' and 'amplitudes' go together")
         if self.wavelengths is not None and len(self.wavelengths) != len(self.amplitudes):

@@ -1,0 +1,168 @@
+"""A run on an areal height map (``[surface.map]``): the VHS and the mean-field theory.
+
+The map is read (:func:`rubbercontact.io.read_map`, detrended, periodized as the table says)
+or synthesized (:func:`rubbercontact.roughness.self_affine_map`, periodic), then at every
+speed and mean pressure of the run:
+
+- ``vhs``: the 2D half-space on the map (:func:`rubbercontact.hybrid.solve_map`) with the
+  run's ``halfspace.law`` and ``halfspace.tol``;
+- ``meanfield``: Persson's theory on the map's spectrum
+  (:func:`rubbercontact.roughness.mapstats.map_psd`: the radially pooled 2D periodogram),
+  with the run's ``[meanfield]`` options.
+
+The solves run one after the other in this process (no task cache, no Dask workers).
+What a map run does not do yet (the hybrids, target contact areas, temperatures,
+realizations, adhesion, the flash temperature) is refused when the config is loaded
+(:class:`rubbercontact.config.RunConfig`). The results have dims ``model, velocity,
+pressure`` and the map's provenance and statistics in ``attrs["surface"]``.
+"""
+
+from __future__ import annotations
+
+import json
+import time
+
+import numpy as np
+import xarray as xr
+
+from ..config import MAP_MODELS, RunConfig
+from ..errors import ConvergenceError
+from ..inputs import MapInput, build_material
+
+#: Result variables of a map run: (units, long name).
+MAP_VARIABLES = {
+    "friction": ("1", "hysteretic friction coefficient mu"),
+    "contact_fraction": ("1", "normalized real contact area A_c/A_0"),
+    "mean_separation": ("mm", "mean interface separation (vhs)"),
+    "wall_time": ("s", "wall time of the solve"),
+}
+
+
+def is_map_run(cfg: RunConfig) -> bool:
+    """Whether ``cfg`` runs on a height map."""
+    return cfg.surface.map is not None
+
+
+def build_map(spec: MapInput):
+    """The periodic :class:`~rubbercontact.roughness.HeightMap` a ``[surface.map]`` table
+    describes (heights and lengths in mm)."""
+    if spec.synthetic is not None:
+        from ..roughness import self_affine_map
+
+        s = spec.synthetic
+        return self_affine_map((s.points, s.points), s.size, s.hurst,
+                               rms_gradient=s.rms_gradient, seed=s.seed)
+    from ..io.maps import read_map
+
+    detrend = spec.detrend or ("plane" if spec.periodize == "mirror" else "mean")
+    hmap = read_map(spec.file, format=spec.format, unit=spec.unit, dx=spec.dx, nan=spec.nan)
+    return hmap.detrended(detrend).periodized(spec.periodize)
+
+
+def map_models(cfg: RunConfig) -> list[str]:
+    """The models of a map run: the config's, or :data:`MAP_MODELS` when it names none."""
+    return list(cfg.models) if "models" in cfg.model_fields_set else list(MAP_MODELS)
+
+
+def map_info(hmap, threshold: float) -> dict:
+    """The map's provenance and statistics (plain data, for ``attrs["surface"]``)."""
+    from ..roughness.mapsplit import octave_bands
+    from ..roughness.mapstats import anisotropy, rms_gradient, rms_height, rms_slope_x
+
+    bands = octave_bands(hmap, threshold)
+    high = bands["wavelength"].values[bands["high_slope"].values == 1]
+    return {"source": "map", "map": dict(hmap.source), "shape": list(hmap.shape),
+            "lengths_mm": list(hmap.lengths), "rms_height_mm": rms_height(hmap),
+            "rms_gradient": rms_gradient(hmap), "rms_slope_x": rms_slope_x(hmap),
+            "anisotropy": anisotropy(hmap)[0], "m2_threshold": threshold,
+            "high_slope_wavelengths_mm": [float(w) for w in high]}
+
+
+def _meanfield_options(cfg: RunConfig):
+    from ..meanfield import MeanFieldOptions
+
+    mf = cfg.meanfield
+    return MeanFieldOptions(correction=mf.correction, gamma=mf.gamma, weighting=mf.weighting,
+                            interface=mf.interface, dissipation=mf.dissipation,
+                            geometry=mf.geometry)
+
+
+def _solver(model: str, cfg: RunConfig, hmap, material):
+    """``solve(v, σ0) -> (μ, A_c/A_0, ū)`` of one model on the map."""
+    if model == "vhs":
+        from ..halfspace import LennardJonesRepulsion
+        from ..hybrid.maps import solve_map
+
+        law = LennardJonesRepulsion() if cfg.halfspace.law == "lennard-jones" else None
+
+        def vhs(v: float, p: float) -> tuple[float, float, float]:
+            r = solve_map(hmap, material, v, p, law, nu=cfg.material.nu, tol=cfg.halfspace.tol)
+            return r.friction, r.contact_fraction, r.mean_separation
+        return vhs
+    from ..meanfield import solve
+    from ..roughness.mapstats import map_psd
+
+    psd, opts = map_psd(hmap), _meanfield_options(cfg)
+
+    def meanfield(v: float, p: float) -> tuple[float, float, float]:
+        r = solve(psd, material, v, p, nu=cfg.material.nu, options=opts)
+        return r.friction, r.contact_fraction, np.nan
+    return meanfield
+
+
+def run_map(cfg: RunConfig) -> xr.Dataset:
+    """Run the map models of ``cfg`` (module docstring) and return the results dataset."""
+    from .limits import check_pressures
+
+    t_start = time.perf_counter()
+    material = build_material(cfg.material)
+    pressures = np.asarray(cfg.loads.pressures, float)
+    check_pressures(pressures, material, "loads.pressures")
+    speeds = np.asarray(cfg.velocities, float)
+    hmap = build_map(cfg.surface.map)
+    models = map_models(cfg)
+    shape = (len(models), speeds.size, pressures.size)
+    data = {k: np.full(shape, np.nan) for k in MAP_VARIABLES}
+    status = np.full(shape, "ok", dtype=object)
+    for i, m in enumerate(models):
+        solve = _solver(m, cfg, hmap, material)
+        for j, v in enumerate(speeds):
+            for k, p in enumerate(pressures):
+                t0 = time.perf_counter()
+                try:
+                    out = solve(float(v), float(p))
+                except ConvergenceError as exc:
+                    status[i, j, k] = f"failed: {exc}"
+                    continue
+                for key, val in zip(("friction", "contact_fraction", "mean_separation"), out,
+                                    strict=True):
+                    data[key][i, j, k] = val
+                data["wall_time"][i, j, k] = time.perf_counter() - t0
+    return _dataset(cfg, hmap, material, models, speeds, pressures, data, status,
+                    time.perf_counter() - t_start)
+
+
+def _dataset(cfg, hmap, material, models, speeds, pressures, data, status, total
+             ) -> xr.Dataset:
+    from .. import __version__
+    from .execute import RESULTS_FORMAT
+
+    dims = ("model", "velocity", "pressure")
+    ds = xr.Dataset({k: (dims, v, {"units": MAP_VARIABLES[k][0],
+                                   "long_name": MAP_VARIABLES[k][1]})
+                     for k, v in data.items()},
+                    coords={"model": list(models),
+                            "velocity": ("velocity", speeds, {"units": "mm/s"}),
+                            "pressure": ("pressure", pressures, {"units": "MPa"})})
+    ds["status"] = (dims, status.astype(str))
+    ds.attrs.update({
+        "title": "rubbercontact results on a height map",
+        "rubbercontact_version": __version__,
+        "surface_kind": "map",
+        "config": cfg.model_dump_json(),
+        "surface": json.dumps(map_info(hmap, cfg.surface.m2_threshold), default=str),
+        "material": json.dumps(material.as_dict()),
+        "timings_s": json.dumps({"total": total}),
+        "results_format": RESULTS_FORMAT,
+    })
+    return ds
