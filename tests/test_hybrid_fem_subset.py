@@ -159,3 +159,24 @@ def test_bad_fem_realizations_fail_fast_in_one_line(tmp_path, over, message):
     with pytest.raises(InputError, match=message) as err:
         _config(tmp_path, **over)
     assert "\n" not in str(err.value)
+
+
+def test_runs_give_eq28_at_equal_area_as_the_validation_does(tmp_path, monkeypatch):
+    # A FEM stand-in equal to the VHS gives 0 at equal area; one offset in friction only
+    # (areas equal) gives mean_k c/(μ_VHS(A_k) + c) at the common areas, which lies between
+    # c/(max μ + c) and c/(min μ + c) over the loads' VHS friction (μ grows with A here).
+    cfg = _config(tmp_path, loads={"pressures": [0.3, 0.6, 1.0]})
+    for k in OFFSET:
+        monkeypatch.setitem(OFFSET, k, 0.0)
+    ds = rc.pipeline.run(cfg, runner=_offset_fem_runner()[0], progress=False)
+    twin = float(ds["error_vs_fem_at_area"].sel(compared_model="vhs", velocity=10.0))
+    assert twin == pytest.approx(0.0, abs=1e-12)
+    c = 0.05
+    monkeypatch.setitem(OFFSET, "friction", c)
+    ds = rc.pipeline.run(_config(tmp_path / "b", loads={"pressures": [0.3, 0.6, 1.0]}),
+                         runner=_offset_fem_runner()[0], progress=False)
+    mu = ds["friction_phase_mean"].sel(model="vhs", velocity=10.0).values
+    e = float(ds["error_vs_fem_at_area"].sel(compared_model="vhs", velocity=10.0))
+    assert c / (mu.max() + c) - 1e-12 <= e <= c / (mu.min() + c) + 1e-12
+    assert ds["error_vs_fem_at_area"].attrs["compared_over"] == "contact_area"
+    assert f"at equal A_c: {100 * e:.1f} %" in summary_table(ds)

@@ -111,7 +111,30 @@ def add_errors(ds: xr.Dataset) -> xr.Dataset:
                            "fem_reference": ("phase average: mean_N(vhs) + mean_R(fem - vhs)"
                                              if "fem_realizations" in ds.attrs
                                              else "mean over the realizations")})
-    return ds.assign_coords(compared_model=others)
+    ds = ds.assign_coords(compared_model=others)
+    if dim == "pressure":
+        ds["error_vs_fem_at_area"] = (("compared_model", "velocity"), _at_area(ds, others), {
+            "units": "1", "long_name": "eq. 28 mean relative error vs FEM at equal contact "
+                                       "area (the validation's statistic)",
+            "compared_over": "contact_area",
+            "fem_reference": ds["error_vs_fem"].attrs["fem_reference"]})
+    return ds
+
+
+def _at_area(ds: xr.Dataset, others: list[str]) -> np.ndarray:
+    """Eq. 28 at the areas every model's mean load sweep covers
+    (:func:`rubbercontact.compare.eq28_of_curves`, as VALIDATION.md and the README)."""
+    from ..compare import eq28_of_curves
+
+    mu, area = mean_of(ds, "friction"), mean_of(ds, "contact_fraction")
+    err = np.full((len(others), ds.sizes["velocity"]), np.nan)
+    for iv in range(ds.sizes["velocity"]):
+        curves = {m: (area.sel(model=m).isel(velocity=iv).values,
+                      mu.sel(model=m).isel(velocity=iv).values)
+                  for m in [*others, "fem"]}
+        e = eq28_of_curves(curves, others)
+        err[:, iv] = [e[m] for m in others]
+    return err
 
 
 @dataclass(frozen=True)

@@ -163,8 +163,12 @@ def _per_speed(ds: xr.Dataset, v: float) -> list[str]:
     if "error_vs_fem" in ds:
         for m in ds["compared_model"].values:
             e = float(ds["error_vs_fem"].sel(compared_model=m, velocity=v))
-            lines.append(f"  eq. 28 error of {m} vs FEM{_error_basis(ds)}: "
-                         f"{'n/a' if np.isnan(e) else f'{100 * e:.1f} %'}")
+            text = (f"  eq. 28 error of {m} vs FEM{_error_basis(ds)}: "
+                    f"{'n/a' if np.isnan(e) else f'{100 * e:.1f} %'}")
+            if "error_vs_fem_at_area" in ds:
+                a = float(ds["error_vs_fem_at_area"].sel(compared_model=m, velocity=v))
+                text += f", at equal A_c: {'n/a' if np.isnan(a) else f'{100 * a:.1f} %'}"
+            lines.append(text)
     return lines
 
 
