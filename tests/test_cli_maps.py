@@ -104,3 +104,26 @@ def test_bad_map_input_is_one_line(capsys, tmp_path, args, message):
     assert err.count("\n") == 1 and message in err
     code, _, err = cli(["roughness", "map", str(bad)], capsys)
     assert code == 2 and err.count("\n") == 1 and "truncated or corrupt" in err
+
+
+def test_run_on_a_synthetic_map(capsys, tmp_path):
+    import xarray as xr
+
+    cfg = tmp_path / "run.toml"
+    cfg.write_text('velocities = [10.0]\n[loads]\npressures = [0.2]\n'
+                   '[surface.map.synthetic]\nsize = 1.0\npoints = 64\nhurst = 0.8\n'
+                   'rms_gradient = 0.5\nseed = 2\n[output]\ndirectory = "out"\n')
+    code, out, _ = cli(["run", str(cfg), "--check"], capsys)
+    assert code == 0 and "models vhs, meanfield" in out and "64 x 64 points" in out
+    code, out, _ = cli(["run", str(cfg)], capsys)
+    assert code == 0 and "results:" in out
+    with xr.open_dataset(tmp_path / "out" / "results.nc") as ds:
+        mu = float(ds["friction"].sel(model="vhs", velocity=10.0, pressure=0.2))
+    hm = self_affine_map((64, 64), 1.0, 0.8, rms_gradient=0.5, seed=2)
+    from rubbercontact.halfspace import LennardJonesRepulsion
+
+    ref = solve_map(hm, sbr(), 10.0, 0.2, LennardJonesRepulsion())
+    assert mu == pytest.approx(ref.friction, rel=1e-12)
+    assert f"{ref.friction:9.5f}" in out
+    code, _, err = cli(["run", str(cfg)], capsys)        # results exist: one line
+    assert code == 2 and err.count("\n") == 1 and "--overwrite" in err

@@ -46,6 +46,9 @@ def command(
     if check:
         typer.echo(describe_plan(cfg))
         return
+    if cfg.surface.map is not None:
+        _run_map(cfg, output, overwrite)
+        return
     outdir = output if output is not None else cfg.output.directory
     outdir = Path(outdir)
     results_path = outdir / "results.nc"
@@ -89,6 +92,31 @@ def command(
         raise typer.Exit(1)
 
 
+def _run_map(cfg, output: Path | None, overwrite: bool) -> None:
+    """A run on ``[surface.map]`` (:mod:`rubbercontact.pipeline.maprun`): results and table."""
+    from ..io.results import write_results
+    from ..pipeline.maprun import map_summary, run_map
+
+    outdir = Path(output if output is not None else cfg.output.directory)
+    results_path = outdir / "results.nc"
+    overwrite = overwrite or cfg.output.overwrite
+    if results_path.exists() and not overwrite:
+        raise FileExistsError(f"{results_path} exists; pass --overwrite to replace it")
+    outdir.mkdir(parents=True, exist_ok=True)
+    with warnings.catch_warnings(record=True) as caught:
+        warnings.simplefilter("always")
+        ds = run_map(cfg)
+    for w in caught:
+        typer.echo(f"warning: {w.message}", err=True)
+    write_results(ds, results_path, overwrite=overwrite)
+    typer.echo(map_summary(ds))
+    typer.echo(f"results: {results_path}")
+    if (ds["status"].values != "ok").any():
+        typer.echo(f"error: {int((ds['status'].values != 'ok').sum())} solve(s) failed",
+                   err=True)
+        raise typer.Exit(1)
+
+
 #: What the built-in default's numbers are, printed under them (one line).
 DEFAULT_RUN_NOTE = ("built-in default: a reduced demonstration of the paper's §3 case (coarse "
                     "FEM meshes, the FEM on 1 realization, equal σ0), not the validation: the "
@@ -112,6 +140,10 @@ def describe_plan(cfg) -> str:
     from ..pipeline.cost import estimate_cost
     from ..pipeline.lawstage import uses_continuation
 
+    if cfg.surface.map is not None:
+        from ..pipeline.maprun import describe_map_plan
+
+        return describe_map_plan(cfg)
     setup = resolve(cfg)
     sp = setup.speeds
     lines = [f"config ok: models {', '.join(setup.models)}",

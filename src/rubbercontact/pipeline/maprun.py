@@ -166,3 +166,36 @@ def _dataset(cfg, hmap, material, models, speeds, pressures, data, status, total
         "results_format": RESULTS_FORMAT,
     })
     return ds
+
+
+def map_summary(ds: xr.Dataset) -> str:
+    """μ and ``A_c/A_0`` of a map run per model, speed and pressure, as text."""
+    info = json.loads(ds.attrs["surface"])
+    ny, nx = info["shape"]
+    ly, lx = info["lengths_mm"]
+    lines = [f"map: {ny} x {nx} points, {ly:.4g} x {lx:.4g} mm, rms gradient "
+             f"{info['rms_gradient']:.4g}, rms slope along x {info['rms_slope_x']:.4g}, "
+             f"anisotropy {info['anisotropy']:.3g}",
+             f"{'model':>10} {'v [mm/s]':>10} {'sigma0 [MPa]':>12} {'mu':>9} {'A/A0':>8} "
+             f"{'time [s]':>9}"]
+    for m in ds["model"].values:
+        for v in ds["velocity"].values:
+            for p in ds["pressure"].values:
+                r = ds.sel(model=m, velocity=v, pressure=p)
+                lines.append(f"{m:>10} {v:10.4g} {p:12.4g} {float(r['friction']):9.5f} "
+                             f"{float(r['contact_fraction']):8.4f} "
+                             f"{float(r['wall_time']):9.3g}")
+    return "\n".join(lines)
+
+
+def describe_map_plan(cfg: RunConfig) -> str:
+    """What a map run of ``cfg`` will compute (the map is built: a file is read)."""
+    hmap = build_map(cfg.surface.map)
+    ny, nx = hmap.shape
+    return "\n".join([
+        f"config ok: a run on a height map, models {', '.join(map_models(cfg))}",
+        f"map: {ny} x {nx} points, {hmap.lengths[0]:.4g} x {hmap.lengths[1]:.4g} mm "
+        f"({hmap.source.get('path') or hmap.source.get('synthetic')})",
+        f"speeds: {len(cfg.velocities)}; pressures: "
+        f"{', '.join(f'{p:g}' for p in cfg.loads.pressures)} MPa; solved one after the "
+        f"other in this process"])
