@@ -11,12 +11,17 @@ from rubbercontact import meanfield
 from rubbercontact.config import load_config, parse_config
 from rubbercontact.errors import InputError
 from rubbercontact.halfspace import LennardJonesRepulsion
-from rubbercontact.hybrid.maps import solve_map
+from rubbercontact.hybrid.maps import (
+    MapHybridOptions,
+    linear_law_map,
+    solve_map,
+    solve_map_hybrid,
+)
 from rubbercontact.io import write_map
 from rubbercontact.materials import sbr
 from rubbercontact.meanfield import PSD
 from rubbercontact.pipeline import run
-from rubbercontact.roughness import self_affine_map
+from rubbercontact.roughness import self_affine_map, split_map
 
 SYN = {"size": 1.0, "points": 64, "hurst": 0.8, "rms_gradient": 0.5, "seed": 4}
 SPEEDS, LOADS = [1.0, 100.0], [0.1, 0.4]
@@ -86,8 +91,26 @@ def test_a_map_file_run_records_its_provenance(tmp_path):
         pytest.approx(ref.friction, rel=1e-9)
 
 
+def test_hybrids_on_a_map_are_solve_map_hybrid_with_the_linear_law():
+    ds = run({**config({"synthetic": SYN}, models=["hybrid", "hybrid-windowed"]),
+              "surface": {"map": {"synthetic": SYN}, "m2_threshold": 0.15},
+              "velocities": [10.0], "loads": {"pressures": [0.2]}})
+    hm = self_affine_map((64, 64), 1.0, 0.8, rms_gradient=0.5, seed=4)
+    split = split_map(hm, 0.15)
+    assert split.cell is not None              # bands of slope 0.16, 0.18 > 0.15
+    law = linear_law_map(split.cell, sbr(), 10.0)
+    for model, window in (("hybrid", False), ("hybrid-windowed", True)):
+        ref = solve_map_hybrid(split, law, sbr(), 10.0, 0.2,
+                               MapHybridOptions(law="lennard-jones", window=window))
+        got = ds.sel(model=model, velocity=10.0, pressure=0.2)
+        assert float(got["friction"]) == pytest.approx(ref.friction, rel=1e-12)
+        assert float(got["contact_fraction"]) == pytest.approx(ref.contact_fraction, rel=1e-12)
+    assert "linear" in ds.attrs["high_slope_law"]
+
+
 @pytest.mark.parametrize("surface_map, extra, message", [
-    ({"synthetic": SYN}, {"models": ["vhs", "hybrid"]}, "not models hybrid"),
+    ({"synthetic": SYN}, {"models": ["vhs", "fem"]}, "not models fem"),
+    ({"synthetic": SYN}, {"law": {"pressures": [0.1, 1.0]}}, "linear law of its cell"),
     ({"synthetic": SYN}, {"realizations": 3}, "realizations > 1"),
     ({"synthetic": {**SYN, "hurst": 1.2}}, {}, "surface.map.synthetic.hurst"),
     ({"synthetic": SYN, "file": "x.txt"}, {}, "exactly one of 'file' and 'synthetic'"),
@@ -104,3 +127,11 @@ def test_a_map_and_a_sine_table_are_refused_together():
     with pytest.raises(InputError, match="exactly one of 'preset'"):
         parse_config({**config({"synthetic": SYN}),
                       "surface": {"map": {"synthetic": SYN}, "preset": "section3"}})
+
+
+def test_without_a_high_slope_band_the_hybrid_is_the_vhs():
+    # every band's slope along x is below 0.2 < m2_threshold = 1: z_ls = z, no law
+    ds = run({**config({"synthetic": SYN}, models=["vhs", "hybrid-windowed"]),
+              "velocities": [10.0], "loads": {"pressures": [0.2]}})
+    assert float(ds["friction"].sel(model="hybrid-windowed")) == \
+        float(ds["friction"].sel(model="vhs"))

@@ -34,8 +34,10 @@ MODELS = ("vhs", "hybrid", "hybrid-windowed", "fem", "meanfield", "meanfield-hyb
 #: seconds once the law exists; ``fem`` is the reference, too costly to run unasked.
 DEFAULT_MODELS = ("vhs", "hybrid-windowed", "meanfield")
 #: Models a run on a height map (``[surface.map]``, :mod:`rubbercontact.pipeline.maprun`)
-#: can compare, and its default.
-MAP_MODELS = ("vhs", "meanfield")
+#: can compare (the hybrids with the linear law of the map's high-slope cell), and its
+#: default.
+MAP_MODELS = ("vhs", "meanfield", "hybrid", "hybrid-windowed")
+MAP_DEFAULT_MODELS = ("vhs", "meanfield")
 #: Most speeds of a ``velocities`` range.
 MAX_SPEED_POINTS = 400
 
@@ -381,9 +383,11 @@ class RunConfig(_Strict):
     def _map_run(self) -> RunConfig:
         if self.surface.map is None:
             return self
-        models = self.models if "models" in self.model_fields_set else MAP_MODELS
+        models = self.models if "models" in self.model_fields_set else MAP_DEFAULT_MODELS
         bad = [m for m in models if m not in MAP_MODELS]
         unsupported = {"models " + ", ".join(bad): bool(bad),
+                       "[law] (a map's hybrid uses the linear law of its cell)":
+                           self.law != LawConfig(),
                        "loads.contact_areas": self.loads.contact_areas is not None,
                        "realizations > 1": self.realizations > 1,
                        "temperatures": self.temperatures is not None,

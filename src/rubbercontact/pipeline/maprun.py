@@ -8,7 +8,13 @@ speed and mean pressure of the run:
   run's ``halfspace.law`` and ``halfspace.tol``;
 - ``meanfield``: Persson's theory on the map's spectrum
   (:func:`rubbercontact.roughness.mapstats.map_psd`: the radially pooled 2D periodogram),
-  with the run's ``[meanfield]`` options.
+  with the run's ``[meanfield]`` options;
+- ``hybrid``, ``hybrid-windowed``: the map split at ``surface.m2_threshold``
+  (:func:`rubbercontact.roughness.split_map`) and the hybrid on maps
+  (:func:`rubbercontact.hybrid.solve_map_hybrid`, pointwise or with the law read at the
+  pressure averaged over one high-slope period), the high-slope law being, in this step, the
+  **linear** law of the cell (:func:`rubbercontact.hybrid.linear_law_map`, one per speed),
+  not the FEM's. A map without a high-slope band has ``z_ls = z``: the hybrid is the VHS.
 
 The solves run one after the other in this process (no task cache, no Dask workers).
 What a map run does not do yet (the hybrids, target contact areas, temperatures,
@@ -25,7 +31,7 @@ import time
 import numpy as np
 import xarray as xr
 
-from ..config import MAP_MODELS, RunConfig
+from ..config import MAP_DEFAULT_MODELS, RunConfig
 from ..errors import ConvergenceError
 from ..inputs import MapInput, build_material
 
@@ -60,8 +66,9 @@ def build_map(spec: MapInput):
 
 
 def map_models(cfg: RunConfig) -> list[str]:
-    """The models of a map run: the config's, or :data:`MAP_MODELS` when it names none."""
-    return list(cfg.models) if "models" in cfg.model_fields_set else list(MAP_MODELS)
+    """The models of a map run: the config's, or :data:`MAP_DEFAULT_MODELS` when it names
+    none."""
+    return list(cfg.models) if "models" in cfg.model_fields_set else list(MAP_DEFAULT_MODELS)
 
 
 def map_info(hmap, threshold: float) -> dict:
@@ -87,8 +94,29 @@ def _meanfield_options(cfg: RunConfig):
                             geometry=mf.geometry)
 
 
-def _solver(model: str, cfg: RunConfig, hmap, material):
+def _hybrid(model: str, cfg: RunConfig, hmap, material, laws: dict):
+    """The map hybrid's ``solve(v, σ0)``; ``laws`` caches the linear law per speed."""
+    from ..hybrid.maps import MapHybridOptions, linear_law_map, solve_map_hybrid
+    from ..roughness import split_map
+
+    split = split_map(hmap, cfg.surface.m2_threshold)
+    if split.cell is None:
+        return _solver("vhs", cfg, hmap, material)
+    opts = MapHybridOptions(law=cfg.halfspace.law, window=model == "hybrid-windowed",
+                            nu=cfg.material.nu, tol=cfg.halfspace.tol)
+
+    def hybrid(v: float, p: float) -> tuple[float, float, float]:
+        if v not in laws:
+            laws[v] = linear_law_map(split.cell, material, v, nu=cfg.material.nu)
+        r = solve_map_hybrid(split, laws[v], material, v, p, opts)
+        return r.friction, r.contact_fraction, r.mean_separation
+    return hybrid
+
+
+def _solver(model: str, cfg: RunConfig, hmap, material, laws: dict | None = None):
     """``solve(v, σ0) -> (μ, A_c/A_0, ū)`` of one model on the map."""
+    if model in ("hybrid", "hybrid-windowed"):
+        return _hybrid(model, cfg, hmap, material, {} if laws is None else laws)
     if model == "vhs":
         from ..halfspace import LennardJonesRepulsion
         from ..hybrid.maps import solve_map
@@ -124,8 +152,9 @@ def run_map(cfg: RunConfig) -> xr.Dataset:
     shape = (len(models), speeds.size, pressures.size)
     data = {k: np.full(shape, np.nan) for k in MAP_VARIABLES}
     status = np.full(shape, "ok", dtype=object)
+    laws: dict = {}                          # the linear law per speed, shared by the hybrids
     for i, m in enumerate(models):
-        solve = _solver(m, cfg, hmap, material)
+        solve = _solver(m, cfg, hmap, material, laws)
         for j, v in enumerate(speeds):
             for k, p in enumerate(pressures):
                 t0 = time.perf_counter()
@@ -165,6 +194,9 @@ def _dataset(cfg, hmap, material, models, speeds, pressures, data, status, total
         "timings_s": json.dumps({"total": total}),
         "results_format": RESULTS_FORMAT,
     })
+    if any(m.startswith("hybrid") for m in models):
+        ds.attrs["high_slope_law"] = ("linear: the 2D half-space on the map's high-slope "
+                                      "cell (linear_law_map), one per speed")
     return ds
 
 
