@@ -47,7 +47,7 @@ def command(
         typer.echo(describe_plan(cfg))
         return
     if cfg.surface.map is not None:
-        _run_map(cfg, output, overwrite)
+        _run_map(cfg, output, overwrite, figures and cfg.output.figures)
         return
     outdir = output if output is not None else cfg.output.directory
     outdir = Path(outdir)
@@ -92,7 +92,7 @@ def command(
         raise typer.Exit(1)
 
 
-def _run_map(cfg, output: Path | None, overwrite: bool) -> None:
+def _run_map(cfg, output: Path | None, overwrite: bool, figures: bool) -> None:
     """A run on ``[surface.map]`` (:mod:`rubbercontact.pipeline.maprun`): results and table."""
     from ..io.results import write_results
     from ..pipeline.maprun import map_summary, run_map
@@ -111,6 +111,11 @@ def _run_map(cfg, output: Path | None, overwrite: bool) -> None:
     write_results(ds, results_path, overwrite=overwrite)
     typer.echo(map_summary(ds))
     typer.echo(f"results: {results_path}")
+    if figures:
+        from ..plotting.maps import plot_map_run
+
+        for p in plot_map_run(ds, outdir):
+            typer.echo(f"figure: {p}")
     if (ds["status"].values != "ok").any():
         typer.echo(f"error: {int((ds['status'].values != 'ok').sum())} solve(s) failed",
                    err=True)

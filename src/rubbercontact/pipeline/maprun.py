@@ -113,8 +113,10 @@ def _hybrid(model: str, cfg: RunConfig, hmap, material, laws: dict):
     return hybrid
 
 
-def _solver(model: str, cfg: RunConfig, hmap, material, laws: dict | None = None):
-    """``solve(v, σ0) -> (μ, A_c/A_0, ū)`` of one model on the map."""
+def _solver(model: str, cfg: RunConfig, hmap, material, laws: dict | None = None,
+            keep: dict | None = None):
+    """``solve(v, σ0) -> (μ, A_c/A_0, ū)`` of one model on the map; the VHS puts its last
+    solution in ``keep["result"]``."""
     if model in ("hybrid", "hybrid-windowed"):
         return _hybrid(model, cfg, hmap, material, {} if laws is None else laws)
     if model == "vhs":
@@ -122,9 +124,11 @@ def _solver(model: str, cfg: RunConfig, hmap, material, laws: dict | None = None
         from ..hybrid.maps import solve_map
 
         law = LennardJonesRepulsion() if cfg.halfspace.law == "lennard-jones" else None
+        kept = {} if keep is None else keep
 
         def vhs(v: float, p: float) -> tuple[float, float, float]:
             r = solve_map(hmap, material, v, p, law, nu=cfg.material.nu, tol=cfg.halfspace.tol)
+            kept["result"] = r
             return r.friction, r.contact_fraction, r.mean_separation
         return vhs
     from ..meanfield import solve
@@ -153,8 +157,10 @@ def run_map(cfg: RunConfig) -> xr.Dataset:
     data = {k: np.full(shape, np.nan) for k in MAP_VARIABLES}
     status = np.full(shape, "ok", dtype=object)
     laws: dict = {}                          # the linear law per speed, shared by the hybrids
+    keep: dict = {}
+    contact = None                           # the VHS solution kept for the contact map
     for i, m in enumerate(models):
-        solve = _solver(m, cfg, hmap, material, laws)
+        solve = _solver(m, cfg, hmap, material, laws, keep)
         for j, v in enumerate(speeds):
             for k, p in enumerate(pressures):
                 t0 = time.perf_counter()
@@ -167,8 +173,30 @@ def run_map(cfg: RunConfig) -> xr.Dataset:
                                     strict=True):
                     data[key][i, j, k] = val
                 data["wall_time"][i, j, k] = time.perf_counter() - t0
-    return _dataset(cfg, hmap, material, models, speeds, pressures, data, status,
-                    time.perf_counter() - t_start)
+                if m == "vhs" and (j, k) == contact_point(speeds, pressures):
+                    contact = keep["result"]
+    ds = _dataset(cfg, hmap, material, models, speeds, pressures, data, status,
+                  time.perf_counter() - t_start)
+    return _with_fields(ds, hmap, contact)
+
+
+def contact_point(speeds: np.ndarray, pressures: np.ndarray) -> tuple[int, int]:
+    """Indices (speed, pressure) of the VHS solution kept as the run's contact map: the
+    middle speed and the middle pressure."""
+    return (speeds.size - 1) // 2, (pressures.size - 1) // 2
+
+
+def _with_fields(ds: xr.Dataset, hmap, contact) -> xr.Dataset:
+    """The map's heights and, when the VHS ran, its contact pressure at one speed and load
+    (:func:`contact_point`), on dims ``y, x`` [mm]."""
+    ds = ds.assign_coords(x=("x", hmap.x, {"units": "mm"}), y=("y", hmap.y, {"units": "mm"}))
+    ds["heights"] = (("y", "x"), hmap.heights, {"units": "mm", "long_name": "surface height"})
+    if contact is not None:
+        ds["contact_pressure"] = (("y", "x"), np.asarray(contact.pressure), {
+            "units": "MPa", "long_name": "contact pressure of the VHS",
+            "velocity": contact.velocity, "mean_pressure": contact.mean_pressure,
+            "friction": contact.friction, "contact_fraction": contact.contact_fraction})
+    return ds
 
 
 def _dataset(cfg, hmap, material, models, speeds, pressures, data, status, total
@@ -208,13 +236,13 @@ def map_summary(ds: xr.Dataset) -> str:
     lines = [f"map: {ny} x {nx} points, {ly:.4g} x {lx:.4g} mm, rms gradient "
              f"{info['rms_gradient']:.4g}, rms slope along x {info['rms_slope_x']:.4g}, "
              f"anisotropy {info['anisotropy']:.3g}",
-             f"{'model':>10} {'v [mm/s]':>10} {'sigma0 [MPa]':>12} {'mu':>9} {'A/A0':>8} "
+             f"{'model':>15} {'v [mm/s]':>10} {'sigma0 [MPa]':>12} {'mu':>9} {'A/A0':>8} "
              f"{'time [s]':>9}"]
     for m in ds["model"].values:
         for v in ds["velocity"].values:
             for p in ds["pressure"].values:
                 r = ds.sel(model=m, velocity=v, pressure=p)
-                lines.append(f"{m:>10} {v:10.4g} {p:12.4g} {float(r['friction']):9.5f} "
+                lines.append(f"{m:>15} {v:10.4g} {p:12.4g} {float(r['friction']):9.5f} "
                              f"{float(r['contact_fraction']):8.4f} "
                              f"{float(r['wall_time']):9.3g}")
     return "\n".join(lines)

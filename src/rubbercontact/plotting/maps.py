@@ -1,0 +1,133 @@
+"""Figures of a run on a height map (:mod:`rubbercontact.pipeline.maprun`), from its results:
+the map, its spectrum with the scale split, the VHS contact map at one speed and load, and
+μ and ``A_c/A_0`` against the load per model and speed."""
+
+from __future__ import annotations
+
+import json
+from pathlib import Path
+
+import numpy as np
+import xarray as xr
+
+from .figures import _plt, _save, speed_text
+
+
+def results_map(ds: xr.Dataset):
+    """The periodic :class:`~rubbercontact.roughness.HeightMap` a map run's results hold."""
+    from ..roughness import HeightMap
+
+    info = json.loads(ds.attrs["surface"])
+    return HeightMap(ds["heights"].values, tuple(info["lengths_mm"]), periodic=True,
+                     source=info.get("map", {}))
+
+
+def plot_height_map(ds: xr.Dataset, path: Path) -> Path:
+    """The map's heights [µm] over x (sliding) and y [mm]."""
+    plt = _plt()
+    fig, ax = plt.subplots(figsize=(5.6, 4.6))
+    z = ds["heights"]
+    im = ax.pcolormesh(ds["x"], ds["y"], 1e3 * (z - z.mean()), shading="auto", cmap="terrain")
+    fig.colorbar(im, ax=ax, label="height z − <z> [µm]")
+    ax.set_aspect("equal")
+    ax.set_xlabel("x [mm] (sliding)")
+    ax.set_ylabel("y [mm]")
+    info = json.loads(ds.attrs["surface"])
+    ax.set_title(f"map {info['shape'][0]}×{info['shape'][1]}, rms gradient "
+                 f"{info['rms_gradient']:.3g}", fontsize=10)
+    return _save(fig, path)
+
+
+def _binned_density(hmap, bins: int = 48) -> tuple[np.ndarray, np.ndarray]:
+    """The isotropic average of the 2D PSD ``C(q)`` [mm⁴] in log bins of ``|q|`` [rad/mm]."""
+    from ..roughness.mapstats import mode_power
+
+    qx, qy, p = mode_power(hmap)
+    q = np.hypot(qx, qy).ravel()
+    c = (p / ((2 * np.pi) ** 2 / (hmap.lengths[0] * hmap.lengths[1]))).ravel()
+    ok = q > 0
+    edges = np.geomspace(q[ok].min(), q[ok].max() * 1.0001, bins + 1)
+    idx = np.digitize(q[ok], edges) - 1
+    n = np.bincount(idx, minlength=bins)[:bins]
+    mean = np.bincount(idx, weights=c[ok], minlength=bins)[:bins] / np.maximum(n, 1)
+    centre = np.sqrt(edges[:-1] * edges[1:])
+    return centre[n > 0], mean[n > 0]
+
+
+def plot_map_spectrum(ds: xr.Dataset, path: Path) -> Path:
+    """The isotropic PSD with the high-slope octave bands shaded, and each band's rms slope
+    along x against the threshold (the paper's split, :func:`~rubbercontact.roughness.
+    octave_bands`)."""
+    from ..roughness import octave_bands
+
+    hmap = results_map(ds)
+    thr = json.loads(ds.attrs["surface"])["m2_threshold"]
+    bands = octave_bands(hmap, thr)
+    plt = _plt()
+    fig, (ax1, ax2) = plt.subplots(1, 2, figsize=(10, 4))
+    q, c = _binned_density(hmap)
+    keep = c > 1e-12 * c.max()
+    ax1.loglog(q[keep], c[keep], "k.-", ms=3, label="C(q), isotropic average")
+    for qc, high in zip(bands["q_center"].values, bands["high_slope"].values, strict=True):
+        if high:
+            ax1.axvspan(qc / np.sqrt(2), qc * np.sqrt(2), color="C3", alpha=0.2, lw=0)
+    ax1.set_xlabel("wavenumber |q| [rad/mm]")
+    ax1.set_ylabel("C(q) [mm⁴]")
+    ax1.set_title("spectrum (shaded: high-slope bands)", fontsize=10)
+    colours = ["C3" if h else "C0" for h in bands["high_slope"].values]
+    ax2.bar(np.arange(bands.sizes["band"]), bands["rms_slope_x"].values, color=colours)
+    ax2.axhline(thr, color="k", ls="--", lw=1, label=f"threshold {thr:g}")
+    ax2.set_xticks(np.arange(bands.sizes["band"]),
+                   [f"{w:.3g}" for w in bands["wavelength"].values], rotation=45)
+    ax2.set_xlabel("octave band: wavelength [mm]")
+    ax2.set_ylabel("rms slope along x [-]")
+    ax2.set_title("the split (red: high-slope)", fontsize=10)
+    ax2.legend(fontsize=8)
+    return _save(fig, path)
+
+
+def plot_contact_map(ds: xr.Dataset, path: Path) -> Path | None:
+    """The VHS contact pressure [MPa] at the kept speed and load (None without the VHS)."""
+    if "contact_pressure" not in ds:
+        return None
+    plt = _plt()
+    p = ds["contact_pressure"]
+    fig, ax = plt.subplots(figsize=(5.6, 4.6))
+    im = ax.pcolormesh(ds["x"], ds["y"], np.where(p > 0, p, np.nan), shading="auto",
+                       cmap="magma_r")
+    fig.colorbar(im, ax=ax, label="contact pressure σ [MPa]")
+    ax.set_aspect("equal")
+    ax.set_xlabel("x [mm] (sliding)")
+    ax.set_ylabel("y [mm]")
+    a = p.attrs
+    ax.set_title(f"VHS, v = {speed_text(a['velocity'])}, σ0 = {a['mean_pressure']:g} MPa: "
+                 f"μ = {a['friction']:.3f}, A/A0 = {a['contact_fraction']:.3f}", fontsize=9)
+    return _save(fig, path)
+
+
+def plot_map_friction(ds: xr.Dataset, path: Path) -> Path:
+    """μ and ``A_c/A_0`` against the mean pressure, per model (colour) and speed (marker)."""
+    plt = _plt()
+    fig, (ax1, ax2) = plt.subplots(1, 2, figsize=(10, 4))
+    marks = "osd^v<>p*h"
+    for i, m in enumerate(ds["model"].values):
+        for j, v in enumerate(ds["velocity"].values):
+            r = ds.sel(model=m, velocity=v)
+            kw = {"color": f"C{i}", "marker": marks[j % len(marks)], "ms": 4}
+            ax1.plot(ds["pressure"], r["friction"], label=f"{m}, {speed_text(v)}", **kw)
+            ax2.plot(ds["pressure"], r["contact_fraction"], **kw)
+    ax1.set_ylabel("friction μ [-]")
+    ax2.set_ylabel("contact area A_c/A_0 [-]")
+    for ax in (ax1, ax2):
+        ax.set_xlabel("mean pressure σ0 [MPa]")
+        ax.grid(alpha=0.3)
+    return _save(fig, path, legends=(ax1,))
+
+
+def plot_map_run(ds: xr.Dataset, directory: str | Path) -> list[Path]:
+    """Every figure of a map run into ``directory``; returns the files written."""
+    d = Path(directory)
+    out = [plot_height_map(ds, d / "map.png"), plot_map_spectrum(ds, d / "map_spectrum.png"),
+           plot_contact_map(ds, d / "contact_map.png"),
+           plot_map_friction(ds, d / "map_friction.png")]
+    return [p for p in out if p is not None]
