@@ -127,3 +127,8 @@ def test_run_on_a_synthetic_map(capsys, tmp_path):
     assert f"{ref.friction:9.5f}" in out
     code, _, err = cli(["run", str(cfg)], capsys)        # results exist: one line
     assert code == 2 and err.count("\n") == 1 and "--overwrite" in err
+    nc = str(tmp_path / "out" / "results.nc")
+    code, again, _ = cli(["summary", nc], capsys)
+    assert code == 0 and f"{ref.friction:9.5f}" in again
+    code, plotted, _ = cli(["plot", nc, "-o", str(tmp_path / "fig")], capsys)
+    assert code == 0 and plotted.count("figure:") == 4

@@ -17,6 +17,13 @@ def command(
     from ..plotting.figures import plot_all, summary_table
 
     ds = read_results(results)
-    typer.echo(summary_table(ds))
-    for p in plot_all(ds, output if output is not None else results.parent):
+    if ds.attrs.get("surface_kind") == "map":         # a run on a height map
+        from ..pipeline.maprun import map_summary
+        from ..plotting.maps import plot_map_run
+
+        summary, plot = map_summary, plot_map_run
+    else:
+        summary, plot = summary_table, plot_all
+    typer.echo(summary(ds))
+    for p in plot(ds, output if output is not None else results.parent):
         typer.echo(f"figure: {p}")

@@ -14,4 +14,10 @@ def command(
     from ..io.results import read_results
     from ..plotting.summary import summary_table
 
-    typer.echo(summary_table(read_results(results)))
+    ds = read_results(results)
+    if ds.attrs.get("surface_kind") == "map":         # a run on a height map
+        from ..pipeline.maprun import map_summary
+
+        typer.echo(map_summary(ds))
+    else:
+        typer.echo(summary_table(ds))

@@ -127,6 +127,7 @@ def plot_map_friction(ds: xr.Dataset, path: Path) -> Path:
 def plot_map_run(ds: xr.Dataset, directory: str | Path) -> list[Path]:
     """Every figure of a map run into ``directory``; returns the files written."""
     d = Path(directory)
+    d.mkdir(parents=True, exist_ok=True)
     out = [plot_height_map(ds, d / "map.png"), plot_map_spectrum(ds, d / "map_spectrum.png"),
            plot_contact_map(ds, d / "contact_map.png"),
            plot_map_friction(ds, d / "map_friction.png")]
