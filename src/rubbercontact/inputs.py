@@ -79,7 +79,7 @@ class SyntheticMapInput(Strict):
     size: PositiveFloat = Field(description="side of the square map Lx = Ly [mm]")
     points: int = Field(ge=16, le=4096, description="points per side")
     hurst: float = Field(gt=0, lt=1, description="Hurst exponent H [-]")
-    rms_gradient: PositiveFloat = Field(description="rms gradient sqrt(<|grad z|^2>) [-]")
+    rms_gradient: PositiveFloat = Field(description="rms gradient of the map [-]")
     seed: int = Field(0, ge=0, description="seed of the phases")
 
 
