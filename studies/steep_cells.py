@@ -49,7 +49,10 @@ CONTACT_POINTS = (("station 1", 0.3, 1.0), ("station 1", 1.0, 10.0), ("station 1
                   ("stations 0+1", 1.0, 1e-3))
 CONTACT_MESH = {"station 1": {"mesh": (128, 30), "grading": 4.0},
                 "stations 0+1": {"mesh": (40, 30), "grading": 1.0}}
-CONTACTS = ("penalty", "barrier")
+#: The contact variants side by side: the barrier's Newton iterations per continuation
+#: step also at 60 (the log barrier's Newton takes many short steps near the surface).
+CONTACTS = {"penalty": {"contact": "penalty"}, "barrier": {"contact": "barrier"},
+            "barrier, 60 Newton": {"contact": "barrier", "newton_per_step": 60}}
 
 
 def cells() -> dict[str, rc.roughness.SineSeries]:
@@ -169,7 +172,7 @@ def run_contact(path: Path, surfaces: dict, done: set) -> None:
         for contact in CONTACTS:
             if (name, p, v, contact) in done:
                 continue
-            row = run_point(name, surfaces[name], p, v, False, contact=contact,
+            row = run_point(name, surfaces[name], p, v, False, **CONTACTS[contact],
                             **CONTACT_MESH[name])
             append_row(path, {**row, "part": "contact", "contact": contact})
 

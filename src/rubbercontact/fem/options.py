@@ -173,7 +173,9 @@ class FemOptions:
         penalty. A contact point sitting at the kink makes Newton cycle; the rounding acts
         only where the local pressure is below a few per cent of ``p̄``.
     contact
-        ``"penalty"`` or ``"barrier"`` (:data:`CONTACTS`).
+        ``"penalty"`` or ``"barrier"`` (:data:`CONTACTS`). The barrier's Newton takes many
+        short steps near the surface: give it ``steady.newton_per_step = 60``
+        (docs/validation/steep_cells.md).
     barrier_distance
         The barrier's reach ``d̂`` as a fraction of the face's resolution: the smaller of
         the smallest element and the chord sag ``h² max|z''|/8`` of a face segment on the

@@ -1,0 +1,47 @@
+"""The steady FEM with barrier contact on the steep high-slope cell of the CAPTIF fits
+(stations 0+1: 0.25 and 0.5 mm waves, m2 = 2.26 and 1.07), at hard points where the
+penalty contact stops (docs/validation/steep_cells.md, part 'contact'): it converges,
+nothing penetrates, the face is not impaled, and the contact forces balance the load."""
+
+import numpy as np
+import pytest
+
+import rubbercontact as rc
+from rubbercontact.fem.options import FemOptions
+from rubbercontact.fem.sliding import steady_result
+from rubbercontact.fem.steady_solver import solve_steady
+
+#: The high-slope part of examples/captif_road.toml, both stations (studies/steep_cells.py).
+STATIONS_01 = rc.roughness.SineSeries([0.25, 0.5], [0.12730956250957495, 0.12080265476330462])
+
+
+def _check(p, v):
+    opts = FemOptions(mesh=(40, 30), contact="barrier").with_(
+        steady={"newton_per_step": 60, "fallback": False})
+    mat = rc.materials.sbr()
+    sol = solve_steady(STATIONS_01, mat, p, v, opts)
+    out = steady_result(sol, STATIONS_01, mat, p, v, opts, 0.0)
+    cs = sol.ev.contact
+    # impenetrable: every contact point strictly above the surface; no impaled face
+    assert np.all(cs.gap > 0.0) and out.stats.max_penetration == 0.0
+    assert not out.stats.impaled
+    # vertical equilibrium: the contact forces carry the plate load to the Newton
+    # tolerance (1e-6 of the load, 30x that for a loose stop)
+    load = p * STATIONS_01.period
+    assert cs.force[:, 1].sum() == pytest.approx(load, abs=30 * opts.newton_tol * load)
+    assert 0.0 < out.contact_fraction < 1.0 and out.friction > 0.0
+    return out
+
+
+def test_barrier_converges_steady_at_3_mpa_10_mm_s_on_the_steep_cell():
+    # the penalty's memory stage stops at λ = 0.69 here (and its transient fallback warns
+    # that the cell sheared as a whole)
+    _check(3.0, 10.0)
+
+
+@pytest.mark.slow
+@pytest.mark.parametrize("p, v", [(10.0, 1.0), (10.0, 10.0)])
+def test_barrier_converges_steady_at_10_mpa_on_the_steep_cell(p, v):
+    # the penalty stops at 10 MPa / 10 mm/s and converges at 10 MPa / 1 mm/s only with
+    # the face impaled on a crest
+    _check(p, v)
