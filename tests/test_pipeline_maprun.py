@@ -116,6 +116,7 @@ def test_hybrids_on_a_map_are_solve_map_hybrid_with_the_linear_law():
     ({"synthetic": SYN, "file": "x.txt"}, {}, "exactly one of 'file' and 'synthetic'"),
     ({"synthetic": {**SYN, "colour": 1}}, {}, "unknown key 'surface.map.synthetic.colour'"),
     ({"file": "missing.txt"}, {}, "surface.map.file: not found"),
+    ({"file": "road.npy"}, {}, "a .npy map carries no pixel size: give dx"),
 ])
 def test_bad_map_config_is_one_line(tmp_path, surface_map, extra, message):
     with pytest.raises(InputError) as err:

@@ -102,6 +102,10 @@ class MapInput(Strict):
     def _one_map(self) -> MapInput:
         if (self.file is None) == (self.synthetic is None):
             raise ValueError("give exactly one of 'file' and 'synthetic'")
+        npy = self.format == "npy" or (self.format == "auto" and self.file is not None
+                                       and self.file.suffix.lower() == ".npy")
+        if npy and self.dx is None:
+            raise ValueError("a .npy map carries no pixel size: give dx (in unit, default mm)")
         if self.synthetic is not None:
             given = [k for k in ("unit", "dx", "detrend") if getattr(self, k) is not None]
             if given:
