@@ -140,3 +140,33 @@ def test_feasible_step_is_one_for_a_move_away_from_the_surface():
 def test_bad_barrier_options_name_the_field(kw, field):
     with pytest.raises(InputError, match=field):
         FemOptions(**kw)
+
+
+@pytest.mark.parametrize("gauge", ["face", "top"])
+def test_steady_cell_jacobian_with_the_barrier_matches_central_differences(gauge):
+    # The steady cell's exact Jacobian (sparse part with the barrier's tangent + FFT
+    # memory) against central differences of its residual at the face just touching the
+    # crest (the crest's points inside the reach), slightly perturbed. The step moves no
+    # point by more than 1e-3 of the smallest gap, so the difference stays on the smooth
+    # barrier; O(ε²) truncation and round-off give ~1e-7: tolerance 1e-5.
+    from rubbercontact.fem.setup import build_cell
+    from rubbercontact.fem.steady import SteadyCell
+    from rubbercontact.fem.streamline import streamline_kernel
+
+    mesh = (16, 8)
+    setup = build_cell(rc.roughness.high_slope_wave(), rc.materials.sbr(), 1.0, 10.0,
+                       FemOptions(mesh=mesh, contact="barrier", barrier_distance=0.4),
+                       sliding_plate=True)
+    cell = SteadyCell(setup.model, streamline_kernel(setup.params, setup.dt, mesh[0]))
+    rng = np.random.default_rng(0)
+    dhat = setup.model.barrier.dhat
+    U = 1e-3 * dhat * rng.standard_normal(setup.model.n)
+    ev = cell.evaluate(U, 0.0, setup.load, gauge)
+    assert np.any(ev.contact.active) and np.all(ev.contact.gap > 0)
+    eps = 1e-3 * float(ev.contact.gap.min())
+    for _ in range(3):
+        v = rng.standard_normal(U.size)
+        v /= np.abs(v).max()
+        fd = (cell.evaluate(U + eps * v, 0.0, setup.load, gauge).r
+              - cell.evaluate(U - eps * v, 0.0, setup.load, gauge).r) / (2 * eps)
+        assert np.linalg.norm(cell.jvp(ev, v) - fd) <= 1e-5 * np.linalg.norm(fd)
