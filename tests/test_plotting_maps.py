@@ -33,5 +33,5 @@ def test_the_results_hold_the_map_and_a_balanced_contact_map(ds):
 def test_every_map_figure_is_written(ds, tmp_path):
     paths = plot_map_run(ds, tmp_path)
     assert [p.name for p in paths] == ["map.png", "map_spectrum.png", "contact_map.png",
-                                       "map_friction.png"]
+                                       "map_friction.png", "map_speed.png"]
     assert all(p.stat().st_size > 10_000 for p in paths)

@@ -1,6 +1,6 @@
 """Figures of a run on a height map (:mod:`rubbercontact.pipeline.maprun`), from its results:
 the map, its spectrum with the scale split, the VHS contact map at one speed and load, and
-μ and ``A_c/A_0`` against the load per model and speed."""
+μ and ``A_c/A_0`` against the load and against the speed, per model."""
 
 from __future__ import annotations
 
@@ -124,11 +124,35 @@ def plot_map_friction(ds: xr.Dataset, path: Path) -> Path:
     return _save(fig, path, legends=(ax1,))
 
 
+def plot_map_speed(ds: xr.Dataset, path: Path) -> Path | None:
+    """μ and ``A_c/A_0`` against the speed (log), per model (colour) and load (marker);
+    None for a run at one speed."""
+    if ds.sizes["velocity"] < 2:
+        return None
+    plt = _plt()
+    fig, (ax1, ax2) = plt.subplots(1, 2, figsize=(10, 4))
+    marks = "osd^v<>p*h"
+    for i, m in enumerate(ds["model"].values):
+        for k, p in enumerate(ds["pressure"].values):
+            r = ds.sel(model=m, pressure=p)
+            kw = {"color": f"C{i}", "marker": marks[k % len(marks)], "ms": 4}
+            ax1.plot(ds["velocity"], r["friction"], label=f"{m}, σ0 = {p:g} MPa", **kw)
+            ax2.plot(ds["velocity"], r["contact_fraction"], **kw)
+    ax1.set_ylabel("friction μ [-]")
+    ax2.set_ylabel("contact area A_c/A_0 [-]")
+    for ax in (ax1, ax2):
+        ax.set_xscale("log")
+        ax.set_xlabel("sliding speed v [mm/s]")
+        ax.grid(alpha=0.3, which="both")
+    return _save(fig, path, legends=(ax1,))
+
+
 def plot_map_run(ds: xr.Dataset, directory: str | Path) -> list[Path]:
     """Every figure of a map run into ``directory``; returns the files written."""
     d = Path(directory)
     d.mkdir(parents=True, exist_ok=True)
     out = [plot_height_map(ds, d / "map.png"), plot_map_spectrum(ds, d / "map_spectrum.png"),
            plot_contact_map(ds, d / "contact_map.png"),
-           plot_map_friction(ds, d / "map_friction.png")]
+           plot_map_friction(ds, d / "map_friction.png"),
+           plot_map_speed(ds, d / "map_speed.png")]
     return [p for p in out if p is not None]
