@@ -62,12 +62,13 @@ def test_halfspace_on_an_oblique_sine_in_full_contact_is_the_closed_form(capsys,
     sigma0 = 2.0 * AMP * q * abs(er) / 2          # twice the pressure amplitude: full contact
     code, out, _ = cli(["halfspace", "--map", str(path), "--periodize", "none",
                         "--velocity", "10", "--pressure", repr(float(sigma0)), "--law", "hard-wall",
-                        "--json"], capsys)
+                        "--json", "--plot", str(tmp_path / "contact.png")], capsys)
     assert code == 0
     res = json.loads(out)
     assert res["contact_fraction"] == 1.0
     # μ = |q| q_x Δ² Im E_r(q_x v)/(4σ0); one mode, solver tolerance 1e-8
     assert res["friction"] == pytest.approx(q * qx * AMP**2 * er.imag / (4 * sigma0), rel=1e-8)
+    assert (tmp_path / "contact.png").stat().st_size > 10_000        # the contact map
 
 
 def test_halfspace_on_a_synthetic_map_file_is_solve_map(capsys, tmp_path):

@@ -98,8 +98,12 @@ def _plot_profile(res, path: Path) -> None:
     matplotlib.use("Agg")
     import matplotlib.pyplot as plt
 
-    if res.y is not None:
-        raise InputError("plot: profile plots are for 1D surfaces")
+    if res.y is not None:      # a map: its contact pressure
+        from ..plotting.maps import contact_title, draw_contact_map
+
+        draw_contact_map(res.x, res.y, res.pressure, contact_title(
+            res.velocity, res.mean_pressure, res.friction, res.contact_fraction), path)
+        return
     fig, (ax1, ax2) = plt.subplots(2, 1, sharex=True, figsize=(7, 5))
     ax1.plot(res.x, res.pressure, color="C3")
     ax1.set_ylabel("pressure σ [MPa]")
@@ -161,7 +165,8 @@ def command(
     nu: float | None = typer.Option(None, "--nu", help="Poisson's ratio (default 0.5)."),
     as_json: bool = typer.Option(False, "--json", help="Machine-readable output."),
     plot: Path | None = typer.Option(None, "--plot", help="Write a PNG: pressure and "
-                                     "deformed profile (or μ(v) for a sweep)."),
+                                     "deformed profile, the contact map of a map (or μ(v) "
+                                     "for a sweep)."),
     map_file: Path | None = typer.Option(None, "--map", help="Solve on a height map file "
                                          "(text grid, .npy, x3p, ...) instead of a sine "
                                          "series; sliding along its x."),
@@ -182,9 +187,6 @@ def command(
                               amplitudes=amplitudes, phases=phases, period=period, n=n)
         if periodize not in ("mirror", "none"):
             raise InputError(f"--periodize: expected 'mirror' or 'none', got {periodize!r}")
-        if plot is not None and velocities is None and cfg.get("velocities") is None:
-            raise InputError("--plot: a single solve on a map is not drawn yet; give "
-                             "--velocities for the μ(v) figure")
         hmap = load_map(map_file, dx=map_dx, periodize=periodize)[1]
     ph = _floats("phases", phases) if phases is not None else cfg.get("phases")
     surf = None if map_file is not None else _surface(

@@ -86,23 +86,35 @@ def plot_map_spectrum(ds: xr.Dataset, path: Path) -> Path:
     return _save(fig, path)
 
 
-def plot_contact_map(ds: xr.Dataset, path: Path) -> Path | None:
-    """The VHS contact pressure [MPa] at the kept speed and load (None without the VHS)."""
-    if "contact_pressure" not in ds:
-        return None
+def draw_contact_map(x: np.ndarray, y: np.ndarray, pressure: np.ndarray, title: str,
+                     path: Path) -> Path:
+    """A contact pressure map [MPa] over ``x`` (sliding) and ``y`` [mm]."""
     plt = _plt()
-    p = ds["contact_pressure"]
+    p = np.asarray(pressure)
     fig, ax = plt.subplots(figsize=(5.6, 4.6))
-    im = ax.pcolormesh(ds["x"], ds["y"], np.where(p > 0, p, np.nan), shading="auto",
-                       cmap="magma_r")
+    im = ax.pcolormesh(x, y, np.where(p > 0, p, np.nan), shading="auto", cmap="magma_r")
     fig.colorbar(im, ax=ax, label="contact pressure σ [MPa]")
     ax.set_aspect("equal")
     ax.set_xlabel("x [mm] (sliding)")
     ax.set_ylabel("y [mm]")
-    a = p.attrs
-    ax.set_title(f"VHS, v = {speed_text(a['velocity'])}, σ0 = {a['mean_pressure']:g} MPa: "
-                 f"μ = {a['friction']:.3f}, A/A0 = {a['contact_fraction']:.3f}", fontsize=9)
+    ax.set_title(title, fontsize=9)
     return _save(fig, path)
+
+
+def contact_title(velocity: float, mean_pressure: float, friction: float,
+                  contact_fraction: float) -> str:
+    """The title of a VHS contact map."""
+    return (f"VHS, v = {speed_text(velocity)}, σ0 = {mean_pressure:g} MPa: "
+            f"μ = {friction:.3f}, A/A0 = {contact_fraction:.3f}")
+
+
+def plot_contact_map(ds: xr.Dataset, path: Path) -> Path | None:
+    """The VHS contact pressure [MPa] at the kept speed and load (None without the VHS)."""
+    if "contact_pressure" not in ds:
+        return None
+    a = ds["contact_pressure"].attrs
+    return draw_contact_map(ds["x"], ds["y"], ds["contact_pressure"], contact_title(
+        a["velocity"], a["mean_pressure"], a["friction"], a["contact_fraction"]), path)
 
 
 def plot_map_friction(ds: xr.Dataset, path: Path) -> Path:
