@@ -68,6 +68,11 @@ def test_meanfield_on_a_map_is_meanfield_on_its_periodogram(synthetic_run):
                                                                    rel=1e-12)
 
 
+def test_the_recorded_config_reparses_to_the_same_run(synthetic_run):
+    cfg = parse_config(json.loads(synthetic_run.attrs["config"]))
+    assert cfg.surface.map.synthetic.seed == 4 and list(cfg.models) == ["vhs", "meanfield"]
+
+
 def test_physics_of_the_map_run(synthetic_run):
     ds = synthetic_run.sel(model="vhs")
     # more load, more contact; friction of SBR at 1 and 100 mm/s is positive
@@ -112,6 +117,7 @@ def test_hybrids_on_a_map_are_solve_map_hybrid_with_the_linear_law():
     ({"synthetic": SYN}, {"models": ["vhs", "fem"]}, "not models fem"),
     ({"synthetic": SYN}, {"law": {"pressures": [0.1, 1.0]}}, "linear law of its cell"),
     ({"synthetic": SYN}, {"realizations": 3}, "realizations > 1"),
+    ({"synthetic": SYN}, {"halfspace": {"n": 1024}}, "solved on its own grid"),
     ({"synthetic": {**SYN, "hurst": 1.2}}, {}, "surface.map.synthetic.hurst"),
     ({"synthetic": SYN, "file": "x.txt"}, {}, "exactly one of 'file' and 'synthetic'"),
     ({"synthetic": {**SYN, "colour": 1}}, {}, "unknown key 'surface.map.synthetic.colour'"),

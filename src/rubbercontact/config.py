@@ -388,6 +388,10 @@ class RunConfig(_Strict):
         unsupported = {"models " + ", ".join(bad): bool(bad),
                        "[law] (a map's hybrid uses the linear law of its cell)":
                            self.law != LawConfig(),
+                       # by value, not by whether the key was written: a dump re-parses
+                       "halfspace.n, hybrid_n (a map is solved on its own grid)":
+                           (self.halfspace.n, self.halfspace.hybrid_n)
+                           != (HalfSpaceConfig().n, HalfSpaceConfig().hybrid_n),
                        "loads.contact_areas": self.loads.contact_areas is not None,
                        "realizations > 1": self.realizations > 1,
                        "temperatures": self.temperatures is not None,

@@ -216,7 +216,8 @@ def _dataset(cfg, hmap, material, models, speeds, pressures, data, status, total
         "title": "rubbercontact results on a height map",
         "rubbercontact_version": __version__,
         "surface_kind": "map",
-        "config": cfg.model_dump_json(),
+        # with the models it ran: the dump re-parses to the same run
+        "config": cfg.model_copy(update={"models": list(models)}).model_dump_json(),
         "surface": json.dumps(map_info(hmap, cfg.surface.m2_threshold), default=str),
         "material": json.dumps(material.as_dict()),
         "timings_s": json.dumps({"total": total}),
