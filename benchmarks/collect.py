@@ -15,7 +15,8 @@ PARTS = [("halfspace.md", "Half-space (BEM) solver"),
          ("prony_fit.md", "Prony fit of DMA data against pyvisco"),
          ("meanfield.md", "Mean-field model"),
          ("strips.md", "Mean-field strip cascade, against a baseline"),
-         ("flash.md", "Mean-field flash temperature")]
+         ("flash.md", "Mean-field flash temperature"),
+         ("maps.md", "Areal maps: the 2D models")]
 
 
 def main() -> None:
