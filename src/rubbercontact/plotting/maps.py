@@ -119,21 +119,8 @@ def plot_contact_map(ds: xr.Dataset, path: Path) -> Path | None:
 
 def plot_map_friction(ds: xr.Dataset, path: Path) -> Path:
     """μ and ``A_c/A_0`` against the mean pressure, per model (colour) and speed (marker)."""
-    plt = _plt()
-    fig, (ax1, ax2) = plt.subplots(1, 2, figsize=(10, 4))
-    marks = "osd^v<>p*h"
-    for i, m in enumerate(ds["model"].values):
-        for j, v in enumerate(ds["velocity"].values):
-            r = ds.sel(model=m, velocity=v)
-            kw = {"color": f"C{i}", "marker": marks[j % len(marks)], "ms": 4}
-            ax1.plot(ds["pressure"], r["friction"], label=f"{m}, {speed_text(v)}", **kw)
-            ax2.plot(ds["pressure"], r["contact_fraction"], **kw)
-    ax1.set_ylabel("friction μ [-]")
-    ax2.set_ylabel("contact area A_c/A_0 [-]")
-    for ax in (ax1, ax2):
-        ax.set_xlabel("mean pressure σ0 [MPa]")
-        ax.grid(alpha=0.3)
-    return _save(fig, path, legends=(ax1,))
+    return _against(ds, "pressure", "velocity", "mean pressure σ0 [MPa]",
+                    lambda m, v: f"{m}, {speed_text(v)}", path, log=False)
 
 
 def plot_map_speed(ds: xr.Dataset, path: Path) -> Path | None:
@@ -141,21 +128,30 @@ def plot_map_speed(ds: xr.Dataset, path: Path) -> Path | None:
     None for a run at one speed."""
     if ds.sizes["velocity"] < 2:
         return None
+    return _against(ds, "velocity", "pressure", "sliding speed v [mm/s]",
+                    lambda m, p: f"{m}, σ0 = {p:g} MPa", path, log=True)
+
+
+def _against(ds: xr.Dataset, along: str, per: str, xlabel: str, label, path: Path,
+             log: bool) -> Path:
+    """μ and ``A_c/A_0`` against ``along``, a curve per model (colour) and ``per`` value
+    (marker); ``label(model, value)`` names a curve."""
     plt = _plt()
     fig, (ax1, ax2) = plt.subplots(1, 2, figsize=(10, 4))
     marks = "osd^v<>p*h"
     for i, m in enumerate(ds["model"].values):
-        for k, p in enumerate(ds["pressure"].values):
-            r = ds.sel(model=m, pressure=p)
+        for k, x in enumerate(ds[per].values):
+            r = ds.sel({"model": m, per: x})
             kw = {"color": f"C{i}", "marker": marks[k % len(marks)], "ms": 4}
-            ax1.plot(ds["velocity"], r["friction"], label=f"{m}, σ0 = {p:g} MPa", **kw)
-            ax2.plot(ds["velocity"], r["contact_fraction"], **kw)
+            ax1.plot(ds[along], r["friction"], label=label(m, x), **kw)
+            ax2.plot(ds[along], r["contact_fraction"], **kw)
     ax1.set_ylabel("friction μ [-]")
     ax2.set_ylabel("contact area A_c/A_0 [-]")
     for ax in (ax1, ax2):
-        ax.set_xscale("log")
-        ax.set_xlabel("sliding speed v [mm/s]")
-        ax.grid(alpha=0.3, which="both")
+        if log:
+            ax.set_xscale("log")
+        ax.set_xlabel(xlabel)
+        ax.grid(alpha=0.3, which="both" if log else "major")
     return _save(fig, path, legends=(ax1,))
 
 
