@@ -132,6 +132,11 @@ class FemConfig(_Strict):
     steady: dict[str, Any] = Field(
         default_factory=dict, description="controls of the steady solver "
                                           "(rubbercontact.fem.SteadyOptions fields)")
+    numerics: dict[str, Any] = Field(
+        default_factory=dict, description="the FEM's own numerics by name "
+                                          "(rubbercontact.fem.FemOptions fields not set "
+                                          "above: penalty_factor, contact, bulk_modulus, "
+                                          "newton_tol, ...)")
 
     @field_validator("mesh", "full_mesh")
     @classmethod
@@ -164,7 +169,23 @@ class FemConfig(_Strict):
             raise ValueError(f"steady: unknown key(s) {sorted(unknown)}; allowed: "
                              f"{', '.join(SteadyOptions.__dataclass_fields__)}")
         SteadyOptions(**self.steady).validate()
+        self._numerics()
         return self
+
+    def _numerics(self) -> None:
+        """``numerics`` holds FemOptions fields that have no key of their own here."""
+        from .fem.options import FemOptions
+
+        allowed = set(FemOptions.__dataclass_fields__) - set(type(self).model_fields) - {
+            "transient"}
+        unknown = set(self.numerics) - allowed
+        if unknown:
+            raise ValueError(f"numerics: unknown or set elsewhere {sorted(unknown)}; "
+                             f"allowed: {', '.join(sorted(allowed))}")
+        try:
+            FemOptions(**self.numerics)
+        except InputError as exc:
+            raise ValueError(f"numerics: {exc}") from None
 
     def options(self, material, full: bool = False):
         """The :class:`~rubbercontact.fem.FemOptions` of the law cell, or of the full-surface
@@ -186,7 +207,7 @@ class FemConfig(_Strict):
             grading=self.full_grading if full else self.grading,
             contact_points=self.contact_points, history_order=self.history_order,
             viscous_model=self.viscous_model, solver=self.solver,
-            steady=SteadyOptions(**self.steady), transient=transient)
+            steady=SteadyOptions(**self.steady), transient=transient, **self.numerics)
 
 
 class LawConfig(_Strict):
