@@ -1,11 +1,11 @@
 """Height maps on the command line: ``rubbercontact roughness map FILE`` and the map of
 ``rubbercontact halfspace --map FILE``.
 
-A map file is read by :func:`rubbercontact.io.read_map` (text grids, ``.npy``, instrument
-files through SurfaceTopography), its mean or least-squares plane removed, and made one
-period for the FFT (mirrored, or taken as one period as it is for a map that is periodic
-already, e.g. a synthetic one). The statistics are those of
-:mod:`rubbercontact.roughness.mapstats` and the octave bands of
+A map file is read by :func:`rubbercontact.io.mapload.load_map` (the map runs' loader too:
+text grids, ``.npy``, instrument files through SurfaceTopography), its mean or
+least-squares plane removed, and made one period for the FFT (mirrored, or taken as one
+period as it is for a map that is periodic already, e.g. a synthetic one). The statistics
+are those of :mod:`rubbercontact.roughness.mapstats` and the octave bands of
 :func:`rubbercontact.roughness.octave_bands`, on the periodized map.
 """
 
@@ -19,39 +19,7 @@ import numpy as np
 import typer
 
 from ..errors import InputError
-
-Detrend = Literal["none", "mean", "plane"]
-Periodize = Literal["mirror", "none"]
-
-
-def load_map(path: Path, *, fmt: str = "auto", unit: str | None = None,
-             dx: float | None = None, nan: str = "error", detrend: Detrend | None = None,
-             periodize: Periodize = "mirror"):
-    """The map of ``path`` made ready for the spectral statistics and the half-space solve.
-
-    Parameters
-    ----------
-    path
-        The map file.
-    fmt, unit, dx, nan
-        As :func:`rubbercontact.io.read_map` (``dx`` [``unit``], default mm).
-    detrend
-        ``"plane"`` (a measured map's tilt), ``"mean"`` or ``"none"``; default ``"plane"``
-        when mirrored, ``"mean"`` for a map that is one period already (it has no tilt).
-    periodize
-        ``"mirror"`` (a measured map) or ``"none"`` (the map is one period already).
-
-    Returns
-    -------
-    tuple of HeightMap
-        The detrended map as read, and its periodic version [mm].
-    """
-    from ..io.maps import read_map
-
-    if detrend is None:
-        detrend = "plane" if periodize == "mirror" else "mean"
-    hmap = read_map(path, format=fmt, unit=unit, dx=dx, nan=nan).detrended(detrend)
-    return hmap, hmap.periodized(periodize)
+from ..io.mapload import load_map
 
 
 def map_report(hmap, periodic, m2_threshold: float = 1.0) -> dict:
