@@ -20,7 +20,9 @@ The solves run one after the other in this process (no task cache, no Dask worke
 What a map run does not do yet (the hybrids, target contact areas, temperatures,
 realizations, adhesion, the flash temperature) is refused when the config is loaded
 (:class:`rubbercontact.config.RunConfig`). The results have dims ``model, velocity,
-pressure`` and the map's provenance and statistics in ``attrs["surface"]``.
+pressure``, the map's provenance and statistics in ``attrs["surface"]`` and, per model,
+where the run leaves its validated class in ``attrs["validity_<model>"]``
+(:mod:`rubbercontact.validity.maps`).
 """
 
 from __future__ import annotations
@@ -58,11 +60,10 @@ def build_map(spec: MapInput):
         s = spec.synthetic
         return self_affine_map((s.points, s.points), s.size, s.hurst,
                                rms_gradient=s.rms_gradient, seed=s.seed)
-    from ..io.maps import read_map
+    from ..io.mapload import load_map
 
-    detrend = spec.detrend or ("plane" if spec.periodize == "mirror" else "mean")
-    hmap = read_map(spec.file, format=spec.format, unit=spec.unit, dx=spec.dx, nan=spec.nan)
-    return hmap.detrended(detrend).periodized(spec.periodize)
+    return load_map(spec.file, fmt=spec.format, unit=spec.unit, dx=spec.dx, nan=spec.nan,
+                    detrend=spec.detrend, periodize=spec.periodize)[1]
 
 
 def map_models(cfg: RunConfig) -> list[str]:
@@ -177,7 +178,21 @@ def run_map(cfg: RunConfig) -> xr.Dataset:
                     contact = keep["result"]
     ds = _dataset(cfg, hmap, material, models, speeds, pressures, data, status,
                   time.perf_counter() - t_start)
+    ds = _with_validity(ds, hmap, material, cfg.surface.m2_threshold)
     return _with_fields(ds, hmap, contact)
+
+
+def _with_validity(ds: xr.Dataset, hmap, material, threshold: float) -> xr.Dataset:
+    """Each model's notes where the run leaves its validated class, one line each, in
+    ``attrs["validity_<model>"]`` as a 1D run has them (:mod:`rubbercontact.validity.maps`:
+    every model's class was measured in 1D, so each has at least that note)."""
+    from ..validity import as_attrs
+    from ..validity.maps import assess_map_run
+
+    notes = assess_map_run(ds, hmap, material, threshold)
+    for m in ds["model"].values:
+        ds.attrs.update(as_attrs(str(m), notes))
+    return ds
 
 
 def contact_point(speeds: np.ndarray, pressures: np.ndarray) -> tuple[int, int]:
@@ -246,6 +261,11 @@ def map_summary(ds: xr.Dataset) -> str:
                 lines.append(f"{m:>15} {v:10.4g} {p:12.4g} {float(r['friction']):9.5f} "
                              f"{float(r['contact_fraction']):8.4f} "
                              f"{float(r['wall_time']):9.3g}")
+    notes = [line for k, v in ds.attrs.items() if k.startswith("validity_")
+             for line in str(v).splitlines() if line]
+    if notes:    # results written before the map runs had notes have none
+        lines += ["", "outside the validated class (docs/guide/models.md, 'Where each model "
+                      "was validated'):", *(f"  {n}" for n in notes)]
     return "\n".join(lines)
 
 

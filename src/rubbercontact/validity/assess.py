@@ -43,11 +43,15 @@ class SurfaceStats:
         Per-wave rms slopes ``q Δ/√2``, in the same order.
     m2_threshold
         The split: waves with ``m2 > m2_threshold`` are the high-slope part.
+    dimension
+        1 for profiles (sine series, line scans), 2 for a height map's octave bands
+        (:mod:`.maps`).
     """
 
     wavelengths: tuple[float, ...]
     m2: tuple[float, ...]
     m2_threshold: float = 1.0
+    dimension: int = 1
 
     def __post_init__(self) -> None:
         lam, m2 = np.asarray(self.wavelengths, float), np.asarray(self.m2, float)
@@ -60,6 +64,9 @@ class SurfaceStats:
             raise InputError(f"surface: rms slopes m2 must be >= 0, got {m2.tolist()}")
         if not (math.isfinite(self.m2_threshold) and self.m2_threshold > 0):
             raise InputError(f"surface: m2_threshold must be > 0, got {self.m2_threshold!r}")
+        if self.dimension not in (1, 2):
+            raise InputError(f"surface: dimension must be 1 (profiles) or 2 (a map), got "
+                             f"{self.dimension!r}")
 
     @classmethod
     def from_series(cls, surface, m2_threshold: float = 1.0) -> SurfaceStats:
@@ -78,7 +85,8 @@ class SurfaceStats:
                  else np.array([]))
         ordered = np.sort(lam)
         return {"m2": m2, "m2_low": m2[~hs], "m2_high": m2[hs], "split_ratio": ratio,
-                "spacing": ordered[1:] / ordered[:-1]}
+                "spacing": ordered[1:] / ordered[:-1],
+                "dimension": np.array([float(self.dimension)])}
 
     def wavenumbers(self, high_only: bool) -> np.ndarray:
         """``2π/λ`` [1/mm] of every wave, or of the high-slope waves only."""
@@ -318,6 +326,9 @@ def _what(c: Condition, values: np.ndarray, surface: SurfaceStats, p: SpeedPoint
                 "no speed (the waves span more frequencies than were measured)")
         waves = "high-slope waves'" if c.quantity == "frequency_high" else "waves'"
         return f"its {waves} frequencies q·v leave the measured band; validated speeds {span}"
+    if c.quantity == "dimension":
+        return ("validated on one-dimensional surfaces only; on maps only the hybrid's scale "
+                "split was measured, with the linear law against the 2D VHS")
     if c.quantity == "law_pressure":
         return (f"local pressures reach {p.local_pressure:.3g} MPa, the law's FEM points end "
                 f"at {p.law_top:.3g} MPa (the law is extrapolated)")

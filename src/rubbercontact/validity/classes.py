@@ -8,7 +8,7 @@ validated"); :mod:`.assess` checks a run against these classes.
 from __future__ import annotations
 
 import math
-from dataclasses import dataclass
+from dataclasses import dataclass, replace
 
 import numpy as np
 
@@ -19,6 +19,8 @@ SECTION3_REPORT = "VALIDATION.md"
 SPLIT_REPORT = "docs/validation/scale_separation.md"
 MEANFIELD_REPORT = "docs/validation/meanfield.md"
 LAW_REPORT = "docs/guide/law.md"
+#: The one measurement on height maps: the hybrid's split, linear law, against the 2D VHS.
+MAPS_REPORT = "docs/validation/maps_split.md"
 
 #: Largest per-wave rms slope of the FEM-against-VHS sweep on one sine (the paper's m2 of
 #: its steep wave), docs/validation/slope_nonlinearity.md; the FEM law and the full FEM are
@@ -80,6 +82,7 @@ QUANTITIES = {
     "frequency": "wave frequency q·v",
     "frequency_high": "high-slope wave frequency q·v",
     "law_pressure": "local pressure / the law's highest FEM pressure",
+    "dimension": "surface dimension (1: profiles, 2: maps)",
 }
 #: The quantities that vary with the speed (the rest are the surface's).
 SPEED_QUANTITIES = frozenset({"contact", "frequency", "frequency_high", "law_pressure"})
@@ -166,7 +169,17 @@ def _band(wavelengths: tuple[float, float], speeds: tuple[float, float]) -> tupl
             2 * math.pi / min(wavelengths) * speeds[1])
 
 
+def _with_dimension(cls: ValidatedClass) -> ValidatedClass:
+    """``cls`` bounded to the one-dimensional surfaces every class was measured on."""
+    profiles = Condition("dimension", high=1.0, report=MAPS_REPORT)
+    return replace(cls, conditions=(profiles, *cls.conditions))
+
+
 def _classes() -> dict[str, ValidatedClass]:
+    return {m: _with_dimension(c) for m, c in _classes_1d().items()}
+
+
+def _classes_1d() -> dict[str, ValidatedClass]:
     slope = Condition("m2", high=MEASURED_SLOPE, report=VHS_REPORT)
     high = Condition("m2_high", high=MEASURED_SLOPE, report=SECTION3_REPORT)
     split_band = _band((SPLIT_HIGH_WAVELENGTH,) * 2, SPLIT_SPEEDS)
