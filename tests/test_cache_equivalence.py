@@ -86,7 +86,7 @@ def test_fem_options_of_the_penalty_contact_keep_their_arguments():
     # penalty's FEM tasks: the reference FEM solves were written before it existed.
     from rubbercontact.fem import FemOptions
 
-    legacy = {f for f in FemOptions().to_dict()}
+    legacy = set(FemOptions().to_dict())
     assert not legacy & {"contact", "barrier_distance", "barrier_stiffness"}
     barrier = FemOptions(contact="barrier")
     assert FemOptions.from_dict(barrier.to_dict()) == barrier
