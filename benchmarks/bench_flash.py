@@ -34,6 +34,8 @@ from rubbercontact.thermal import flash_contact
 
 ROOT = Path(__file__).resolve().parents[1]
 sys.path.insert(0, str(ROOT))
+from bench_meanfield import _cpu  # noqa: E402 - one CPU-name reader for the benchmarks
+
 from studies._meanfield_cases import self_affine_profile  # noqa: E402
 
 SBR = rc.materials.sbr()
@@ -52,16 +54,6 @@ def _best(fn, repeat: int = 3) -> tuple[float, object]:
         out = fn()
         times.append(time.perf_counter() - t0)
     return min(times), out
-
-
-def _cpu() -> str:
-    try:
-        for line in Path("/proc/cpuinfo").read_text().splitlines():
-            if line.startswith("model name"):
-                return line.split(":", 1)[1].strip()
-    except OSError:
-        pass
-    return platform.processor() or "unknown CPU"
 
 
 def _halfspace() -> tuple[list[str], float, float]:

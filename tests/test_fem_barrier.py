@@ -4,6 +4,7 @@ never lets a contact point cross the surface."""
 
 import numpy as np
 import pytest
+from test_fem_contact import _global_stiffness  # the same assembly of segment stiffnesses
 
 import rubbercontact as rc
 from rubbercontact.errors import InputError
@@ -42,14 +43,6 @@ def test_barrier_law_puts_the_gap_at_a_tenth_of_its_reach_under_the_reference_pr
     assert law.dhat == pytest.approx(2e-3)
     _, db, _ = barrier_derivatives(np.array([law.dhat / 10]), law.dhat)
     assert -law.kappa * db[0] == pytest.approx(2.0, rel=1e-12)
-
-
-def _global_stiffness(cs, n):
-    K = np.zeros((2 * n, 2 * n))
-    for k in range(n):
-        d = np.array([2 * k, 2 * k + 1, 2 * ((k + 1) % n), 2 * ((k + 1) % n) + 1])
-        K[np.ix_(d, d)] += cs.stiffness[k]
-    return K
 
 
 @pytest.mark.parametrize("points", [1, 4])
