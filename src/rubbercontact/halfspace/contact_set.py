@@ -28,11 +28,16 @@ points) is solved directly: the set's block of the circulant ``M`` is gathered f
 and the bordered system factorised (in single precision, refined to double:
 :func:`mixed_precision_solve`). That is exact and, for the few percent of contact of a
 rubber on a road, cheaper than GMRES, each of whose iterations costs two FFTs of the whole
-grid. Iteration counts and timings are measured in ``benchmarks/halfspace.md``.
+grid. On maps of at least 256² points (``options.single_precision_2d``) the GMRES iterations
+run with single-precision FFTs and double-precision residuals refine the solution to the
+same tolerance (:func:`_refined_solve_single`; float32 transforms cost 0.2–0.45 of float64
+ones there). Iteration counts and timings are measured in ``benchmarks/halfspace.md`` and
+``benchmarks/maps.md``.
 """
 
 from __future__ import annotations
 
+from collections.abc import Callable
 from dataclasses import dataclass
 
 import numpy as np
@@ -213,16 +218,11 @@ def contact_solve(prob: Problem, idx: np.ndarray, rhs: np.ndarray, total: float,
     if len(prob.shape) == 1 and (prob.size <= opts.dense_max_points
                                  or nb <= opts.dense_max_set):
         return _solve_dense(prob, idx, rhs, total, c)
+    single = (opts.single_precision_2d and len(prob.shape) == 2
+              and prob.size >= _SINGLE_MIN_POINTS)
     buf = np.zeros(prob.size)
     m_diag = prob.compliance_diagonal
-
-    def op(v):
-        buf[idx] = v
-        out = prob.apply(prob.compliance, buf)[idx]
-        buf[idx] = 0.0
-        if c is not None:
-            out += c * v
-        return out - out.mean()
+    op = _restricted_operator(prob, idx, c, buf, single=False)
 
     if extra_diag is not None and extra_diag.any():
         cont = ~extra_diag
@@ -243,15 +243,19 @@ def contact_solve(prob: Problem, idx: np.ndarray, rhs: np.ndarray, total: float,
             kernels = [kn.stiffness_kernel(prob.compliance, sh, hermitian=herm)
                        for sh in shifts]
             weights = _shift_weights(cc, shifts)
+    if single:
+        kernels = [kn.single(k) for k in kernels]
 
     def pre(v):
         v = v - v.mean()
         buf[idc] = v if cont is None else v[cont]
         if weights is None:
-            pc = prob.apply(kernels[0], buf)[idc]
+            apply = prob.apply_single if single else prob.apply
+            pc = apply(kernels[0], buf)[idc].astype(float, copy=False)
         else:
             prob.matvecs += len(kernels)
-            spec = kn.forward(buf.reshape(prob.shape))
+            field = buf.reshape(prob.shape)
+            spec = kn.forward(field.astype(np.float32) if single else field)
             pc = weights[0] * kn.inverse(spec * kernels[0], prob.shape).ravel()[idc]
             for kern, wgt in zip(kernels[1:], weights[1:], strict=True):
                 pc += wgt * kn.inverse(spec * kern, prob.shape).ravel()[idc]
@@ -265,6 +269,8 @@ def contact_solve(prob: Problem, idx: np.ndarray, rhs: np.ndarray, total: float,
         return out - out.mean()
 
     base = np.full(nb, total / nb)
+    if single:
+        return _refined_solve_single(prob, idx, rhs, c, base, x0, rtol, pre, kernels, buf)
     b = rhs - (op(base) + 0.0)  # op already removes the mean; rhs mean is irrelevant (λ)
     b = b - b.mean()
     if np.linalg.norm(b) <= 1e-14 * np.linalg.norm(rhs):
@@ -286,8 +292,100 @@ def contact_solve(prob: Problem, idx: np.ndarray, rhs: np.ndarray, total: float,
         sol = gmres(op, pre, b, x0=y0, rtol=rtol)
         its = sol.iterations
     x = base + sol.x
+    res = _set_residual(prob, idx, rhs, c, x, buf)
+    return LinearSolve(x, float(res.mean()), its, sol.residual)
+
+
+def _restricted_operator(prob: Problem, idx: np.ndarray, c: np.ndarray | None,
+                         buf: np.ndarray, single: bool) -> Callable[[np.ndarray], np.ndarray]:
+    """``v ↦ (M v)_B + c v`` with its mean removed (the subspace ``Σ x = 0``); ``buf`` a zero
+    grid-sized work array; ``single``: single-precision FFTs."""
+    kernel = prob.compliance_single() if single else prob.compliance
+    apply = prob.apply_single if single else prob.apply
+
+    def op(v):
+        buf[idx] = v
+        out = apply(kernel, buf)[idx].astype(float, copy=False)  # float64 Krylov vectors
+        buf[idx] = 0.0
+        if c is not None:
+            out = out + c * v
+        return out - out.mean()
+
+    return op
+
+
+def _set_residual(prob: Problem, idx: np.ndarray, rhs: np.ndarray, c: np.ndarray | None,
+                  x: np.ndarray, buf: np.ndarray) -> np.ndarray:
+    """``rhs − (M x)_B − c x`` in double precision (its mean is ``λ``)."""
     buf[idx] = x
     mx = prob.apply(prob.compliance, buf)[idx]
     buf[idx] = 0.0
-    res = rhs - mx - (0.0 if c is None else c * x)
-    return LinearSolve(x, float(res.mean()), its, sol.residual)
+    return rhs - mx - (0.0 if c is None else c * x)
+
+
+#: Maps of fewer points keep double precision: an FFT pair in single precision costs 0.8 of
+#: a double one at 64², 0.7 at 128², 0.2 at 256² (measured, one core; the double-precision
+#: transforms leave the cache from 256² on), and the round-off of a single-precision solve
+#: breaks symmetries that small test maps pin (μ = 0 to 1e-12 on an elastic map).
+_SINGLE_MIN_POINTS = 256 * 256
+#: Single-precision GMRES cycles of :func:`_refined_solve_single` reduce the residual by
+#: at most this factor each (float32 FFTs round at ~1e-7 relative).
+_SINGLE_FLOOR = 1e-5
+#: Refinement cycles allowed (each a GMRES solve of the current residual).
+_SINGLE_CYCLES = 8
+
+
+def _refined_solve_single(prob: Problem, idx: np.ndarray, rhs: np.ndarray,
+                          c: np.ndarray | None, base: np.ndarray, x0: np.ndarray | None,
+                          rtol: float, pre: Callable[[np.ndarray], np.ndarray],
+                          kernels: list[np.ndarray], buf: np.ndarray) -> LinearSolve:
+    """Mixed-precision iterative refinement (maps, ``options.single_precision_2d``).
+
+    Each cycle: the double-precision residual ``r`` of the set's system (one float64 FFT
+    pair), then GMRES on the correction with the operator and preconditioner in single
+    precision to ``max(rtol |b|/|r|, _SINGLE_FLOOR)``. Stops when ``|r| <= rtol |b|`` in
+    double precision (``b`` the residual of the uniform start), i.e. the test of the
+    double-precision path; the last residual gives ``λ``. Each float32 FFT pair costs
+    0.3–0.45 of a float64 one on 512²–1024² (measured).
+    """
+    op32 = _restricted_operator(prob, idx, c, buf, single=True)
+    res = _set_residual(prob, idx, rhs, c, base, buf)
+    b = res - res.mean()
+    bnorm = float(np.linalg.norm(b))
+    if bnorm <= 1e-14 * float(np.linalg.norm(rhs)):
+        return LinearSolve(base, float(res.mean()), 0, 0.0)  # the uniform pressure (above)
+    x, r, exact = base, b, True
+    if x0 is not None:
+        # warm start: its residual in single precision; the double-precision test follows
+        # the first cycle
+        y0 = x0 - x0.mean()
+        x, r, exact = base + y0, b - op32(y0), False
+    its = 0
+    budget = [prob.options.complex_preconditioner_maxiter if np.iscomplexobj(kernels[0]) else 0]
+    for _ in range(_SINGLE_CYCLES):
+        rnorm = float(np.linalg.norm(r))
+        if exact and rnorm <= rtol * bnorm:
+            break
+        sol = _single_cycle(op32, pre, r, max(rtol * bnorm / rnorm, _SINGLE_FLOOR), kernels,
+                            budget)
+        its += sol.iterations
+        x = x + sol.x
+        res = _set_residual(prob, idx, rhs, c, x, buf)
+        r, exact = res - res.mean(), True
+    return LinearSolve(x, float(res.mean()), its, float(np.linalg.norm(r)) / bnorm)
+
+
+def _single_cycle(op32, pre, r: np.ndarray, rtol: float, kernels: list[np.ndarray],
+                  budget: list[int]):
+    """One GMRES solve of the correction; with the complex preconditioner while
+    ``budget[0]`` iterations remain, then (as the double-precision path) the Hermitian
+    part's inverse, converted in place in ``kernels``."""
+    if budget[0] <= 0:
+        return gmres(op32, pre, r, rtol=rtol)
+    sol = gmres(op32, pre, r, rtol=rtol, maxiter=budget[0])
+    budget[0] -= sol.iterations
+    if sol.residual > rtol:
+        _to_hermitian(kernels)
+        kernels[:] = [kn.single(k) for k in kernels]
+        budget[0] = 0
+    return sol

@@ -174,7 +174,7 @@ def newton_law(prob: Problem, law: InteractionLaw, tol: float, max_iter: int,
             lin = contact_solve(prob, idx, rhs, total, shifted_preconditioner(prob, c, contact),
                                 c=c, rtol=_newton_rtol(tol, rnorm / snorm, loose,
                                                        inverse is not None),
-                                extra_diag=~contact, multi_shift=prob.options.multi_shift)
+                                extra_diag=~contact, multi_shift=_multi_shift(prob))
             lin_its += lin.iterations
             dsig[idx] = lin.x
             dubar = lin.multiplier
@@ -206,6 +206,12 @@ def newton_law(prob: Problem, law: InteractionLaw, tol: float, max_iter: int,
     res = rnorm / snorm
     return Solution(sigma, u, w, ubar, it, res, res <= tol,
                     {"linear_iterations": lin_its, "history": history, "steps": steps})
+
+
+def _multi_shift(prob: Problem) -> bool:
+    """Whether the Newton systems use the multi-shift preconditioner (options)."""
+    opts = prob.options
+    return opts.multi_shift and (len(prob.shape) == 1 or opts.multi_shift_2d)
 
 
 def newton_from(prob: Problem, law: InteractionLaw, start: Solution, tol: float,

@@ -62,6 +62,19 @@ class SolverOptions:
         As ``coarse_min_points``, for the hard wall + soft law stage.
     wall_soft_linear_rtol : float, default 1e-3
         GMRES tolerance of one step of the hard wall + soft law active-set Newton.
+    coarse_min_side_2d : int or None, default 128
+        Maps: smallest side of the coarse-grid starts (viscoelastic hard wall, hard wall +
+        soft law, elastic active set); a map of even sides at least twice this starts from
+        the solution on every 2nd point of each axis (recursively). ``None``: no coarse-grid
+        start on maps. The 1D switches above (``None``) turn it off as well.
+    multi_shift_2d : bool, default False
+        Maps: ``multi_shift`` also on maps. Off by default: on the self-affine maps of
+        ``benchmarks/maps.md`` it saved no GMRES iterations and doubled their FFTs.
+    single_precision_2d : bool, default True
+        Maps of at least 256² points: the GMRES iterations of the contact-set systems apply
+        the operator and the
+        preconditioner with single-precision FFTs, and double-precision residuals refine the
+        solution to the requested tolerance (:mod:`~rubbercontact.halfspace.contact_set`).
     """
 
     complex_preconditioner: bool = True
@@ -77,6 +90,9 @@ class SolverOptions:
     wall_soft_active_set: bool = True
     wall_soft_coarse_min_points: int | None = 256
     wall_soft_linear_rtol: float = 1e-3
+    coarse_min_side_2d: int | None = 128
+    multi_shift_2d: bool = False
+    single_precision_2d: bool = True
 
     def __post_init__(self) -> None:
         for f in fields(self):

@@ -4,8 +4,9 @@ A periodic surface is sampled on a uniform grid (1D ``(n,)`` or 2D ``(ny, nx)``,
 the last axis ``x``). Every operator is applied with one ``rfftn``/``irfftn`` pair on a
 precomputed kernel (:mod:`~rubbercontact.halfspace.kernels`); :class:`Problem` counts these
 applications (``matvecs``). The multilevel starts use the same problem on every 4th point of a
-1D grid: same period, and the first ``n/8 + 1`` wavenumbers of the fine rfft grid, hence the
-same ``M(q)`` there. Every algorithm returns a :class:`Solution`.
+1D grid, or on every 2nd point of each axis of a map: same period, and the lowest
+wavenumbers of the fine rfft grid, hence the same ``M(q)`` there. Every algorithm returns a
+:class:`Solution`.
 """
 
 from __future__ import annotations
@@ -101,6 +102,7 @@ class Problem:
     _column: np.ndarray | None = None
     #: ``(set's index bytes, float32 LU factor)`` of the last dense contact-set solve
     _dense_lu: tuple | None = None
+    _compliance32: np.ndarray | None = None
 
     @property
     def size(self) -> int:
@@ -114,6 +116,18 @@ class Problem:
     def apply(self, kernel: np.ndarray, flat: np.ndarray) -> np.ndarray:
         self.matvecs += 1
         return kn.apply_kernel(kernel, flat.reshape(self.shape)).ravel()
+
+    def apply_single(self, kernel: np.ndarray, flat: np.ndarray) -> np.ndarray:
+        """:meth:`apply` in single precision: float32 field, ``kernel`` complex64 or float32
+        (:func:`~.kernels.single`); one FFT pair in ``matvecs``, float32 result."""
+        self.matvecs += 1
+        return kn.apply_kernel(kernel, flat.reshape(self.shape).astype(np.float32)).ravel()
+
+    def compliance_single(self) -> np.ndarray:
+        """``M`` in single precision (cached)."""
+        if self._compliance32 is None:
+            self._compliance32 = kn.single(self.compliance)
+        return self._compliance32
 
     def displacement(self, sigma: np.ndarray) -> np.ndarray:
         return self.apply(self.compliance, sigma)
@@ -149,26 +163,67 @@ class Problem:
                        self.options)
 
     def can_coarsen(self, min_points: int | None) -> bool:
-        """Whether a multilevel start applies: 1D, ``N`` divisible by 4, ``N/4 >= min_points``."""
-        n = self.size
-        return (min_points is not None and len(self.shape) == 1 and n % COARSE_FACTOR == 0
-                and n // COARSE_FACTOR >= min_points)
+        """Whether a multilevel start applies: 1D, ``N`` divisible by 4, ``N/4 >= min_points``;
+        a map, both sides even and halved at least ``options.coarse_min_side_2d`` (and
+        ``min_points``, the 1D switch, not ``None``)."""
+        if min_points is None:
+            return False
+        if len(self.shape) == 1:
+            n = self.size
+            return n % COARSE_FACTOR == 0 and n // COARSE_FACTOR >= min_points
+        side = self.options.coarse_min_side_2d
+        return side is not None and all(n % 2 == 0 and n // 2 >= max(side, MIN_POINTS)
+                                        for n in self.shape)
 
     def coarse(self) -> Problem:
-        """The same 1D problem on every 4th grid point (same period, same kernel)."""
+        """The same problem on every 4th grid point (1D) or every 2nd point per axis (map):
+        same period, same kernel."""
+        if len(self.shape) == 2:
+            return self._coarse_map()
         nc = self.size // COARSE_FACTOR
         # the coarse rfft grid holds the first nc/2 + 1 wavenumbers of the fine one: same M(q)
         zc = self.z[::COARSE_FACTOR]
         return Problem((nc,), self.lengths, zc - zc.mean(), self.slope[::COARSE_FACTOR],
                        self.compliance[:nc // 2 + 1].copy(), self.sigma0, self.options)
 
+    def _coarse_map(self) -> Problem:
+        ny, nx = self.shape
+        cy, cx = ny // 2, nx // 2
+        # the coarse grid's wavenumbers are the fine grid's lowest: along y (full FFT axis)
+        # the first cy/2 and the last cy/2 rows (the coarse Nyquist row is the fine row
+        # −cy/2, whose M equals that of +cy/2), along x the first cx/2 + 1 columns
+        rows = np.r_[0:cy // 2, ny - cy // 2:ny]
+        comp = self.compliance[rows, :cx // 2 + 1].copy()
+        zc = self.z.reshape(self.shape)[::2, ::2]
+        sc = self.slope.reshape(self.shape)[::2, ::2]
+        return Problem((cy, cx), self.lengths, (zc - zc.mean()).ravel(), sc.ravel(), comp,
+                       self.sigma0, self.options)
+
     def refine(self, coarse_sigma: np.ndarray) -> np.ndarray:
-        """A pressure of :meth:`coarse` interpolated (periodic, linear), ``<σ> = σ0`` restored."""
+        """A pressure of :meth:`coarse` interpolated (periodic, linear; bilinear on a map),
+        ``<σ> = σ0`` restored."""
         n = self.size
-        sigma = np.interp(np.arange(n), np.arange(n // COARSE_FACTOR) * COARSE_FACTOR,
-                          coarse_sigma, period=n)
+        if len(self.shape) == 2:
+            sigma = _bilinear_double(coarse_sigma.reshape(self.shape[0] // 2,
+                                                          self.shape[1] // 2)).ravel()
+        else:
+            sigma = np.interp(np.arange(n), np.arange(n // COARSE_FACTOR) * COARSE_FACTOR,
+                              coarse_sigma, period=n)
         sigma *= self.sigma0 * n / sigma.sum()
         return sigma
+
+
+def _bilinear_double(coarse: np.ndarray) -> np.ndarray:
+    """Periodic bilinear interpolation of a 2D field onto the grid of twice its points per
+    axis (the coarse points are the fine grid's even points)."""
+    cy, cx = coarse.shape
+    fine = np.empty((2 * cy, 2 * cx))
+    right = np.roll(coarse, -1, axis=1)
+    fine[::2, ::2] = coarse
+    fine[::2, 1::2] = 0.5 * (coarse + right)
+    below = np.roll(fine[::2], -1, axis=0)
+    fine[1::2] = 0.5 * (fine[::2] + below)
+    return fine
 
 
 def _commensurate(name: str, period: float, wavelengths: np.ndarray) -> None:

@@ -46,10 +46,11 @@ All operators are applied with one ``rfftn``/``irfftn`` pair on a precomputed ke
 (:mod:`~rubbercontact.halfspace.problem`), and every algorithm reduces to linear systems on a
 contact set (:mod:`~rubbercontact.halfspace.contact_set`). Which one runs:
 
-* hard wall, elastic material or ``v = 0``: the primal–dual active-set iteration, or
-  Polonsky–Keer with ``method="pk"`` (:mod:`~rubbercontact.halfspace.hardwall`);
+* hard wall, elastic material or ``v = 0``: the primal–dual active-set iteration (started
+  from coarser grids on maps), or Polonsky–Keer with ``method="pk"``
+  (:mod:`~rubbercontact.halfspace.hardwall`);
 * hard wall, viscoelastic: the projection method in the metric of ``Re M`` with active-set
-  polishing, started from coarser grids in 1D (:mod:`~rubbercontact.halfspace.hardwall`);
+  polishing, started from coarser grids (:mod:`~rubbercontact.halfspace.hardwall`);
 * a single law: Newton from the exact hard-wall solution, the mixed (inverse-law) Newton for a
   Lennard-Jones wall (:mod:`~rubbercontact.halfspace.newton`);
 * a Lennard-Jones wall + soft law (the hybrid method's law): hard wall + soft law by a
@@ -80,7 +81,12 @@ from .._validation import positive_scalar
 from ..errors import ConvergenceError, InputError
 from ..materials.protocol import Material, check_material
 from . import kernels as kn
-from .hardwall import hard_wall_active_set, hard_wall_pk, hard_wall_viscoelastic
+from .hardwall import (
+    hard_wall_active_set,
+    hard_wall_elastic,
+    hard_wall_pk,
+    hard_wall_viscoelastic,
+)
 from .laws import InteractionLaw
 from .newton import solve_single_law
 from .options import SolverOptions
@@ -256,7 +262,7 @@ def solve_sliding(surface, period, material: Material, velocity: float,
             out = hard_wall_pk(prob, tol, 10 * max_iter)
             name = "polonsky-keer"
         elif elastic:
-            out = hard_wall_active_set(prob, tol, max_iter)
+            out = hard_wall_elastic(prob, tol, max_iter)
             name = "active-set"
         else:
             out = hard_wall_viscoelastic(prob, tol, max_iter)

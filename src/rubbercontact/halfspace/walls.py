@@ -11,7 +11,8 @@ equation is ``u = 0``, off it ``σ = f(u)`` linearised, i.e. the Newton system o
 :mod:`~rubbercontact.halfspace.newton` with ``c = 0`` on ``A``; the soft law is evaluated at
 ``u₊`` (penetration is the wall's business), line search on ``|C|₂``; (4) Newton on the full law
 from that state, ``ū`` shifted so that ``<f(u)> = σ0``. On 1D grids with ``N`` divisible by 4
-and at least four times ``options.wall_soft_coarse_min_points``, steps 1–3 are done on a 4×
+and at least four times ``options.wall_soft_coarse_min_points`` (maps: even sides at least
+twice ``options.coarse_min_side_2d``, every 2nd point per axis), steps 1–3 are done on a 4×
 coarser grid first (recursively) and step 3 restarts from the interpolated result: the active
 set changes by a few points per step where ``u`` and ``λ`` are both small (the soft law's
 pressure at contact close to what the wall carries), so from a poor start its step count grows
@@ -165,7 +166,7 @@ def _hard_wall_soft(prob: Problem, soft: InteractionLaw, tol: float,
                     max_iter: int) -> Solution | None:
     """Hard wall + soft law (steps 1–3 of the active-set path); ``None`` on failure.
 
-    On 1D grids that can be coarsened (``options.wall_soft_coarse_min_points``) it starts from
+    On grids that can be coarsened (``options.wall_soft_coarse_min_points``) it starts from
     the interpolated solution on a 4× coarser grid (recursively), as the viscoelastic hard wall.
     """
     if prob.can_coarsen(prob.options.wall_soft_coarse_min_points):

@@ -1,0 +1,163 @@
+"""The 2D half-space speed-ups against the previous path (issue 42, item 5).
+
+On maps the solver starts from coarser grids (every 2nd point per axis), solves the
+contact-set systems with single-precision FFTs refined in double precision, and leaves the
+multi-shift preconditioner off. ``PREVIOUS`` switches all three back: the solver as it was
+before, the reference here. Both stop at the same tolerance (``tol`` on the Newton residual
+``|r|/|σ|``, 1e-8 relative linear residuals for the hard wall), so two converged answers
+differ by the tolerance times the conditioning of the contact problem; the bounds below are
+those of the 1D/2D comparisons of ``tests/test_maps_models.py`` (1e-6), measured differences
+in the comments.
+"""
+
+from __future__ import annotations
+
+import numpy as np
+import pytest
+
+from rubbercontact.halfspace import (
+    LennardJonesRepulsion,
+    SolverOptions,
+    TabulatedLaw,
+    solve_sliding,
+)
+from rubbercontact.halfspace import kernels as kn
+from rubbercontact.halfspace.contact_set import contact_solve
+from rubbercontact.halfspace.problem import Problem
+from rubbercontact.materials import GeneralizedMaxwell, sbr
+from rubbercontact.roughness import SineSeries
+from rubbercontact.roughness.mapsynth import self_affine_map
+
+PREVIOUS = SolverOptions(coarse_min_side_2d=None, single_precision_2d=False, multi_shift_2d=True)
+MAT = sbr()
+#: relative agreement of μ, contact fraction and ū with the previous path
+RTOL = 1e-6
+#: relative L2 difference of the pressure fields
+PTOL = 1e-5
+
+
+@pytest.fixture(scope="module")
+def rough():
+    """A 256² self-affine map (coarsens once to 128²: the default smallest side)."""
+    return self_affine_map((256, 256), 2.0, 0.8, rms_gradient=0.5, seed=1)
+
+
+def _fem_like():
+    return TabulatedLaw(separation=[0.004, 0.008, 0.012, 0.016, 0.01867],
+                        pressure=[8, 3, 1, 0.3, 0], contact_fraction=[0.6, 0.4, 0.25, 0.1, 0],
+                        shear_stress=[2.5, 1.2, 0.4, 0.08, 0])
+
+
+def _cell_like():
+    """A soft law steep on the scale of the map (decays over 2.5 µm; the hybrid's linear law
+    of a high-slope cell has this shape): the wall + soft path's hard case."""
+    u = np.linspace(0.0, 0.0025, 26)
+    sig = 1.8 * np.exp(-u / 0.0005)
+    sig[-1] = 0.0
+    return TabulatedLaw(u, sig, contact_fraction=np.minimum(1.0, sig), shear_stress=0.07 * sig)
+
+
+def _assert_same(new, old):
+    # μ also absolutely: the elastic map's μ is ~1e-5 (no dissipation, discretisation only)
+    assert new.friction == pytest.approx(old.friction, rel=RTOL, abs=1e-8)
+    for k in ("contact_fraction", "mean_separation"):
+        assert getattr(new, k) == pytest.approx(getattr(old, k), rel=RTOL), k
+    dp = np.linalg.norm(new.pressure - old.pressure) / np.linalg.norm(old.pressure)
+    assert dp < PTOL
+
+
+@pytest.mark.parametrize("case", ["hard wall", "elastic", "LJ", "LJ + FEM-like", "LJ + steep"])
+def test_fast_map_paths_equal_the_previous_path(rough, case):
+    # measured at 256²: μ, A, ū within 2e-10 (the elastic μ ≈ −1e-5: 6e-11 absolute), pressure
+    # within 3e-8 (hard wall; the laws within 1e-12)
+    mat, law = MAT, None
+    if case == "elastic":
+        mat = GeneralizedMaxwell.elastic(10.0)
+    elif case == "LJ":
+        law = LennardJonesRepulsion()
+    elif case == "LJ + FEM-like":
+        law = LennardJonesRepulsion() + _fem_like()
+    elif case == "LJ + steep":
+        law = LennardJonesRepulsion() + _cell_like()
+    args = (rough.heights, rough.lengths, mat, 10.0, 0.3)
+    new = solve_sliding(*args, law=law)
+    old = solve_sliding(*args, law=law, options=PREVIOUS)
+    _assert_same(new, old)
+    if case in ("hard wall", "elastic"):
+        assert new.info["coarse_levels"] == 1   # the coarse-grid start did run
+        assert np.array_equal(new.pressure > 0, old.pressure > 0)
+
+
+def test_coarse_map_problem_has_the_fine_kernel_on_its_wavenumbers():
+    # the coarse problem's M(q) is the response kernel of the coarse grid: the same modes
+    shape, lengths = (16, 32), (1.0, 2.0)
+    comp = kn.response_kernel(MAT, shape, lengths, 10.0)
+    z = np.random.default_rng(0).standard_normal(shape).ravel()
+    prob = Problem(shape, lengths, z - z.mean(), np.zeros(z.size), comp, 0.1, SolverOptions())
+    coarse = prob.coarse()
+    assert coarse.shape == (8, 16)
+    np.testing.assert_array_equal(coarse.compliance,
+                                  kn.response_kernel(MAT, (8, 16), lengths, 10.0))
+    np.testing.assert_allclose(coarse.z.reshape(8, 16),
+                                  (z.reshape(shape)[::2, ::2] - z.reshape(shape)[::2, ::2]
+                                   .mean()), rtol=0, atol=1e-15)
+
+
+def test_refine_is_bilinear_periodic_and_keeps_the_load():
+    shape = (8, 12)
+    prob = Problem(shape, (1.0, 1.5), np.zeros(96), np.zeros(96),
+                   kn.response_kernel(MAT, shape, (1.0, 1.5), 1.0), 0.3, SolverOptions())
+    iy, ix = np.meshgrid(np.arange(4), np.arange(6), indexing="ij")
+    coarse = (1.0 + ix + 10.0 * iy).astype(float)     # linear inside, wraps at the seams
+    fine = prob.refine(coarse.ravel()).reshape(shape)
+    assert fine.mean() == pytest.approx(0.3)          # <σ> = σ0 restored by a factor
+    r = fine * (coarse[0, 0] / fine[0, 0])
+    np.testing.assert_allclose(r[::2, ::2], coarse)
+    assert r[0, 1] == pytest.approx(1.5)
+    assert r[0, 11] == pytest.approx(0.5 * (6.0 + 1.0))     # periodic along x
+    assert r[7, 0] == pytest.approx(0.5 * (31.0 + 1.0))     # periodic along y
+    assert r[1, 1] == pytest.approx(0.25 * (1.0 + 2.0 + 11.0 + 12.0))
+
+
+def test_single_precision_contact_solve_meets_the_double_tolerance(rough):
+    # the refined single-precision solve stops on the double-precision residual
+    n = rough.heights.size
+    comp = kn.response_kernel(MAT, rough.heights.shape, rough.lengths, 10.0)
+    z = rough.heights.ravel()
+    idx = np.flatnonzero(z > np.quantile(z, 0.9))
+    results = {}
+    for single in (True, False):
+        prob = Problem(rough.heights.shape, rough.lengths, z - z.mean(), np.zeros(n), comp, 0.3,
+                       SolverOptions(single_precision_2d=single))
+        results[single] = contact_solve(prob, idx, z[idx], 0.3 * n, prob.preconditioner(),
+                                        rtol=1e-10)
+    fast, ref = results[True], results[False]
+    assert fast.residual <= 1e-10
+    assert np.linalg.norm(fast.x - ref.x) / np.linalg.norm(ref.x) < 1e-8
+    assert fast.multiplier == pytest.approx(ref.multiplier, rel=1e-8)
+
+
+def test_single_precision_is_off_on_small_maps():
+    # below 256² the double-precision path runs unchanged (bitwise)
+    hm = self_affine_map((64, 64), 1.0, 0.8, rms_gradient=0.3, seed=2)
+    a = solve_sliding(hm.heights, hm.lengths, MAT, 10.0, 0.2)
+    b = solve_sliding(hm.heights, hm.lengths, MAT, 10.0, 0.2, options=PREVIOUS)
+    np.testing.assert_array_equal(a.pressure, b.pressure)
+
+
+@pytest.mark.parametrize("law", [None, LennardJonesRepulsion(),
+                                 LennardJonesRepulsion() + _fem_like()])
+def test_map_uniform_in_y_on_the_fast_path_is_the_1d_solve(law):
+    # 256² coarsens once and runs in single precision; the 1D twin (256 points) does neither
+    surf = SineSeries([1.0, 0.25], [0.02, 0.006], [0.3, 1.1])
+    z = surf.heights(np.arange(256) / 256)
+    one = solve_sliding(surf, 1.0, MAT, 10.0, 0.3, law=law, n=256)
+    two = solve_sliding(np.tile(z, (256, 1)), 1.0, MAT, 10.0, 0.3, law=law)
+    if law is None:
+        assert two.info["coarse_levels"] == 1
+    for k in ("friction", "contact_fraction", "mean_separation"):
+        assert getattr(two, k) == pytest.approx(getattr(one, k), rel=RTOL), k
+    # pointwise at the contact edges: measured 1.1e-6 of the peak pressure for the hard wall
+    # (the previous 2D path 1.9e-7), round-off for the laws; bound PTOL as above
+    np.testing.assert_allclose(two.pressure, np.tile(one.pressure, (256, 1)), rtol=0,
+                               atol=PTOL * one.pressure.max())
