@@ -2,10 +2,12 @@
 The mean-field (Persson) model against the half-space BEM
 ==========================================================
 
-:mod:`rubbercontact.meanfield` is Persson's theory of rubber friction: it sees the
-surface only through its power spectrum and costs microseconds per speed, where the BEM
-solves each random-phase realization on a grid. It is the model for roughness over many
-decades, where no grid reaches.
+:mod:`rubbercontact.meanfield` is Persson's theory of rubber friction (with his
+correction ``S = γ + (1 − γ)A²``, ``γ = 0.8`` by default): it sees the surface only through
+its power spectrum and costs microseconds per speed, where the BEM solves each random-phase
+realization on a grid. It is the model for roughness over many decades, where no grid
+reaches. (On a 1D sine series the strip cascade, ``StripOptions`` / the model
+``meanfield-strips``, is closer to the BEM.)
 
 Two checks against the BEM (:func:`rubbercontact.halfspace.solve_sliding`):
 

@@ -17,24 +17,43 @@ SINE = {"wavelength": 1.0, "m2": 0.4}
 SINE_SPEEDS = (0.0, 1.0, 10.0, 50.0, 500.0)
 SINE_LOADS = (0.01, 0.03, 0.1, 0.3, 0.6)
 #: The modelling choices compared (label, options); the first is the issue's naive
-#: transcription of the 2D theory, the last the package default on sine series.
-DIFFUSION = mf.MeanFieldOptions(geometry="diffusion")
-#: The strip cascade without the outer crests (the default before them).
-NESTED = mf.MeanFieldOptions(geometry="nested-strips")
+#: transcription of the 2D theory, the last two the strip cascade (``meanfield-strips``).
+#: Persson's diffusion with S = 1 as the study's earlier default resolved it on a sine
+#: series (after the wave, own-wavenumber dissipation; before issue 38's named models).
+DIFFUSION = mf.MeanFieldOptions(correction=1.0, weighting="after")
+#: The strip cascade (model ``meanfield-strips``) and without the outer crests.
+STRIPS = mf.StripOptions()
+NESTED = mf.StripOptions(outer_crests=False)
 VARIANTS = (
-    ("naive: S = ½ + ½A², cell mean", mf.MeanFieldOptions(
-        correction="persson", weighting="cell", geometry="diffusion")),
-    ("S = 1, cell mean", mf.MeanFieldOptions(weighting="cell", geometry="diffusion")),
-    ("S = ½ + ½A², after the wave", mf.MeanFieldOptions(
-        correction="persson", weighting="after", geometry="diffusion")),
-    ("S = 1, after the wave (previous default)", DIFFUSION),
+    ("naive: S = ½ + ½A², cell mean", mf.MeanFieldOptions(correction=0.5)),
+    ("S = 1, cell mean", mf.MeanFieldOptions(correction=1.0)),
+    ("S = ½ + ½A², after the wave", mf.MeanFieldOptions(correction=0.5, weighting="after")),
+    ("S = 1, after the wave (default of the diffusion before issue 38)", DIFFUSION),
     ("S = 1, after the wave, patch spectrum r = A_i/A_(i−1) (cascade)",
-     mf.MeanFieldOptions(dissipation="cascade", geometry="diffusion")),
+     mf.MeanFieldOptions(correction=1.0, weighting="after", dissipation="cascade")),
     ("S = 1, after the wave, patch spectrum r = A_i",
-     mf.MeanFieldOptions(dissipation="patch", geometry="diffusion")),
-    ("Westergaard strips, without outer crests (the default before them)", NESTED),
-    ("Westergaard strips (default)", mf.MeanFieldOptions()),
+     mf.MeanFieldOptions(correction=1.0, weighting="after", dissipation="patch")),
+    (f"S = {mf.DEFAULT_GAMMA:g} + {1 - mf.DEFAULT_GAMMA:g}A², cell mean (meanfield: Persson, "
+     "the default)", mf.MeanFieldOptions()),
+    ("Westergaard strips, without outer crests (the strips before them)", NESTED),
+    ("Westergaard strips (meanfield-strips)", STRIPS),
 )
+
+
+def diffusion(psd) -> mf.MeanFieldOptions:
+    """Persson's diffusion with S = 1 as the study's defaults resolved it before issue 38:
+    :data:`DIFFUSION` on a sine series, the cell mean with the patch spectrum on a
+    continuous 1D spectrum, the cell mean with Persson's dissipation in 2D."""
+    if psd.waves is not None:
+        return DIFFUSION
+    return mf.MeanFieldOptions(correction=1.0,
+                               dissipation="patch" if psd.dimension == 1 else "mode")
+
+
+def previous_default(psd):
+    """The options the study's "default" columns show: the strips on a 1D sine series
+    (``meanfield-strips``), :func:`diffusion` otherwise."""
+    return STRIPS if psd.dimension == 1 and psd.waves is not None else diffusion(psd)
 
 
 #: Elastic two- and four-wave profiles (rms slope 0.3 per wave): is Persson's area low in 1D

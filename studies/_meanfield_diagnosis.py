@@ -28,7 +28,7 @@ from rubbercontact.meanfield.contact import (
     half_space_compliance,
     modal_response,
 )
-from rubbercontact.meanfield.friction import local_fraction
+from rubbercontact.meanfield.options import Dissipation
 from rubbercontact.meanfield.patches import patch_loss
 
 SBR = rc.materials.sbr()
@@ -60,7 +60,7 @@ def _friction(pt, g, area, rule: str) -> float:
         f = pt["resp"].friction_stress
     else:
         f = pt["resp"].pressure_variance * patch_loss(
-            local_fraction(g, rule) if area is None else _local(area, rule),
+            Dissipation(rule).local_fraction(g) if area is None else _local(area, rule),
             pt["psd"].wavenumbers, SBR, pt["v"], 0.5)
     a = contact_fraction(g) if area is None else area
     return float(np.sum(f * a) / pt["p"])
@@ -111,7 +111,7 @@ def separation_table(rows) -> str:
         s = r["surface"]
         psd = mf.PSD.from_sines(rc.roughness.SineSeries(s["wavelengths"], s["amplitudes"]))
         casc = westergaard_cascade_area(psd, r["p"])
-        strips = mf.solve(psd, SBR, 0.0, r["p"]).contact_fraction
+        strips = mf.solve(psd, SBR, 0.0, r["p"], options=mf.StripOptions()).contact_fraction
         bem = float(np.mean(r["bem_A"]))
         lines.append(f"| {r['case']} | {r['target']:.3f} | {casc:.3f} | {strips:.3f} | "
                      f"{bem:.3f} | {_pct(r['target'] / bem - 1)} | {_pct(casc / bem - 1)} | "
@@ -135,7 +135,8 @@ def broadband_table(rows) -> tuple[str, dict]:
         psd = self_affine_profile(n=4 * int(round(par["length"] / par["lam_min"])), seed=1,
                                   **par)[1]
         mu, area = np.mean([x["bem_mu"][0] for x in rs]), np.mean([x["bem_A"][0] for x in rs])
-        res = {d: mf.solve(psd, SBR, v, rs[0]["p"], options=mf.MeanFieldOptions(dissipation=d))
+        res = {d: mf.solve(psd, SBR, v, rs[0]["p"],
+                           options=mf.MeanFieldOptions(correction=1.0, dissipation=d))
                for d in ("patch", "mode")}
         for d in res:
             errs[d].append((v, res[d].friction / mu - 1))

@@ -24,7 +24,10 @@ from ._meanfield_cases import (
     DIFFUSION,
     NESTED,
     SPEEDS,
+    STRIPS,
+    diffusion,
     make_map,
+    previous_default,
     self_affine_profile,
 )
 from ._meanfield_diagnosis import broadband_table, diagnosis
@@ -33,6 +36,9 @@ from ._templates import render
 
 SBR = rc.materials.sbr()
 TARGET = 0.15
+#: meanfield-hybrid as measured here: S = 1, after the wave (the law layer, or rigid).
+HYBRID = mf.MeanFieldOptions(correction=1.0, weighting="after", interface="law")
+HYBRID_RIGID = mf.MeanFieldOptions(correction=1.0, weighting="after", interface="rigid")
 A_RANGE = (0.01, 0.5)
 
 
@@ -63,15 +69,18 @@ def _se(values) -> float:
     return np.std(values, ddof=1) / np.sqrt(len(values)) if len(values) > 1 else np.nan
 
 
-def _points(rows, options: mf.MeanFieldOptions | None = None,
+def _points(rows, options=previous_default,
             kinds: tuple[str, ...] = ("1d", "selfaffine")) -> list[dict]:
     """Every 1D row of the ``kinds`` (sine series and self-affine profiles) with the theory's
-    μ and A and the BEM means (and standard errors)."""
+    μ and A and the BEM means (and standard errors); ``options`` an options object or a
+    function of the spectrum returning one."""
     out = []
     for r in rows:
         if r["kind"] not in kinds:
             continue
-        res = mf.solve(_psd(r), SBR, r["v"], r["p"], options=options)
+        psd = _psd(r)
+        res = mf.solve(psd, SBR, r["v"], r["p"],
+                       options=options(psd) if callable(options) else options)
         mu, area = np.mean(r["bem_mu"]), np.mean(r["bem_A"])
         out.append({**r, "mf_mu": res.friction, "mf_A": res.contact_fraction, "mu": mu,
                     "A": area, "mu_se": _se(r["bem_mu"]), "A_se": _se(r["bem_A"]),
@@ -176,7 +185,7 @@ def _speed_curve_table(rows) -> str:
              "| diffusion μ | error | diffusion A | error |", "|---" * 11 + "|"]
     for r in sorted((r for r in rows if r["kind"] == "speed"), key=lambda r: r["v"]):
         psd = mf.PSD.from_sines(_series(r["surface"]))
-        res = mf.solve(psd, SBR, r["v"], r["p"])
+        res = mf.solve(psd, SBR, r["v"], r["p"], options=STRIPS)
         dif = mf.solve(psd, SBR, r["v"], r["p"], options=DIFFUSION)
         mu, area = np.mean(r["bem_mu"]), np.mean(r["bem_A"])
         se = np.std(r["bem_mu"], ddof=1) / np.sqrt(len(r["bem_mu"]))
@@ -207,8 +216,8 @@ def _self_affine_table(points) -> tuple[str, dict]:
              "| μ error | A error | μ, mode dissipation (old default) | its error "
              "| μ with S = ½ + ½A² | its error | BEM time [s] |",
              "|---" * 15 + "|"]
-    persson = mf.MeanFieldOptions(correction="persson", dissipation="mode")
-    old = mf.MeanFieldOptions(dissipation="mode")
+    persson = mf.MeanFieldOptions(correction=0.5)
+    old = mf.MeanFieldOptions(correction=1.0)
     e1, e2, e3 = [], [], []
     for p in sorted((p for p in points if p["kind"] == "selfaffine"),
                     key=lambda p: (p["v"], p["seed"], p["n"])):
@@ -261,10 +270,9 @@ def _hybrid_rows(rows) -> list[dict]:
         hs, ls = mf.PSD.from_sines(s).partition(1.0)
         with warnings.catch_warnings():
             warnings.simplefilter("ignore", rc.hybrid.LawWarning)
-            rigid = mf.solve(ls, SBR, r["v"], r["p"], law=r["law"],
-                             options=mf.MeanFieldOptions(interface="rigid"))
-            layer = mf.solve(ls, SBR, r["v"], r["p"], law=r["law"])
-        plain = mf.solve(mf.PSD.from_sines(s), SBR, r["v"], r["p"])
+            rigid = mf.solve(ls, SBR, r["v"], r["p"], law=r["law"], options=HYBRID_RIGID)
+            layer = mf.solve(ls, SBR, r["v"], r["p"], law=r["law"], options=HYBRID)
+        plain = mf.solve(mf.PSD.from_sines(s), SBR, r["v"], r["p"], options=STRIPS)
         out.append({**r, "win": (np.mean(r["win_mu"]), np.mean(r["win_A"])),
                     "vhs": (np.mean(r["bem_mu"]), np.mean(r["bem_A"])),
                     "rigid": (rigid.friction, rigid.contact_fraction),
@@ -365,7 +373,7 @@ def _figures(points, hyb, rows, folder: Path) -> list[str]:
     if press:
         r = press[0]
         psd = mf.PSD.from_sines(_series(r["surface"]))
-        d = mf.solve(psd, SBR, r["v"], r["p"]).pressure_distribution
+        d = mf.solve(psd, SBR, r["v"], r["p"], options=STRIPS).pressure_distribution
         dd = mf.solve(psd, SBR, r["v"], r["p"], options=DIFFUSION).pressure_distribution
         e = np.asarray(r["edges"])
         fig, ax = plt.subplots(figsize=(6, 4))
@@ -409,7 +417,7 @@ def _figures(points, hyb, rows, folder: Path) -> list[str]:
     if speed:
         p0 = speed[0]["p"]
         t2 = mf.PSD.from_sines(_series(speed[0]["surface"]))
-        curve = mf.friction_curve(t2, SBR, v[::5], p0)
+        curve = mf.friction_curve(t2, SBR, v[::5], p0, options=STRIPS)
         ax.semilogx(v[::5], curve.friction, "C0", label=f"Table 2, σ0 = {p0:g} MPa: strips")
         curve = mf.friction_curve(t2, SBR, v, p0, options=DIFFUSION)
         ax.semilogx(v, curve.friction, "C0--", lw=1, label="Table 2: diffusion")
@@ -417,7 +425,7 @@ def _figures(points, hyb, rows, folder: Path) -> list[str]:
                     yerr=[np.std(r["bem_mu"], ddof=1) / np.sqrt(len(r["bem_mu"]))
                           for r in speed], fmt="o", color="C0", label="Table 2: BEM")
     for i, p in enumerate(sorted({(p["v"], p["p"]) for p in sa})):
-        curve = mf.friction_curve(_psd(sa[0]), SBR, v, p[1])
+        curve = mf.friction_curve(_psd(sa[0]), SBR, v, p[1], options=diffusion(_psd(sa[0])))
         ax.semilogx(v, curve.friction, f"C{i + 1}", lw=1,
                     label=f"self-affine 4 decades, σ0 = {p[1]:.3g} MPa: theory")
         bem = sorted((q for q in sa if (q["v"], q["p"]) == p), key=lambda q: q["n"])[-1:]
@@ -446,7 +454,7 @@ def _cost(points) -> dict:
     one = (time.perf_counter() - t0) / 20
     t0 = time.perf_counter()
     for _ in range(5):
-        mf.solve(t2, SBR, 10.0, 0.3)
+        mf.solve(t2, SBR, 10.0, 0.3, options=STRIPS)
     strips = (time.perf_counter() - t0) / 5
     bem = {k: np.mean([p["bem_time"] for p in points if p["case"] == k]) for k in
            ("Table 2", "self-affine 4 decades") if any(p["case"] == k for p in points)}

@@ -48,8 +48,8 @@ def sine_table(rows) -> tuple[str, dict]:
                           r["surface"].get("phases"))
         psd, x, v = mf.PSD.from_sines(surf), r["target"], r["v"]
         mode, patch = (mf.solve(psd, SBR, v, r["p"], options=mf.MeanFieldOptions(
-            dissipation=d, geometry="diffusion")) for d in ("mode", "patch"))
-        strips = mf.solve(psd, SBR, v, r["p"])
+            correction=1.0, weighting="after", dissipation=d)) for d in ("mode", "patch"))
+        strips = mf.solve(psd, SBR, v, r["p"], options=mf.StripOptions())
         mu, area = r["bem_mu"][0], r["bem_A"][0]
         west = float(westergaard_fraction(x))
         cols = [f"{v:g}", f"{x:g}", f"{area:.4f}", f"{west:.4f}",

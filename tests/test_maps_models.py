@@ -85,7 +85,7 @@ def test_elastic_map_has_no_friction():
 def test_meanfield_on_a_map_uniform_in_y_is_the_1d_meanfield():
     psd_map = map_psd(extruded(SURF, 256), nodes_per_decade=None)
     psd_1d = PSD(SURF.wavenumbers[::-1], SURF.amplitudes[::-1] ** 2 / 2, 1)   # closed form
-    opts = meanfield.MeanFieldOptions(geometry="diffusion")
+    opts = meanfield.MeanFieldOptions()
     a = meanfield.solve(psd_map, MAT, V, 0.2, options=opts)
     b = meanfield.solve(psd_1d, MAT, V, 0.2, options=opts)
     # the periodogram's nodes equal the waves' to round-off (1e-12)

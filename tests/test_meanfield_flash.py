@@ -155,8 +155,8 @@ def test_bad_input():
     with pytest.raises(InputError, match="speeds > 0"):
         flash_friction_curve(psd, HOT_SBR, [0.0, 1.0], 0.3)
     sines = mf.PSD.from_sines(rc.roughness.SineSeries([1.0, 0.1], [0.05, 0.005]))
-    with pytest.raises(InputError, match="diffusion"):
-        flash_friction_curve(sines, HOT_SBR, SPEEDS, 0.3)
+    with pytest.raises(InputError, match="MeanFieldOptions"):
+        flash_friction_curve(sines, HOT_SBR, SPEEDS, 0.3, options=mf.StripOptions())
     with pytest.raises(InputError, match="relaxation"):
         FlashOptions(relaxation=0.0)
     with pytest.raises(InputError, match="flash"):

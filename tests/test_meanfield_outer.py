@@ -81,7 +81,7 @@ def test_crest_load_is_the_line_contact_compatibility():
 def _against_bem(surf: SineSeries, v: float, p0: float, n: int):
     bem = [rc.halfspace.solve_sliding(r, surf.period, SBR, v, p0, n=n)
            for r in surf.realizations(8, 1)]
-    res = mf.solve(mf.PSD.from_sines(surf), SBR, v, p0)
+    res = mf.solve(mf.PSD.from_sines(surf), SBR, v, p0, options=mf.StripOptions())
     mu, area = (np.array([getattr(b, k) for b in bem]) for k in ("friction",
                                                                  "contact_fraction"))
     return res, mu, area
@@ -99,9 +99,9 @@ def test_three_octave_waves_at_500_mm_s_against_the_bem():
     assert res.friction == pytest.approx(mu.mean(), rel=0.08)
     assert res.contact_fraction == pytest.approx(area.mean(), rel=0.10 + 2 * se / area.mean())
     nested = mf.solve(mf.PSD.from_sines(surf), SBR, 500.0, 0.4,
-                      options=mf.MeanFieldOptions(geometry="nested-strips"))
+                      options=mf.StripOptions(outer_crests=False))
     assert nested.friction > 1.1 * mu.mean()
-    assert nested.inputs["geometry"] == "nested-strips"
+    assert nested.inputs["outer_crests"] is False
 
 
 def test_one_wave_has_no_outer_crests():
@@ -110,8 +110,8 @@ def test_one_wave_has_no_outer_crests():
     surf = SineSeries([1.0], [0.06])
     for v in (1.0, 500.0):
         a, b = (mf.solve(mf.PSD.from_sines(surf), SBR, v, 0.05,
-                         options=mf.MeanFieldOptions(geometry=g))
-                for g in ("strips", "nested-strips"))
+                         options=mf.StripOptions(outer_crests=g))
+                for g in (True, False))
         assert a.friction == pytest.approx(b.friction, rel=1e-12)
         assert a.contact_fraction == pytest.approx(b.contact_fraction, rel=1e-12)
 

@@ -115,15 +115,17 @@ def test_one_sliding_sine_dissipates_at_its_patch_harmonics(x):
     assert mu == pytest.approx(bem.friction, rel=0.12)
 
 
-def test_patch_spectrum_is_exact_in_full_contact_and_the_default_for_dense_spectra():
+def test_patch_spectrum_is_exact_in_full_contact_and_persson_s_mode_is_the_default():
     psd = mf.PSD.self_affine(hurst=0.8, qr=2.0, q1=2e3, rms_slope=0.3)
+    patch = mf.MeanFieldOptions(correction=1.0, dissipation="patch")
     for v in (1.0, 50.0):
-        full = mf.solve(psd, SBR, v, 1e5)
+        full = mf.solve(psd, SBR, v, 1e5, options=patch)
         assert full.inputs["dissipation"] == "patch"
         mode = mf.solve(psd, SBR, v, 1e5, options=mf.MeanFieldOptions(dissipation="mode"))
         assert full.friction == pytest.approx(mode.friction, rel=1e-3)
-        small = mf.solve(psd, SBR, v, 0.3)
+        small = mf.solve(psd, SBR, v, 0.3, options=patch)
         assert small.contact_fraction < 0.5       # partial contact: the spreading matters
+    assert mf.solve(psd, SBR, 10.0, 0.3).inputs["dissipation"] == "mode"
     sines = mf.solve(mf.PSD.from_sines(rc.roughness.asphalt_ac8()), SBR, 10.0, 0.3)
     assert sines.inputs["dissipation"] == "mode"
     two_d = mf.PSD.self_affine(hurst=0.8, qr=2.0, q1=2e2, rms_slope=0.3, dimension=2)
@@ -144,10 +146,11 @@ def test_cascade_keeps_the_markov_property_of_the_enrichment():
 
     t2 = rc.roughness.asphalt_ac8()
     hs, ls = mf.PSD.from_sines(t2).partition(1.0)
-    opts = mf.MeanFieldOptions(weighting="cell", interface="rigid", dissipation="cascade",
-                               geometry="diffusion")
+    opts = mf.MeanFieldOptions(correction=1.0, dissipation="cascade")
     for v, p in ((10.0, 0.2), (50.0, 1.6)):
         law = theory_law(hs, SBR, v, np.geomspace(1e-4, 1e3, 600), options=opts)
         whole = mf.solve(mf.PSD.from_sines(t2), SBR, v, p, options=opts)
-        enriched = mf.solve(ls, SBR, v, p, law=law, options=opts)
+        enriched = mf.solve(ls, SBR, v, p, law=law,
+                            options=mf.MeanFieldOptions(correction=1.0, dissipation="cascade",
+                                                        interface="rigid"))
         assert enriched.friction == pytest.approx(whole.friction, rel=1e-2)

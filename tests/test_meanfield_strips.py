@@ -127,10 +127,9 @@ def test_two_octave_waves_against_the_elastic_bem():
     p0 = 0.02957
     bem = np.mean([rc.halfspace.solve_sliding(r, 4.0, ELASTIC, 0.0, p0, n=8192).contact_fraction
                    for r in surf.realizations(8, 1)])
-    res = mf.solve(mf.PSD.from_sines(surf), ELASTIC, 0.0, p0)
-    diffusion = mf.solve(mf.PSD.from_sines(surf), ELASTIC, 0.0, p0,
-                         options=mf.MeanFieldOptions(geometry="diffusion"))
-    assert res.inputs["geometry"] == "strips"
+    res = mf.solve(mf.PSD.from_sines(surf), ELASTIC, 0.0, p0, options=mf.StripOptions())
+    diffusion = mf.solve(mf.PSD.from_sines(surf), ELASTIC, 0.0, p0)
+    assert res.inputs["model"] == "strips" and diffusion.inputs["model"] == "persson"
     assert res.contact_fraction == pytest.approx(bem, rel=0.15)
     assert diffusion.contact_fraction < 0.7 * bem
 
@@ -191,17 +190,16 @@ def test_long_strip_on_the_short_strips_layer_against_the_bem(v, p):
     assert strips == pytest.approx(np.mean(var), rel=0.05)
 
 
-def test_geometry_option():
+def test_strip_options_need_a_1d_sine_series_without_a_law():
     sines = mf.PSD.from_sines(rc.roughness.asphalt_ac8())
-    assert mf.MeanFieldOptions().geometry_for(sines) == "strips"
-    assert mf.MeanFieldOptions().geometry_for(sines, law=True) == "diffusion"
     spectrum = mf.PSD.self_affine(hurst=0.8, qr=2.0, q1=50.0, rms_slope=0.3)
-    assert mf.MeanFieldOptions().geometry_for(spectrum) == "diffusion"
-    with pytest.raises(InputError, match="geometry"):
-        mf.MeanFieldOptions(geometry="strips").geometry_for(spectrum)
-    with pytest.raises(InputError, match="geometry"):
-        mf.MeanFieldOptions(geometry="flat")
-    res = mf.solve(sines, SBR, 10.0, 0.3)
+    with pytest.raises(InputError, match="sine series"):
+        mf.solve(spectrum, SBR, 10.0, 0.3, options=mf.StripOptions())
+    with pytest.raises(InputError, match="sine series"):
+        mf.friction_curve(spectrum, SBR, [10.0], 0.3, options=mf.StripOptions())
+    with pytest.raises(InputError, match="outer_crests"):
+        mf.StripOptions(outer_crests="yes")
+    res = mf.solve(sines, SBR, 10.0, 0.3, options=mf.StripOptions())
     dist = res.pressure_distribution
     assert dist.contact_fraction == res.contact_fraction
     width = np.diff(dist.sigma)[0]      # a histogram: its bin centres carry the load to 1 %

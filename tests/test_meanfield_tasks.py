@@ -39,9 +39,8 @@ def test_task_has_the_half_space_task_s_names_and_units():
 
 def test_task_takes_a_spectrum_and_a_law():
     psd = mf.PSD.self_affine(hurst=0.8, qr=1.0, q1=1e3, rms_slope=0.3)
-    ds = meanfield_task(psd.as_dict(), SBR.as_dict(), 50.0, 0.5, correction="persson",
-                        gamma=0.4)
-    opts = mf.MeanFieldOptions(correction="persson", gamma=0.4)
+    opts = mf.MeanFieldOptions(correction=0.4)
+    ds = meanfield_task(psd.as_dict(), SBR.as_dict(), 50.0, 0.5, options=opts.to_dict())
     assert float(ds["friction"]) == pytest.approx(
         mf.solve(psd, SBR, 50.0, 0.5, options=opts).friction, rel=1e-14)
     ls = SineSeries([8.0, 4.0], [0.2, 0.05])
@@ -70,7 +69,7 @@ def test_config_dissipation_reaches_the_task():
     for choice in ("mode", "patch"):
         cfg = RunConfig.model_validate({**base, "meanfield": {"dissipation": choice}})
         fn, kw = meanfield_call(cfg, "meanfield", psd.as_dict(), SBR, 10.0, 0.5, None, 8.0)
-        assert kw["dissipation"] == choice
+        assert kw["options"]["dissipation"] == choice
         mus[choice] = float(meanfield_task(**kw)["friction"])
         direct = mf.solve(psd, SBR, 10.0, 0.5, options=mf.MeanFieldOptions(dissipation=choice))
         assert mus[choice] == pytest.approx(direct.friction, rel=1e-12)

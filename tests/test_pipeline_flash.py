@@ -34,7 +34,7 @@ def _config(tmp_path, flash: dict | None = None, **over) -> dict:
            "material": {"preset": "sbr", "reference_temperature": 20.0, "shift": WLF},
            "loads": {"pressures": [0.3, 1.0]},
            "velocities": {"from": 1e-2, "to": 1e4, "points": 7},
-           "models": ["meanfield"], "meanfield": {"geometry": "diffusion"},
+           "models": ["meanfield"],
            "execution": {"workers": 1, "cache": str(tmp_path / "cache")},
            "output": {"directory": str(tmp_path / "out")}}
     if flash is not None:
@@ -149,7 +149,8 @@ def test_half_space_models_are_named_in_a_note_and_left_without_the_flash(tmp_pa
      "contact_time"),
     ({"friction": {"flash_temperature": {"enabled": True}},
       "material": {"preset": "sbr"}}, "shift law"),
-    ({"friction": {"flash_temperature": {"enabled": True}}, "meanfield": {}}, "diffusion"),
+    ({"friction": {"flash_temperature": {"enabled": True}},
+      "meanfield": {"geometry": "diffusion"}}, "meanfield-strips"),
 ])
 def test_bad_flash_input_is_one_line(tmp_path, over, match):
     with pytest.raises(InputError, match=match) as err:

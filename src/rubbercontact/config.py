@@ -28,7 +28,8 @@ from .inputs import Strict as _Strict
 SurfaceConfig = SurfaceSpec
 MaterialConfig = MaterialSpec
 #: Models a run can compare (:mod:`rubbercontact.pipeline`).
-MODELS = ("vhs", "hybrid", "hybrid-windowed", "fem", "meanfield", "meanfield-hybrid")
+MODELS = ("vhs", "hybrid", "hybrid-windowed", "fem", "meanfield", "meanfield-hybrid",
+          "meanfield-strips")
 #: The models a run without ``models`` runs: the half-space alone, the hybrid as the docs
 #: recommend it (the law read at the λ_hs-averaged pressure) and the mean-field theory, all
 #: seconds once the law exists; ``fem`` is the reference, too costly to run unasked.
@@ -224,40 +225,85 @@ class LawConfig(_Strict):
 
 
 class MeanFieldConfig(_Strict):
-    """The mean-field (Persson) models ``meanfield`` and ``meanfield-hybrid``
-    (:class:`rubbercontact.meanfield.MeanFieldOptions`)."""
+    """Options of the mean-field models (:mod:`rubbercontact.meanfield.options`):
+    ``meanfield`` (Persson's theory with S(q)), ``meanfield-hybrid`` (the same with the
+    high-slope law) and ``meanfield-strips`` (the strip cascade of a 1D sine series). A key
+    left out is the model's default; a key for a model the run does not include is refused.
+    """
 
-    correction: Literal["none", "persson"] = Field(
-        "none", description="S(q): none (S = 1) or persson (S = gamma + (1 - gamma) A^2)")
-    gamma: float = Field(0.5, gt=0, le=1, description="Persson's gamma [-]")
-    weighting: Literal["auto", "after", "cell"] = Field(
-        "auto", description="contact fraction weighing a wave's friction: after the wave, "
-                            "or the cell mean (auto: after for sine series)")
-    dissipation: Literal["auto", "mode", "patch", "cascade"] = Field(
-        "auto", description="where a mode in partial contact dissipates: at its own "
-                            "wavenumber (mode, Persson), at the harmonics of its contact "
-                            "patches (patch, cascade); auto: patch for a measured (continuous "
-                            "1D) spectrum, mode for sine series")
-    geometry: Literal["auto", "diffusion", "strips", "nested-strips"] = Field(
-        "auto", description="the contact's geometry: Persson's diffusion, or the cascade of "
-                            "Westergaard strips of a 1D sine series (auto: strips for sine "
-                            "series without a law; nested-strips keeps each wave's contact "
-                            "inside the longer waves' strips, for comparison)")
-    interface: Literal["law", "rigid"] = Field(
-        "law", description="meanfield-hybrid: the law's compliance in series with the "
-                           "half-space, or a rigid low-slope contact")
-    spectrum: Literal["sines", "profiles"] = Field(
-        "sines", description="the spectrum the theory reads: the sine series of the surface, "
-                             "or the periodogram of the measured profiles (meanfield only)")
+    gamma: float | None = Field(
+        None, gt=0, le=1, description="Persson's S = gamma + (1 - gamma) A^2 (meanfield, "
+                                      "meanfield-hybrid; default 0.8, chosen against the "
+                                      "BEM; 1: S = 1, Persson 2001) [-]")
+    weighting: Literal["cell", "after"] | None = Field(
+        None, description="contact fraction weighing a node's friction: the mean over its "
+                          "cell (default, Persson's integral) or after the wave (sine "
+                          "series); meanfield, meanfield-hybrid")
+    dissipation: Literal["mode", "patch", "cascade"] | None = Field(
+        None, description="where a mode in partial contact dissipates: at its own "
+                          "wavenumber (mode, default, Persson's) or at the harmonics of its "
+                          "contact patches (patch, cascade; 1D; use gamma = 1 with them); "
+                          "meanfield, meanfield-hybrid")
+    interface: Literal["law", "rigid"] | None = Field(
+        None, description="meanfield-hybrid: the law's compliance in series with the "
+                          "half-space (default), or a rigid low-slope contact")
+    outer_crests: bool | None = Field(
+        None, description="meanfield-strips: a wave's crests just outside a longer wave's "
+                          "strip come into contact (default true; false: the nested strips)")
+    spectrum: Literal["sines", "profiles"] | None = Field(
+        None, description="meanfield: the spectrum the theory reads, the sine series of the "
+                          "surface (default) or the periodogram of the measured profiles")
     nodes_per_decade: int | None = Field(
         None, ge=2, le=1000, description="spectrum = 'profiles': log cells per decade of the "
                                          "periodogram (default 32)")
+
+    @model_validator(mode="before")
+    @classmethod
+    def _removed(cls, data: Any) -> Any:
+        if isinstance(data, dict):
+            for key, why in REMOVED_MEANFIELD_KEYS.items():
+                if key in data:
+                    raise ValueError(f"meanfield.{key} was removed (issue 38): {why}")
+        return data
 
     @model_validator(mode="after")
     def _profiles_only(self) -> MeanFieldConfig:
         if self.nodes_per_decade is not None and self.spectrum != "profiles":
             raise ValueError("'nodes_per_decade' applies to spectrum = 'profiles' only")
         return self
+
+    def check_models(self, models) -> None:
+        """Refuse (ValueError, one line) a key set for models the run does not include."""
+        for key, users in MEANFIELD_KEYS.items():
+            if getattr(self, key) is not None and not set(users) & set(models):
+                raise ValueError(f"meanfield.{key} applies to {' or '.join(users)}, which "
+                                 "the run does not include; add the model or drop the key")
+
+    def options(self, model: str):
+        """The options object of ``model`` (defaults where a key is left out)."""
+        from .meanfield import MeanFieldOptions, StripOptions
+
+        if model == "meanfield-strips":
+            return StripOptions() if self.outer_crests is None else StripOptions(
+                self.outer_crests)
+        given = {"correction": self.gamma, "weighting": self.weighting,
+                 "dissipation": self.dissipation,
+                 "interface": self.interface if model == "meanfield-hybrid" else None}
+        return MeanFieldOptions(**{k: v for k, v in given.items() if v is not None})
+
+
+#: The ``[meanfield]`` keys and the models that read them (the rest are refused).
+MEANFIELD_KEYS = {"gamma": ("meanfield", "meanfield-hybrid"),
+                  "weighting": ("meanfield", "meanfield-hybrid"),
+                  "dissipation": ("meanfield", "meanfield-hybrid"),
+                  "interface": ("meanfield-hybrid",),
+                  "outer_crests": ("meanfield-strips",),
+                  "spectrum": ("meanfield",)}
+#: Keys of the options before the mean-field models were split (issue 38), and the way now.
+REMOVED_MEANFIELD_KEYS = {
+    "correction": "Persson's S(q) is always on; set gamma (gamma = 1 is S = 1)",
+    "geometry": "the strip cascade is the model 'meanfield-strips', Persson's diffusion the "
+                "model 'meanfield'"}
 
 
 class AdhesionConfig(_Strict):
@@ -426,6 +472,10 @@ class RunConfig(_Strict):
 
     @model_validator(mode="after")
     def _meanfield_spectrum(self) -> RunConfig:
+        models = self.models
+        if self.surface.map is not None and "models" not in self.model_fields_set:
+            models = list(MAP_DEFAULT_MODELS)
+        self.meanfield.check_models(models)
         if self.meanfield.spectrum == "profiles":
             if self.surface.profiles is None:
                 raise ValueError("meanfield.spectrum = 'profiles' needs [surface.profiles]")

@@ -59,7 +59,6 @@ from .contact import (
     modal_response,
 )
 
-INTERFACES = ("rigid", "law")
 #: Share of the contact whose pressure lies beyond the law table before a warning.
 COVERAGE_WARN = 0.01
 _TABLE_KEYS = ("separation", "pressure", "contact_fraction", "shear_stress")
@@ -136,13 +135,6 @@ def as_pressure_law(law, velocity: float) -> PressureLaw:
         return PressureLaw.from_table(law_at_velocity(as_law(law), velocity))
     raise InputError(f"law: expected None, a law table (dict), a law xarray.Dataset or a "
                      f"PressureLaw, got {type(law).__name__}")
-
-
-def check_interface(interface: str) -> str:
-    if interface not in INTERFACES:
-        raise InputError(f"interface: expected one of {', '.join(INTERFACES)}, got "
-                         f"{interface!r}")
-    return interface
 
 
 def theory_law(psd, material, velocity: float, pressures, nu: float = 0.5,

@@ -77,7 +77,7 @@ from __future__ import annotations
 
 import warnings
 from collections.abc import Callable
-from dataclasses import asdict, dataclass, field, replace
+from dataclasses import dataclass, field, replace
 from functools import partial
 
 import numpy as np
@@ -88,11 +88,12 @@ from ..materials.shift import ShiftLaw, shift_law_from_dict
 from ..thermal.properties import FILLED_SBR, ThermalProperties
 from ..thermal.spots import band_centre_temperature, disc_centre_temperature
 from .contact import contact_fraction, g_cumulative
-from .friction import friction_contributions, local_fraction
+from .friction import friction_contributions
 from .moduli import ModulusTables
+from .options import MeanFieldOptions
 from .patches import _rows
 from .psd import PSD
-from .solve import MeanFieldOptions, _check
+from .solve import _check
 
 #: Hottest node temperature above the background [K] the tables cover.
 HOTTEST = 1e4
@@ -248,12 +249,12 @@ class _Problem:
         q2v = self.psd.wavenumbers**2 * self.psd.variances
         s, f = q2v / 4 * self.tables("power", omega), q2v / 2 * self.tables("loss", omega)
         g = g_cumulative(s, self.sigma0)
-        kind = self.opts.dissipation_for(self.psd)
-        if kind != "mode":         # the patch spectrum (:mod:`.patches`) at the node's own ω
-            n, h = _rows(local_fraction(g, kind))
+        diss = self.opts.dissipation
+        if diss.kind != "mode":    # the patch spectrum (:mod:`.patches`) at the node's own ω
+            n, h = _rows(diss.local_fraction(g))
             f = s * np.sum(h * self.tables.patch_loss(n * omega[..., None]), axis=-1)
-        parts = friction_contributions(f, g, self.sigma0, self.opts.friction_correction,
-                                       self.opts.cell_points, self.opts.weighting_for(self.psd))
+        parts = friction_contributions(f, g, self.sigma0, self.opts.correction,
+                                       self.opts.cell_points, self.opts.weighting)
         return parts, contact_fraction(g)
 
     def rise(self, parts: np.ndarray, area: np.ndarray, rows=slice(None)) -> np.ndarray:
@@ -377,10 +378,10 @@ def _setup(psd, material, velocities, mean_pressure, nu, options, flash) -> _Pro
                          "heat is μσ0v; at rest there is none)")
     opts = options or MeanFieldOptions()
     if not isinstance(opts, MeanFieldOptions):
-        raise InputError(f"options: expected MeanFieldOptions, got {type(opts).__name__}")
-    if opts.geometry_for(psd) != "diffusion":
-        raise InputError("flash temperature: couples to Persson's diffusion only; pass "
-                         "MeanFieldOptions(geometry='diffusion') for a sine series")
+        raise InputError(f"options: the flash temperature couples to Persson's theory "
+                         f"(MeanFieldOptions), got {type(opts).__name__}")
+    opts.dissipation.check(psd.dimension)
+    opts.interface_for(False)
     raw = flash.shift if flash.shift is not None else getattr(material, "shift", None)
     if raw is None:
         raise InputError("flash temperature: the material has no shift law; give it one "
@@ -421,7 +422,7 @@ def flash_friction_curve(psd: PSD, material, velocities, mean_pressure: float,
     Parameters
     ----------
     psd
-        Roughness spectrum (continuous, or a sine series with ``geometry="diffusion"``).
+        Roughness spectrum (continuous, or a sine series).
     material
         Rubber at the shift law's reference temperature, with a ``shift`` law (or
         ``flash.shift``).
@@ -432,7 +433,7 @@ def flash_friction_curve(psd: PSD, material, velocities, mean_pressure: float,
     nu
         Poisson's ratio.
     options
-        :class:`~rubbercontact.meanfield.MeanFieldOptions` (geometry ``"diffusion"``).
+        :class:`~rubbercontact.meanfield.MeanFieldOptions` (Persson's theory).
     flash
         :class:`FlashOptions` (thermal properties, background temperature, tolerance).
 
@@ -460,11 +461,11 @@ def flash_friction_curve(psd: PSD, material, velocities, mean_pressure: float,
                       f"tread compound degrades and the shift law is extrapolated",
                       FlashWarning, stacklevel=2)
     inputs = {"nu": float(nu), "dimension": psd.dimension, "psd": psd.source,
-              "material": getattr(material, "name", ""), **asdict(prob.opts),
+              "material": getattr(material, "name", ""), **prob.opts.to_dict(),
+              "correction": prob.opts.correction.describe(),
               "thermal": flash.thermal.as_dict(), "shift": prob.law.as_dict(),
               "spot_radius": flash.spot_radius, "tolerance_K": flash.tolerance,
-              "contact_time_s": flash.contact_time,
-              "geometry": "diffusion"}
+              "contact_time_s": flash.contact_time}
     return FlashCurve(
         prob.velocities, mu, iso_parts.sum(axis=-1), area[:, -1], iso_area[:, -1],
         psd.wavenumbers, temp, temp[:, -1] - prob.t0,

@@ -8,7 +8,7 @@ enrichment in :mod:`.enriched`.
 from __future__ import annotations
 
 import time
-from dataclasses import asdict, dataclass, field
+from dataclasses import dataclass, field
 
 import numpy as np
 
@@ -17,7 +17,6 @@ from ..errors import InputError
 from ..materials.protocol import Material, check_material
 from .contact import (
     ANGLES_2D,
-    CELL_POINTS,
     AreaCurve,
     PressureDistribution,
     contact_fraction,
@@ -26,43 +25,33 @@ from .contact import (
     modal_response,
     pressure_distribution,
 )
-from .enriched import as_pressure_law, check_interface, march_with_layer, weigh_law
-from .friction import (
-    PERSSON_GAMMA,
-    FrictionCorrection,
-    check_dissipation,
-    check_weighting,
-    friction_contributions,
-    local_fraction,
-)
+from .enriched import as_pressure_law, march_with_layer, weigh_law
+from .friction import friction_contributions
+from .options import Dissipation, MeanFieldOptions, StripOptions
 from .patches import patch_loss
 from .psd import PSD
 from .strips import StripContact, strip_contact
 
-#: ``dissipation="auto"`` on a sine series (docs/validation/meanfield.md).
-AUTO_DISSIPATION_SINES = "mode"
-GEOMETRIES = ("auto", "diffusion", "strips", "nested-strips")
-#: The geometries of the strip cascade (:mod:`.strips`).
-STRIP_GEOMETRIES = ("strips", "nested-strips")
 #: Bins of the strip cascade's pressure histogram (:attr:`MeanFieldResult.pressure_distribution`).
 HISTOGRAM_BINS = 200
+Options = MeanFieldOptions | StripOptions
 
 
-def _friction_stress(resp, g, psd: PSD, material, velocity, nu, kind: str) -> np.ndarray:
-    """Each node's full-contact friction stress, or with ``kind != "mode"`` its pressure
+def _friction_stress(resp, g, psd: PSD, material, velocity, nu,
+                     dissipation: Dissipation) -> np.ndarray:
+    """Each node's full-contact friction stress [MPa], or with a patch spectrum its pressure
     power times the patch spectrum's loss at the node's local contact fraction."""
-    if kind == "mode":
+    if dissipation.kind == "mode":
         return resp.friction_stress
-    return resp.pressure_variance * patch_loss(local_fraction(g, kind), psd.wavenumbers,
+    return resp.pressure_variance * patch_loss(dissipation.local_fraction(g), psd.wavenumbers,
                                                material, velocity, nu)
 
 
 def _strips(psd: PSD, material, velocity: float, sigma0: float, nu: float,
-            geometry: str) -> StripContact:
-    """The strip cascade on the spectrum's nodes (one wave each, amplitude ``√(2 v_i)``);
-    ``geometry="nested-strips"`` keeps every wave's contact inside the longer waves' strips."""
+            opts: StripOptions) -> StripContact:
+    """The strip cascade on the spectrum's nodes (one wave each, amplitude ``√(2 v_i)``)."""
     return strip_contact(psd.wavenumbers, np.sqrt(2.0 * psd.variances), material, velocity,
-                         sigma0, nu, outer_crests=geometry == "strips")
+                         sigma0, nu, outer_crests=opts.outer_crests)
 
 
 def _histogram(strips: StripContact, g: float, sigma0: float, q: np.ndarray
@@ -76,99 +65,33 @@ def _histogram(strips: StripContact, g: float, sigma0: float, q: np.ndarray
                                 fraction=float(smp.weight.sum()))
 
 
-@dataclass(frozen=True)
-class MeanFieldOptions:
-    """Modelling and discretisation choices (one object, passed as is).
+def _options(options, psd: PSD, law: bool) -> Options:
+    """The options object, checked against the input (one line when it does not apply)."""
+    opts = MeanFieldOptions() if options is None else options
+    if not isinstance(opts, MeanFieldOptions | StripOptions):
+        raise InputError(f"options: expected MeanFieldOptions or StripOptions, got "
+                         f"{type(opts).__name__}")
+    if isinstance(opts, StripOptions):
+        if psd.dimension != 1 or psd.waves is None or law:
+            raise InputError("StripOptions (meanfield-strips): the strips need a 1D sine "
+                             "series (PSD.from_sines) and no law; use MeanFieldOptions")
+        return opts
+    opts.dissipation.check(psd.dimension)
+    opts.interface_for(law)
+    return opts
 
-    Attributes
-    ----------
-    correction
-        Persson's ``S(q)``: ``"none"`` (S = 1, default) or ``"persson"`` (:mod:`.friction`).
-    gamma
-        ``γ`` of the ``"persson"`` correction.
-    weighting
-        Contact fraction weighing each node's friction: ``"auto"`` (default: ``"after"``
-        for a sine series, ``"cell"`` for a continuous spectrum), ``"after"`` or ``"cell"``
-        (:mod:`.friction`).
-    dissipation
-        Where a mode in partial contact dissipates (:mod:`.patches`, 1D only): ``"auto"``
-        (default: ``"patch"`` for a continuous 1D spectrum, ``"mode"`` for a sine series
-        and in 2D), ``"mode"`` (at its own wavenumber, Persson's), ``"patch"`` or
-        ``"cascade"`` (spread over the harmonics of its contact patches).
-    geometry
-        The contact's geometry: ``"auto"`` (default: ``"strips"`` for a 1D sine series
-        without a law, ``"diffusion"`` otherwise), ``"diffusion"`` (Persson's
-        ``P(σ)``, :mod:`.contact`), ``"strips"`` (the cascade of Westergaard strips of
-        :mod:`.strips`, which gives the area and the friction of a 1D sine series; the
-        options ``correction``, ``weighting`` and ``dissipation`` are then not used) or
-        ``"nested-strips"`` (the same cascade with each wave's contact kept inside the
-        longer waves' strips, no outer crests, :mod:`.outer`: the previous default, for
-        comparison).
-    interface
-        With a law: ``"law"`` (default: the law's compliance in series with the
-        half-space, :mod:`.enriched`) or ``"rigid"`` (hard-wall low-slope contact).
-    angles
-        Gauss–Legendre points over the wave-vector direction (2D).
-    cell_points
-        Gauss–Legendre points per node for the friction weights.
-    pressure_points
-        Samples of ``P(σ)``.
-    """
 
-    correction: str = "none"
-    gamma: float = PERSSON_GAMMA
-    weighting: str = "auto"
-    dissipation: str = "auto"
-    geometry: str = "auto"
-    interface: str = "law"
-    angles: int = ANGLES_2D
-    cell_points: int = CELL_POINTS
-    pressure_points: int = 801
+def _angles(opts: Options) -> int:
+    """Direction points of the 2D angle averages (the strips are 1D: unused there)."""
+    return opts.angles if isinstance(opts, MeanFieldOptions) else ANGLES_2D
 
-    def __post_init__(self) -> None:
-        FrictionCorrection(self.correction, self.gamma)   # validates both
-        check_interface(self.interface)
-        check_weighting(self.weighting)
-        check_dissipation(self.dissipation)
-        if self.geometry not in GEOMETRIES:
-            raise InputError(f"geometry: expected one of {', '.join(GEOMETRIES)}, got "
-                             f"{self.geometry!r}")
-        for name in ("angles", "cell_points", "pressure_points"):
-            val = getattr(self, name)
-            if isinstance(val, bool) or int(val) != val or val < 2:
-                raise InputError(f"{name}: must be an integer >= 2, got {val!r}")
 
-    @property
-    def friction_correction(self) -> FrictionCorrection:
-        return FrictionCorrection(self.correction, self.gamma)
-
-    def weighting_for(self, psd: PSD) -> str:
-        """The node weighting used for ``psd`` (``"auto"`` resolved)."""
-        if self.weighting != "auto":
-            return self.weighting
-        return "after" if psd.waves is not None else "cell"
-
-    def geometry_for(self, psd: PSD, law: bool = False) -> str:
-        """The geometry used for ``psd`` (``"auto"`` resolved): the strips need the waves
-        of a 1D sine series (they are the exact 1D limit there) and no law."""
-        strips_apply = psd.dimension == 1 and psd.waves is not None and not law
-        if self.geometry == "auto":
-            return "strips" if strips_apply else "diffusion"
-        if self.geometry in STRIP_GEOMETRIES and not strips_apply:
-            raise InputError(f"geometry={self.geometry!r}: needs a 1D sine series "
-                             "(PSD.from_sines) and no law; use 'diffusion'")
-        return self.geometry
-
-    def dissipation_for(self, psd: PSD) -> str:
-        """The dissipation used for ``psd`` (``"auto"`` resolved; 2D: ``"mode"``)."""
-        if self.dissipation != "auto":
-            if psd.dimension != 1 and self.dissipation != "mode":
-                raise InputError(f"dissipation={self.dissipation!r}: the patch spectrum is "
-                                 "the 1D (plane-strain) sine's; use 'mode' in 2D")
-            return self.dissipation
-        if psd.dimension != 1:
-            return "mode"
-        return AUTO_DISSIPATION_SINES if psd.waves is not None else "patch"
+def _inputs(opts: Options, law: bool) -> dict:
+    """The options as they were used (provenance)."""
+    if isinstance(opts, StripOptions):
+        return {"model": "strips", "outer_crests": opts.outer_crests}
+    return {**opts.to_dict(), "correction": opts.correction.describe(),
+            "interface": opts.interface_for(law)}
 
 
 @dataclass(frozen=True)
@@ -265,7 +188,8 @@ def solve(psd: PSD, material: Material, velocity: float, mean_pressure: float,
         (:func:`rubbercontact.hybrid.law_at_velocity`; the hybrid's ``interface_law``
         dict) or a law ``xarray.Dataset`` (:func:`rubbercontact.hybrid.effective_law`).
     options
-        :class:`MeanFieldOptions`.
+        :class:`MeanFieldOptions` (Persson's theory, default) or :class:`StripOptions`
+        (the strip cascade of a 1D sine series, without a law).
 
     Returns
     -------
@@ -274,29 +198,26 @@ def solve(psd: PSD, material: Material, velocity: float, mean_pressure: float,
     t0 = time.perf_counter()
     sigma0 = _check(psd, material, mean_pressure, nu)
     v = _speed(velocity)
-    opts = options or MeanFieldOptions()
-    if opts is not None and not isinstance(opts, MeanFieldOptions):
-        raise InputError(f"options: expected MeanFieldOptions, got {type(opts).__name__}")
     plaw = None if law is None else as_pressure_law(law, v)
     if plaw is not None and psd.dimension != 1:
         raise InputError("law: the FEM law is a plane-strain (1D) result; enrich 1D spectra")
+    opts = _options(options, psd, plaw is not None)
     comp = half_space_compliance(psd.wavenumbers, psd.variances, psd.dimension, material,
-                                 v, nu, opts.angles)
-    if plaw is not None and opts.interface == "law":
+                                 v, nu, _angles(opts))
+    if plaw is not None and opts.interface_for(True) == "law":
         g, resp = march_with_layer(comp, sigma0, plaw)
     else:
         resp = modal_response(comp)
         g = g_cumulative(resp.pressure_variance, sigma0)
     q = psd.wavenumbers
-    geometry = opts.geometry_for(psd, plaw is not None)
-    if geometry in STRIP_GEOMETRIES:
-        strips = _strips(psd, material, v, sigma0, nu, geometry)
+    if isinstance(opts, StripOptions):
+        strips = _strips(psd, material, v, sigma0, nu, opts)
         parts, area_curve = strips.friction_stress / sigma0, strips.contact_fraction
         dist = _histogram(strips, g[-1], sigma0, q)
     else:
-        fstress = _friction_stress(resp, g, psd, material, v, nu, opts.dissipation_for(psd))
-        parts = friction_contributions(fstress, g, sigma0, opts.friction_correction,
-                                       opts.cell_points, opts.weighting_for(psd))
+        fstress = _friction_stress(resp, g, psd, material, v, nu, opts.dissipation)
+        parts = friction_contributions(fstress, g, sigma0, opts.correction,
+                                       opts.cell_points, opts.weighting)
         area_curve = contact_fraction(g)
         dist = pressure_distribution(float(g[-1]), sigma0, q[-1], q[-1] / q[0],
                                      opts.pressure_points)
@@ -305,9 +226,7 @@ def solve(psd: PSD, material: Material, velocity: float, mean_pressure: float,
     mu_hs, area = (0.0, area_ls) if plaw is None else weigh_law(dist, plaw)
     inputs = {"velocity": v, "mean_pressure": sigma0, "nu": float(nu),
               "dimension": psd.dimension, "psd": psd.source, "law": plaw is not None,
-              "material": material.name, **asdict(opts),
-              "weighting": opts.weighting_for(psd), "dissipation": opts.dissipation_for(psd),
-              "geometry": geometry}
+              "material": material.name, **_inputs(opts, plaw is not None)}
     return MeanFieldResult(
         friction=mu_ls + mu_hs, friction_ls=mu_ls, friction_hs=float(mu_hs),
         contact_fraction=float(area), contact_fraction_ls=area_ls,
@@ -317,30 +236,29 @@ def solve(psd: PSD, material: Material, velocity: float, mean_pressure: float,
 
 
 def friction_curve(psd: PSD, material: Material, velocities, mean_pressure: float,
-                   nu: float = 0.5, options: MeanFieldOptions | None = None) -> FrictionCurve:
+                   nu: float = 0.5, options: Options | None = None) -> FrictionCurve:
     """``μ(v)``, ``A(v)`` of the plain theory for many speeds in one vectorised pass.
 
     The same numbers as :func:`solve` at each speed (no law: a law table belongs to one
     speed). Cost: one complex modulus per node, speed and direction, then cumulative sums;
-    the strip cascade of a sine series (``geometry``) runs speed by speed.
+    the strip cascade (:class:`StripOptions`) runs speed by speed.
     """
     sigma0 = _check(psd, material, mean_pressure, nu)
     v = finite_array("velocities", velocities, ndim=1)
-    opts = options or MeanFieldOptions()
+    opts = _options(options, psd, False)
     comp = half_space_compliance(psd.wavenumbers, psd.variances, psd.dimension, material,
-                                 v, nu, opts.angles)
+                                 v, nu, _angles(opts))
     resp = modal_response(comp)
     g = g_cumulative(resp.pressure_variance, sigma0)
-    geometry = opts.geometry_for(psd)
-    if geometry in STRIP_GEOMETRIES:
-        runs = [_strips(psd, material, float(vi), sigma0, nu, geometry) for vi in v]
+    if isinstance(opts, StripOptions):
+        runs = [_strips(psd, material, float(vi), sigma0, nu, opts) for vi in v]
         mu = np.array([r.friction_stress.sum() / sigma0 for r in runs])
         area = np.array([r.contact_fraction[-1] for r in runs])
     else:
-        fstress = _friction_stress(resp, g, psd, material, v, nu, opts.dissipation_for(psd))
-        mu = friction_contributions(fstress, g, sigma0, opts.friction_correction,
-                                    opts.cell_points, opts.weighting_for(psd)).sum(axis=-1)
+        fstress = _friction_stress(resp, g, psd, material, v, nu, opts.dissipation)
+        mu = friction_contributions(fstress, g, sigma0, opts.correction,
+                                    opts.cell_points, opts.weighting).sum(axis=-1)
         area = contact_fraction(g[..., -1])
     return FrictionCurve(v, mu, area, resp.friction_stress.sum(axis=-1) / sigma0, sigma0,
                          {"nu": float(nu), "dimension": psd.dimension, "psd": psd.source,
-                          "material": material.name, **asdict(opts), "geometry": geometry})
+                          "material": material.name, **_inputs(opts, False)})

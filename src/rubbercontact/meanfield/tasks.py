@@ -1,8 +1,9 @@
 """The mean-field model as a pipeline task: plain data in, an ``xarray.Dataset`` of scalars out.
 
 Same variable names and units as :func:`rubbercontact.hybrid.tasks.halfspace_task`, so the
-pipeline can run it as the models ``meanfield`` (no law) and ``meanfield-hybrid`` (the
-low-slope surface with the high-slope law as ``interface_law``).
+pipeline can run it as the models ``meanfield`` (no law), ``meanfield-hybrid`` (the
+low-slope surface with the high-slope law as ``interface_law``) and ``meanfield-strips``
+(the strip cascade): the model is in ``options`` (:func:`~.options.options_from_dict`).
 """
 
 from __future__ import annotations
@@ -13,8 +14,9 @@ import numpy as np
 import xarray as xr
 
 from ..materials import GeneralizedMaxwell
+from .options import options_from_dict
 from .psd import PSD
-from .solve import MeanFieldOptions, solve
+from .solve import solve
 
 #: Units of the scalars (the half-space task's names and units, plus the model's own).
 UNITS = {
@@ -22,15 +24,16 @@ UNITS = {
     "contact_fraction_ls": "1", "friction_full": "1", "mean_pressure": "MPa",
     "velocity": "mm/s", "max_local_pressure": "MPa", "wall_time": "s",
 }
+#: The options recorded in the result's attrs (as used: :attr:`MeanFieldResult.inputs`).
+ATTRS = ("gamma", "correction", "weighting", "dissipation", "interface",
+         "outer_crests")
 #: Share of the contact below ``max_local_pressure``.
 PRESSURE_QUANTILE = 0.999
 
 
 def meanfield_task(surface: dict, material: dict, velocity: float, mean_pressure: float,
                    nu: float = 0.5, interface_law: dict | None = None,
-                   correction: str = "none", gamma: float = 0.5, weighting: str = "auto",
-                   interface: str = "law", dissipation: str = "auto",
-                   geometry: str = "auto") -> xr.Dataset:
+                   options: dict | None = None) -> xr.Dataset:
     """One mean-field solve (:func:`rubbercontact.meanfield.solve`).
 
     Parameters
@@ -46,8 +49,9 @@ def meanfield_task(surface: dict, material: dict, velocity: float, mean_pressure
     interface_law
         The high-slope law at this speed (the half-space task's ``interface_law``,
         :func:`rubbercontact.hybrid.law_at_velocity`), or ``None``.
-    correction, gamma, weighting, interface, dissipation, geometry
-        :class:`~rubbercontact.meanfield.MeanFieldOptions`.
+    options
+        ``to_dict()`` of :class:`~rubbercontact.meanfield.MeanFieldOptions` (Persson's
+        theory; ``None``: its defaults) or :class:`~rubbercontact.meanfield.StripOptions`.
 
     Returns
     -------
@@ -59,9 +63,7 @@ def meanfield_task(surface: dict, material: dict, velocity: float, mean_pressure
     """
     t0 = time.perf_counter()
     psd = PSD.from_dict(surface)
-    opts = MeanFieldOptions(correction=correction, gamma=gamma, weighting=weighting,
-                            interface=interface, dissipation=dissipation,
-                            geometry=geometry)
+    opts = options_from_dict(options)
     res = solve(psd, GeneralizedMaxwell(**material), velocity, mean_pressure, nu=nu,
                 law=interface_law, options=opts)
     dist = res.pressure_distribution
@@ -76,10 +78,8 @@ def meanfield_task(surface: dict, material: dict, velocity: float, mean_pressure
         "max_local_pressure": top, "wall_time": time.perf_counter() - t0,
     }
     ds = xr.Dataset({k: ((), float(v), {"units": UNITS[k]}) for k, v in values.items()})
+    used = {k: str(v) for k, v in res.inputs.items() if k in ATTRS}
     ds.attrs.update({"model": "meanfield", "hybrid": int(interface_law is not None),
-                     "dimension": psd.dimension, "correction": correction,
-                     "weighting": res.inputs["weighting"], "interface": interface,
-                     "dissipation": res.inputs["dissipation"],
-                     "geometry": res.inputs["geometry"],
+                     "theory": res.inputs["model"], "dimension": psd.dimension, **used,
                      "psd": psd.source})
     return ds

@@ -1,23 +1,30 @@
-"""Persson's mean-field theory as a model (``"meanfield"``): one solve per mean pressure."""
+"""The mean-field models: Persson's theory (``"meanfield"``) and the strip cascade of a 1D
+sine series (``"meanfield-strips"``); one solve per mean pressure."""
 
 from __future__ import annotations
 
-from dataclasses import asdict
 from typing import Any
 
+from ..errors import InputError
 from ..roughness import SineSeries
 from .base import TaskModel, scalar_rows
 from .halfspace import _material_dict
 
-__all__ = ["MeanField"]
+__all__ = ["MeanField", "MeanFieldStrips"]
 
 MEANFIELD_TASK = "rubbercontact.meanfield.tasks:meanfield_task"
-#: The task's options (the fields of MeanFieldOptions that cross the task boundary).
-_TASK_OPTIONS = ("correction", "gamma", "weighting", "interface", "dissipation", "geometry")
+
+
+def task_kwargs(surface: dict, material: dict, velocity: float, mean_pressure: float,
+                nu: float, options: Any, interface_law: dict | None = None) -> dict:
+    """The mean-field task's arguments (the one writer: scripts and runs share entries)."""
+    return {"surface": surface, "material": material, "velocity": float(velocity),
+            "mean_pressure": float(mean_pressure), "nu": float(nu),
+            "interface_law": interface_law, "options": options.to_dict()}
 
 
 class MeanField(TaskModel):
-    """Persson's mean-field theory on the surface's spectrum.
+    """Persson's mean-field theory with ``S(q)`` on the surface's spectrum.
 
     Parameters
     ----------
@@ -28,11 +35,17 @@ class MeanField(TaskModel):
     """
 
     name = "meanfield"
+    _options_class = "MeanFieldOptions"
 
     def __init__(self, options: Any = None, nu: float = 0.5) -> None:
-        from ..meanfield import MeanFieldOptions
+        from .. import meanfield as mf
 
-        self.options = options or MeanFieldOptions()
+        cls = getattr(mf, self._options_class)
+        opts = cls() if options is None else options
+        if not isinstance(opts, cls):
+            raise InputError(f"model {self.name}: options must be {cls.__name__}, got "
+                             f"{type(opts).__name__}")
+        self.options = opts
         self.nu = float(nu)
 
     def tasks(self, surface, material, velocity, pressures):
@@ -40,13 +53,18 @@ class MeanField(TaskModel):
         from ..sweep import Task
 
         data = surface.as_dict() if isinstance(surface, (SineSeries, PSD)) else dict(surface)
-        opts = {k: v for k, v in asdict(self.options).items() if k in _TASK_OPTIONS}
-        return [Task(MEANFIELD_TASK, {"surface": data, "material": _material_dict(material),
-                                      "velocity": velocity, "mean_pressure": float(p),
-                                      "nu": self.nu, "interface_law": None, **opts},
-                     label=f"meanfield v={velocity:g} p={p:.4g}") for p in pressures]
+        mat = _material_dict(material)
+        return [Task(MEANFIELD_TASK, task_kwargs(data, mat, velocity, p, self.nu, self.options),
+                     label=f"{self.name} v={velocity:g} p={p:.4g}") for p in pressures]
 
     def collect(self, results, velocity, pressures):
         return scalar_rows(self.name, results, velocity, pressures,
-                           {k: str(v) for k, v in asdict(self.options).items()
-                            if k in _TASK_OPTIONS})
+                           {k: str(v) for k, v in self.options.to_dict().items()})
+
+
+class MeanFieldStrips(MeanField):
+    """The cascade of Westergaard strips of a 1D sine series
+    (:class:`rubbercontact.meanfield.StripOptions`)."""
+
+    name = "meanfield-strips"
+    _options_class = "StripOptions"

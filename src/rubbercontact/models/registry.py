@@ -48,12 +48,13 @@ def create(name: str, **options: Any) -> ContactModel:
 def _register_builtins() -> None:
     from .fem import FEM
     from .halfspace import VHS, Hybrid
-    from .meanfield import MeanField
+    from .meanfield import MeanField, MeanFieldStrips
 
     register("vhs", VHS)
     register("hybrid-windowed", lambda law, **kw: Hybrid(law, "windowed", **kw), needs_law=True)
     register("hybrid", lambda law, **kw: Hybrid(law, "pointwise", **kw), needs_law=True)
     register("meanfield", MeanField)
+    register("meanfield-strips", MeanFieldStrips)
     register("fem", FEM)
 
 

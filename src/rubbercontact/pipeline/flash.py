@@ -90,8 +90,7 @@ def plan_flash(setup: RunSetup) -> FlashPlan | None:
     Raises
     ------
     InputError
-        No shift law, speeds ≤ 0, or a mean-field geometry the flash does not couple to
-        (one line, naming the key).
+        No shift law or speeds ≤ 0 (one line, naming the key).
     """
     cfg = setup.config
     fc = cfg.friction.flash_temperature
@@ -103,17 +102,8 @@ def plan_flash(setup: RunSetup) -> FlashPlan | None:
     if np.any(np.asarray(cfg.velocities, float) <= 0):
         raise InputError(f"{KEY}: needs speeds > 0 mm/s (the heat is μσ0v)")
     thermal = load_thermal({"thermal": cfg.material.thermal})
-    mf = cfg.meanfield
-    opts = MeanFieldOptions(correction=mf.correction, gamma=mf.gamma, weighting=mf.weighting,
-                            interface=mf.interface, dissipation=mf.dissipation,
-                            geometry=mf.geometry)
+    opts = cfg.meanfield.options("meanfield")
     models = tuple(m for m in setup.models if m in FLASH_MODELS)
-    if models:
-        psd = PSD.from_dict(meanfield_surfaces(setup)["meanfield"])
-        if opts.geometry_for(psd) != "diffusion":
-            raise InputError(f"{KEY}: the mean-field flash couples to Persson's diffusion "
-                             f"geometry, not {opts.geometry_for(psd)!r}; set "
-                             "meanfield.geometry = 'diffusion'")
     options = FlashOptions(thermal=thermal, spot_radius=fc.spot_radius,
                            contact_time=fc.contact_time, tolerance=fc.tolerance,
                            max_iterations=fc.max_iterations)

@@ -87,12 +87,7 @@ def map_info(hmap, threshold: float) -> dict:
 
 
 def _meanfield_options(cfg: RunConfig):
-    from ..meanfield import MeanFieldOptions
-
-    mf = cfg.meanfield
-    return MeanFieldOptions(correction=mf.correction, gamma=mf.gamma, weighting=mf.weighting,
-                            interface=mf.interface, dissipation=mf.dissipation,
-                            geometry=mf.geometry)
+    return cfg.meanfield.options("meanfield")
 
 
 def _hybrid(model: str, cfg: RunConfig, hmap, material, laws: dict):

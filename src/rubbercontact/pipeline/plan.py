@@ -118,9 +118,9 @@ def meanfield_surfaces(setup: RunSetup) -> dict:
     """The surface each mean-field model reads, as plain data.
 
     ``meanfield``: the whole spectrum (the sine series, or the measured profiles'
-    periodogram with ``meanfield.spectrum = "profiles"``); ``meanfield-hybrid``: the
-    low-slope waves (the high-slope law carries the rest), or the whole series when it has
-    no high-slope wave.
+    periodogram with ``meanfield.spectrum = "profiles"``); ``meanfield-strips``: the sine
+    series; ``meanfield-hybrid``: the low-slope waves (the high-slope law carries the rest),
+    or the whole series when it has no high-slope wave.
     """
     cfg = setup.config
     series = static_series(setup.base)
@@ -135,6 +135,7 @@ def meanfield_surfaces(setup: RunSetup) -> dict:
         out["meanfield"] = psd.as_dict()
     else:
         out["meanfield"] = series.as_dict()
+    out["meanfield-strips"] = series.as_dict()
     high, low = series.partition(cfg.surface.m2_threshold)
     out["meanfield-hybrid"] = (low if high.size else series).as_dict()
     return out
@@ -155,13 +156,13 @@ def meanfield_call(cfg: RunConfig, model: str, surface: dict, material: Generali
                                 "mean_pressure": p, "n": cfg.halfspace.n,
                                 "nu": cfg.material.nu, "law": cfg.halfspace.law,
                                 "interface_law": law}
-    mf = cfg.meanfield
-    return MEANFIELD_TASK, {"surface": surface, "material": task_material(material),
-                            "velocity": v, "mean_pressure": p, "nu": cfg.material.nu,
-                            "interface_law": law, "correction": mf.correction,
-                            "gamma": mf.gamma, "weighting": mf.weighting,
-                            "interface": mf.interface, "dissipation": mf.dissipation,
-                            "geometry": mf.geometry}
+    from ..models.meanfield import task_kwargs
+
+    # without a law (no high-slope wave) meanfield-hybrid is the plain theory: no interface
+    opts = cfg.meanfield.options(model if law is not None or model != "meanfield-hybrid"
+                                 else "meanfield")
+    return MEANFIELD_TASK, task_kwargs(surface, task_material(material), v, p,
+                                       cfg.material.nu, opts, interface_law=law)
 
 
 def full_fem_task(cfg: RunConfig, surface: SineSeries, material: GeneralizedMaxwell,

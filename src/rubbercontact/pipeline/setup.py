@@ -29,7 +29,7 @@ LAW_MODELS = HYBRID_MODELS | {"meanfield-hybrid"}
 #: Models whose friction is split into a low- and a high-slope part.
 SPLIT_MODELS = LAW_MODELS
 #: Mean-field models: one task per speed and load (the phases do not enter).
-MEANFIELD_MODELS = frozenset({"meanfield", "meanfield-hybrid"})
+MEANFIELD_MODELS = frozenset({"meanfield", "meanfield-hybrid", "meanfield-strips"})
 
 
 @dataclass(frozen=True)

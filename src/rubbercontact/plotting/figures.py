@@ -19,10 +19,12 @@ __all__ = ["plot_all", "summary_table", "plot_law", "plot_friction_vs_area",
            "plot_friction_vs_pressure", "plot_high_slope_friction", "plot_pressure_profiles"]
 
 _COLORS = {"vhs": "tab:red", "hybrid": "tab:blue", "hybrid-windowed": "tab:green",
-           "fem": "black", "meanfield": "tab:purple", "meanfield-hybrid": "tab:orange"}
+           "fem": "black", "meanfield": "tab:purple", "meanfield-hybrid": "tab:orange",
+           "meanfield-strips": "tab:brown"}
 _LABELS = {"vhs": "VHS (half-space only)", "hybrid": "hybrid multiscale",
            "hybrid-windowed": "hybrid, law at λ_hs-averaged pressure", "fem": "FEM (full)",
-           "meanfield": "mean-field (Persson)", "meanfield-hybrid": "mean-field + FEM law"}
+           "meanfield": "mean-field (Persson, S(q))", "meanfield-hybrid": "mean-field + FEM law",
+           "meanfield-strips": "Westergaard strip cascade"}
 #: Most speeds a per-speed figure draws.
 MAX_PANELS = 4
 

@@ -45,23 +45,27 @@ SPLIT_LOW_SLOPE = float(2 * np.pi / TABLE2[1, 0] * TABLE2[1, 1] / np.sqrt(2))
 POINTWISE_RATIO, POINTWISE_TOLERANCE = 8.0, 0.12
 WINDOWED_RATIO, WINDOWED_TOLERANCE = 2.0, 0.15
 
-#: The mean-field theory's target class, docs/validation/meanfield.md ("Validation"):
-#: random octave ladders from 8 mm down (up to 10 waves), per-wave m2 drawn up to 0.6, SBR
-#: at 1 to 500 mm/s, the BEM's contact fraction in 1-50 %, μ and A within 15 %.
+#: The strip cascade's target class (meanfield-strips), docs/validation/meanfield.md
+#: ("Validation"): random octave ladders from 8 mm down (up to 10 waves), per-wave m2 drawn
+#: up to 0.6, SBR at 1 to 500 mm/s, the BEM's contact fraction in 1-50 %, μ and A within 15 %.
 LADDER_WAVELENGTHS = (8.0 / 2**9, 8.0)   # mm
 LADDER_SPEEDS = (1.0, 500.0)             # mm/s
 LADDER_SLOPE = 0.6
 LADDER_CONTACT = (0.01, 0.5)
 LADDER_TOLERANCE = 0.15
+#: Persson's theory (meanfield, γ = 0.8) on the same ladders: its largest |μ error| there
+#: (docs/validation/meanfield.md, "Persson's S(q) and its γ"; A within 41 %).
+PERSSON_LADDER_TOLERANCE = 0.45
 #: Octave ladders: the ratio of neighbouring wavelengths, within this relative slack.
 OCTAVE, OCTAVE_SLACK = 2.0, 0.01
 #: meanfield-hybrid against the VHS with the linear law, docs/validation/meanfield.md
 #: ("meanfield-hybrid against hybrid-windowed"): the separated surface (ratio 16, low-slope
-#: m2 up to 0.4, contact 2-20 %, 10 and 50 mm/s) is the one within its tolerance.
+#: m2 up to 0.4, contact 2-20 %, 10 and 50 mm/s) is the one within its tolerance (0.07
+#: with S = 1 after the wave; 0.09 with Persson's S, γ = 0.8, the default since issue 38).
 SEPARATED_RATIO, SEPARATED_LOW_SLOPE = 16.0, 0.4
 SEPARATED_CONTACT = (0.02, 0.2)
 SEPARATED_HIGH_WAVELENGTH = 1.0 / 16    # mm, at SPLIT_SPEEDS
-SEPARATED_TOLERANCE = 0.07
+SEPARATED_TOLERANCE = 0.09
 
 #: Absolute μ below which a departure from the VHS is the half-space grids' noise, not a
 #: model's: the hybrids' grid moves μ by this much at the slowest speeds on the asphalt
@@ -187,6 +191,15 @@ def _classes_1d() -> dict[str, ValidatedClass]:
     law = Condition("law_pressure", high=1.0, report=LAW_REPORT)
     contact3 = Condition("contact", *SECTION3_CONTACT, report=SECTION3_REPORT)
     split_low = Condition("m2_low", high=SPLIT_LOW_SLOPE, report=SECTION3_REPORT)
+    ladders = ValidatedClass(
+        "meanfield-strips", "random octave ladders",
+        (Condition("m2", high=LADDER_SLOPE, report=MEANFIELD_REPORT),
+         Condition("spacing", OCTAVE * (1 - OCTAVE_SLACK), OCTAVE * (1 + OCTAVE_SLACK),
+                   report=MEANFIELD_REPORT),
+         Condition("contact", *LADDER_CONTACT, report=MEANFIELD_REPORT),
+         Condition("frequency", *_band(LADDER_WAVELENGTHS, LADDER_SPEEDS),
+                   report=MEANFIELD_REPORT)),
+        "the VHS", LADDER_TOLERANCE, MEANFIELD_REPORT)
     return {
         "vhs": ValidatedClass("vhs", "slopes within the FEM sweep's", (slope,),
                               "the full FEM", VHS_FEM_TOLERANCE, SECTION3_REPORT,
@@ -204,15 +217,9 @@ def _classes_1d() -> dict[str, ValidatedClass]:
             (Condition("split_ratio", low=WINDOWED_RATIO, report=SPLIT_REPORT), split_low,
              high, contact3, hs_speeds, law),
             "the VHS", WINDOWED_TOLERANCE, SPLIT_REPORT, reduces_to="vhs"),
-        "meanfield": ValidatedClass(
-            "meanfield", "random octave ladders",
-            (Condition("m2", high=LADDER_SLOPE, report=MEANFIELD_REPORT),
-             Condition("spacing", OCTAVE * (1 - OCTAVE_SLACK), OCTAVE * (1 + OCTAVE_SLACK),
-                       report=MEANFIELD_REPORT),
-             Condition("contact", *LADDER_CONTACT, report=MEANFIELD_REPORT),
-             Condition("frequency", *_band(LADDER_WAVELENGTHS, LADDER_SPEEDS),
-                       report=MEANFIELD_REPORT)),
-            "the VHS", LADDER_TOLERANCE, MEANFIELD_REPORT),
+        "meanfield": replace(ladders, model="meanfield",
+                             tolerance=PERSSON_LADDER_TOLERANCE),
+        "meanfield-strips": ladders,
         "meanfield-hybrid": ValidatedClass(
             "meanfield-hybrid", "scale-separated surfaces, ratio 16 at the split",
             (Condition("split_ratio", low=SEPARATED_RATIO, report=MEANFIELD_REPORT),
