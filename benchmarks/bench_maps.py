@@ -10,7 +10,12 @@ octave bands, the linear law of the high-slope cell, the hybrid's low-slope solv
 mean-field theory on the map's spectrum. Medians of ``--repeat`` runs (interleaved), wall
 time on one core; the machine's load is printed with the figures. ``--speeds``: μ(v) at 15
 speeds (1e-4 … 1e3 mm/s) on the 512² map, each model in turn, with the total wall time
-(issue 42's target: ≤ 10 min for the three models on the 2-core machine).
+(issue 42's target: ≤ 10 min for the three models on the 2-core machine). ``--bem``: the 2D
+half-space solver against its previous path (``PREVIOUS`` options, bitwise the code before
+the 2D speed-ups) in one run, interleaved: viscoelastic solves with tabulated laws on 1024²,
+the hard wall and the Lennard-Jones wall on 512², and the elastic hard wall on 512² against
+Tamaas at equal accuracy (√10 tolerance ladders, then medians of 7 interleaved solves); it
+replaces that section of ``--output`` and leaves the rest of the file.
 """
 
 from __future__ import annotations
@@ -19,12 +24,14 @@ import argparse
 import datetime
 import os
 import platform
+import subprocess
 import time
+from pathlib import Path
 
 import numpy as np
 
 from rubbercontact import meanfield
-from rubbercontact.halfspace import LennardJonesRepulsion
+from rubbercontact.halfspace import LennardJonesRepulsion, SolverOptions
 from rubbercontact.hybrid.maps import linear_law_map, solve_map, solve_map_hybrid
 from rubbercontact.hybrid.tasks import halfspace_law
 from rubbercontact.materials import sbr
@@ -106,13 +113,198 @@ def table(rows: list[dict]) -> str:
     return "\n".join(lines)
 
 
+# -- the 2D BEM: previous path against the current one (issue 42, item 5) -------------------
+#: The solver as before the 2D speed-ups (no coarse-grid start on maps, double-precision
+#: GMRES, the multi-shift preconditioner on maps): bitwise the previous commit's results.
+PREVIOUS = SolverOptions(coarse_min_side_2d=None, single_precision_2d=False, multi_shift_2d=True)
+BEM_HEADING = "## 2D BEM: the previous solver against the current one"
+
+
+def _solve_timed(fn) -> tuple[float, float, object]:
+    """Wall and CPU time [s] of one call, and its result."""
+    t0, c0 = time.perf_counter(), time.process_time()
+    out = fn()
+    return time.perf_counter() - t0, time.process_time() - c0, out
+
+
+def _interleaved(fns: dict, repeat: int) -> dict:
+    """Each of ``fns`` called ``repeat`` times in turn; median wall and CPU time, last result."""
+    runs = {k: [] for k in fns}
+    for _ in range(repeat):
+        for k, fn in fns.items():
+            runs[k].append(_solve_timed(fn))
+    return {k: (float(np.median([r[0] for r in v])), float(np.median([r[1] for r in v])),
+                v[-1][2]) for k, v in runs.items()}
+
+
+def _rel(a: float, b: float) -> float:
+    return abs(a - b) / max(abs(b), 1e-300)
+
+
+def bem_viscoelastic(repeat: int, quick: bool) -> list[dict]:
+    """Previous and current solver on the map of :func:`bench` (SBR, 10 mm/s, 0.3 MPa)."""
+    from bench_halfspace import _fem_like_law
+
+    mat = sbr()
+    big, small = (256, 128) if quick else (1024, 512)
+    rows = []
+    for n in sorted({big, small}, reverse=True):
+        hm = self_affine_map((n, n), SIDE, HURST, rms_gradient=GRADIENT, seed=1)
+        split = split_map(hm, 0.9 * _steepest(hm), cell_points=32)
+        cell_law = halfspace_law("lennard-jones", linear_law_map(split.cell, mat, VELOCITY,
+                                                                 points=40))
+        cases = ([("LJ + FEM-like table", LennardJonesRepulsion() + _fem_like_law()),
+                  ("LJ + the cell's linear law", cell_law)] if n == big else
+                 [("hard wall", None), ("LJ wall", LennardJonesRepulsion()),
+                  ("LJ + the cell's linear law", cell_law)])
+        for name, law in cases:
+            reps = 1 if (n == big and law is cell_law and not quick) else repeat
+            got = _interleaved({o: (lambda o=o, law=law, hm=hm: solve_map(
+                hm, mat, VELOCITY, PRESSURE, law=law, options=None if o == "new" else PREVIOUS))
+                for o in ("old", "new")}, reps)
+            rows.append(_bem_row(n, name, reps, got))
+            print(rows[-1], flush=True)
+    return rows
+
+
+def _bem_row(n: int, name: str, reps: int, got: dict) -> dict:
+    (ow, oc, old), (nw, nc, new) = got["old"], got["new"]
+    dp = float(np.linalg.norm(new.pressure - old.pressure) / np.linalg.norm(old.pressure))
+    return {"n": n, "case": name, "repeat": reps, "old_wall": ow, "old_cpu": oc,
+            "new_wall": nw, "new_cpu": nc, "old_fft": old.matvecs, "new_fft": new.matvecs,
+            "mu": new.friction, "dmu": _rel(new.friction, old.friction),
+            "darea": _rel(new.contact_fraction, old.contact_fraction),
+            "dubar": _rel(new.mean_separation, old.mean_separation), "dp": dp}
+
+
+def bem_elastic(n: int, repeat: int = 7, target: float = 1e-6) -> dict:
+    """Elastic hard wall on the ``n²`` map of bench_halfspace (10 % contact) against Tamaas:
+    each solver at the first rung of its √10 ladder within ``target`` (relative L2 pressure
+    error against our active set at 1e-12), then ``repeat`` interleaved solves."""
+    import bench_halfspace as bh
+
+    from rubbercontact.halfspace import solve_sliding
+    from rubbercontact.materials import GeneralizedMaxwell
+
+    z = bh.hurst_map(n)
+    p0 = bh.pressure_for_fraction(z, 1.0, 0.10)
+    ref = solve_sliding(z, 1.0, GeneralizedMaxwell.elastic(bh.E), 0.0, p0, tol=1e-12,
+                        max_iter=100000, options=PREVIOUS)
+    solvers = {
+        "ours": (lambda t: bh.run_ours(z, 1.0, p0, t, "active-set"), bh.ladder(1e-4, 1e-10)),
+        "ours (previous)": (lambda t: bh.run_ours(z, 1.0, p0, t, "active-set", PREVIOUS),
+                            bh.ladder(1e-4, 1e-10)),
+        "Tamaas": (lambda t: bh.run_tamaas(z, 1.0, p0, t), bh.ladder(1e-6, 1e-12)),
+    }
+    chosen = {}
+    for name, (fn, rungs) in solvers.items():
+        for tol in rungs:
+            p, dt, its, _ = fn(tol)
+            err = float(np.linalg.norm(p - ref.pressure) / np.linalg.norm(ref.pressure))
+            chosen[name] = (tol, err, its)
+            if err <= target:
+                break
+    times = {k: [] for k in solvers}
+    for _ in range(repeat):
+        for name, (fn, _) in solvers.items():
+            times[name].append(fn(chosen[name][0])[1])
+    return {"n": n, "target": target, "repeat": repeat, "chosen": chosen,
+            "median": {k: float(np.median(v)) for k, v in times.items()},
+            "contact": ref.contact_fraction}
+
+
+def _commit() -> str:
+    out = subprocess.run(["git", "rev-parse", "--short", "HEAD"], capture_output=True,
+                         text=True, check=False, cwd=Path(__file__).parent)
+    dirty = subprocess.run(["git", "status", "--porcelain", "--", "src/rubbercontact/halfspace"],
+                           capture_output=True, text=True, check=False,
+                           cwd=Path(__file__).parent.parent).stdout.strip()
+    return out.stdout.strip() + (" + uncommitted halfspace/ changes" if dirty else "")
+
+
+def bem_markdown(visco: list[dict], elastic: dict | None, info: str) -> str:
+    lines = [BEM_HEADING, "", info, "",
+             "Viscoelastic (SBR, 10 mm/s, 0.3 MPa, the map of the table above): `previous` "
+             "the solver before the 2D speed-ups (`PREVIOUS` options: bitwise its results), "
+             "`current` the defaults; old and new interleaved, medians of `runs`; wall and "
+             "CPU time of the process (the machine is shared: CPU time is the steadier "
+             "figure); FFT pairs of any precision on all grids; Δ relative differences "
+             "current − previous (σ: L2 over the map).", "",
+             "| grid | law | runs | previous wall [s] | previous CPU [s] | current wall [s] | "
+             "current CPU [s] | CPU speed-up | FFT pairs (prev → cur) | μ | Δμ | ΔA | Δū | Δσ |",
+             "|---|---|---|---|---|---|---|---|---|---|---|---|---|---|"]
+    for r in visco:
+        lines.append(
+            f"| {r['n']}² | {r['case']} | {r['repeat']} | {r['old_wall']:.2f} | "
+            f"{r['old_cpu']:.2f} | {r['new_wall']:.2f} | {r['new_cpu']:.2f} | "
+            f"{r['old_cpu'] / r['new_cpu']:.1f}× | {r['old_fft']} → {r['new_fft']} | "
+            f"{r['mu']:.5f} | {r['dmu']:.1e} | {r['darea']:.1e} | {r['dubar']:.1e} | "
+            f"{r['dp']:.1e} |")
+    if elastic:
+        e = elastic
+        lines += ["", f"Elastic hard wall, {e['n']}² self-affine map (H = 0.8) at "
+                  f"{100 * e['contact']:.0f} % contact, E = 10 MPa, ν = 0.5 "
+                  "(`bench_halfspace.hurst_map`): each solver at the first rung of its √10 "
+                  f"tolerance ladder whose pressure is within {e['target']:g} (relative L2) of "
+                  "our active set at tol 1e-12, then medians of "
+                  f"{e['repeat']} interleaved solves (wall time).", "",
+                  "| solver | tol | error | its | median [s] | Tamaas / this |",
+                  "|---|---|---|---|---|---|"]
+        tam = e["median"]["Tamaas"]
+        for name, (tol, err, its) in e["chosen"].items():
+            med = e["median"][name]
+            lines.append(f"| {name} | {tol:.2g} | {err:.1e} | {its} | {med:.3f} | "
+                         f"{tam / med:.2f} |")
+    return "\n".join(lines) + "\n"
+
+
+def bem_info() -> str:
+    load = os.getloadavg()
+    stamp = datetime.datetime.now(datetime.UTC).strftime("%Y-%m-%d %H:%M")
+    return (f"Generated by `benchmarks/bench_maps.py --bem` ({stamp} UTC, commit {_commit()}, "
+            f"{platform.processor() or platform.machine()}, {os.cpu_count()} cores shared with "
+            f"other jobs: load average {load[0]:.1f} / {load[1]:.1f} / {load[2]:.1f} at the "
+            f"start, OMP_NUM_THREADS={os.environ.get('OMP_NUM_THREADS', 'unset')}).")
+
+
+def splice(path: str, heading: str, section: str) -> None:
+    """Replace the section starting at ``heading`` (to the next ``## `` heading) in ``path``,
+    or append it."""
+    text = Path(path).read_text() if Path(path).exists() else ""
+    if heading in text:
+        head, rest = text.split(heading, 1)
+        nxt = rest.find("\n## ")
+        tail = rest[nxt + 1:] if nxt >= 0 else ""
+        text = head + section + ("\n" + tail if tail else "")
+    else:
+        text = text.rstrip("\n") + "\n\n" + section
+    Path(path).write_text(text)
+
+
+def run_bem(args) -> int:
+    info = bem_info()
+    print(info, flush=True)
+    visco = bem_viscoelastic(args.repeat, args.quick)
+    elastic = bem_elastic(128 if args.quick else 512, repeat=3 if args.quick else 7)
+    print(elastic, flush=True)
+    text = bem_markdown(visco, elastic, info)
+    print(text)
+    if args.output:
+        splice(args.output, BEM_HEADING, text)
+    return 0
+
+
 def main(argv: list[str] | None = None) -> int:
     ap = argparse.ArgumentParser(description=__doc__.splitlines()[0])
     ap.add_argument("--quick", action="store_true", help="128² and 256² only, one run each")
     ap.add_argument("--repeat", type=int, default=3)
     ap.add_argument("--speeds", action="store_true", help="add mu(v) at 15 speeds on 512²")
     ap.add_argument("--output", default=None, help="write the Markdown table here")
+    ap.add_argument("--bem", action="store_true",
+                    help="only the 2D BEM section: previous solver against the current one")
     args = ap.parse_args(argv)
+    if args.bem:
+        return run_bem(args)
     sizes = (128, 256) if args.quick else (128, 256, 512)
     repeat = 1 if args.quick else args.repeat
     rows = [bench(n, repeat) for n in sizes]
