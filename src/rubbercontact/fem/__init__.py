@@ -12,8 +12,9 @@ Modules: :mod:`.options`, :mod:`.mesh` (periodic structured mesh), :mod:`.consti
 :mod:`.cell` (the test cell), :mod:`.setup` (one test's cell), :mod:`.solver` (Newton with
 direct solves), :mod:`.transient` (the time-stepped protocol), :mod:`.streamline`,
 :mod:`.steady`, :mod:`.newton_krylov`, :mod:`.multilevel`, :mod:`.steady_solver` (the
-steady solver), :mod:`.result`, :mod:`.sliding` (entry points), :mod:`.sweep`
-(continuation along loads and speeds).
+steady solver), :mod:`.result`, :mod:`.resolution` (the automatic mesh, ``mesh = "auto"``,
+and each test's check of its narrowest contact patch), :mod:`.sliding` (entry points),
+:mod:`.sweep` (continuation along loads and speeds).
 """
 
 from .constitutive import DEFAULT_BULK_MODULUS, MaterialParameters

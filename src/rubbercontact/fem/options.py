@@ -24,6 +24,24 @@ VISCOUS_MODELS = ("simo", "reese-govindjee")
 CONTACTS = ("penalty", "barrier")
 
 
+#: ``FemOptions.mesh`` that follows the surface (:mod:`.resolution`).
+AUTO = "auto"
+
+
+def _explicit_mesh(mesh: Any) -> tuple[int, int]:
+    """``mesh`` as ``(nx, ny)``, checked."""
+    try:
+        if isinstance(mesh, str) or len(mesh) != 2 or any(int(m) != m for m in mesh):
+            raise ValueError
+        nx, ny = (int(m) for m in mesh)
+    except (TypeError, ValueError):
+        raise InputError(f"mesh: expected two integers (nx, ny) or 'auto', got "
+                         f"{mesh!r}") from None
+    if nx < 3 or ny < 1:
+        raise InputError(f"mesh: need nx >= 3 and ny >= 1, got {mesh!r}")
+    return nx, ny
+
+
 def _integer(name: str, value: Any, low: int) -> int:
     if isinstance(value, bool) or not isinstance(value, (int, float)) or int(value) != value \
             or value < low:
@@ -159,10 +177,20 @@ class FemOptions:
     ----------
     mesh
         Elements ``(nx, ny)``; ``nx`` must give >= 8 elements per shortest wavelength.
+        ``"auto"``: from the surface (:func:`~.resolution.auto_mesh`: ``columns_per_wave``
+        columns on the shortest wave, rows and grading from the cell's height), resolved
+        per test (:meth:`resolved`); a test whose narrowest contact patch is below
+        ``patch_columns`` columns is then re-solved once with ``nx`` doubled.
     height_ratio
         Cell height / width (paper: 0.75).
     grading
-        Ratio top-row / bottom-row element height (> 1 refines toward the contact face).
+        Ratio top-row / bottom-row element height (> 1 refines toward the contact face);
+        set by ``mesh = "auto"`` (leave it at 1 there).
+    columns_per_wave
+        ``mesh = "auto"``: columns on the shortest wave (docs/validation/mesh_resolution.md).
+    patch_columns
+        Narrowest contact patch, in columns, of a resolved test (every test reports its
+        own, ``stats.patch_columns``; docs/validation/mesh_resolution.md).
     contact_points
         Contact points per face segment (1: node-to-surface).
     penalty_factor
@@ -199,9 +227,11 @@ class FemOptions:
         The controls of each solver.
     """
 
-    mesh: tuple[int, int] = (120, 90)
+    mesh: tuple[int, int] | str = (120, 90)
     height_ratio: float = 0.75
     grading: float = 1.0
+    columns_per_wave: int = 64
+    patch_columns: int = 4
     contact_points: int = 4
     penalty_factor: float = 100.0
     contact_smoothing: float = 0.1
@@ -218,17 +248,15 @@ class FemOptions:
     transient: TransientOptions = field(default_factory=TransientOptions)
 
     def __post_init__(self) -> None:
-        try:
-            nx, ny = (int(m) for m in self.mesh)
-            if any(int(m) != m for m in self.mesh) or len(self.mesh) != 2:
-                raise ValueError
-        except (TypeError, ValueError):
-            raise InputError(f"mesh: expected two integers (nx, ny), got {self.mesh!r}") from None
-        if nx < 3 or ny < 1:
-            raise InputError(f"mesh: need nx >= 3 and ny >= 1, got {self.mesh!r}")
-        object.__setattr__(self, "mesh", (nx, ny))
+        if not self.auto:
+            object.__setattr__(self, "mesh", _explicit_mesh(self.mesh))
         positive_scalar("height_ratio", self.height_ratio)
         positive_scalar("grading", self.grading)
+        if self.auto and self.grading != 1.0:
+            raise InputError(f"grading: mesh = 'auto' sets the grading; give an explicit mesh "
+                             f"to set it, got grading = {self.grading}")
+        _integer("columns_per_wave", self.columns_per_wave, 8)
+        _integer("patch_columns", self.patch_columns, 1)
         _integer("contact_points", self.contact_points, 1)
         positive_scalar("penalty_factor", self.penalty_factor)
         positive_scalar("contact_smoothing", self.contact_smoothing, allow_zero=True)
@@ -260,9 +288,27 @@ class FemOptions:
         self.transient.validate()
 
     @property
+    def auto(self) -> bool:
+        """The mesh follows the surface (``mesh = "auto"``)."""
+        return isinstance(self.mesh, str) and self.mesh == AUTO
+
+    @property
     def steps_per_period(self) -> int:
         """The transient's steps per period (``nx`` unless set)."""
         return self.transient.steps_per_period or self.mesh[0]
+
+    def resolved(self, surface) -> FemOptions:
+        """These options on ``surface``'s cell: an automatic mesh made explicit
+        (:func:`~.resolution.auto_mesh`), its nested iteration's coarsest mesh kept at
+        ``columns_per_wave`` (the coarse press is then resolved too); others unchanged."""
+        if not self.auto:
+            return self
+        from .resolution import auto_mesh
+
+        m = auto_mesh(surface, self.height_ratio, self.columns_per_wave)
+        coarse = self.steady.coarse_elements
+        return self.with_(mesh=(m.nx, m.ny), grading=m.grading, steady={
+            "coarse_elements": max(coarse, self.columns_per_wave) if coarse else 0})
 
     def to_dict(self) -> dict:
         """Plain data, e.g. for a task's arguments and its cache key: every field, except
@@ -270,9 +316,13 @@ class FemOptions:
         barrier — so the penalty's tasks keep the arguments (and the cache keys) they had
         before the barrier existed, and the reference FEM solves stay reachable."""
         out = asdict(self)
-        out["mesh"] = list(self.mesh)
+        out["mesh"] = self.mesh if self.auto else list(self.mesh)
         if self.contact == "penalty":
             for name in ("contact", "barrier_distance", "barrier_stiffness"):
+                del out[name]
+        # likewise the automatic mesh's rule, on an explicit mesh at its defaults
+        for name in ("columns_per_wave", "patch_columns"):
+            if not self.auto and out[name] == _DEFAULTS[name]:
                 del out[name]
         return out
 
@@ -290,7 +340,7 @@ class FemOptions:
                 if bad:
                     raise InputError(f"FEM options: unknown key(s) {[f'{key}.{b}' for b in bad]}")
                 kw[key] = sub(**kw[key])
-        if "mesh" in kw:
+        if "mesh" in kw and not isinstance(kw["mesh"], str):
             kw["mesh"] = tuple(kw["mesh"])
         return cls(**kw)
 
@@ -300,3 +350,7 @@ class FemOptions:
             if isinstance(changes.get(key), dict):
                 changes[key] = replace(getattr(self, key), **changes[key])
         return replace(self, **changes)
+
+
+#: Field defaults that :meth:`FemOptions.to_dict` leaves out.
+_DEFAULTS = {f.name: f.default for f in fields(FemOptions)}

@@ -94,6 +94,13 @@ class SolverStats:
         :data:`SEGMENT_PENETRATION_LIMIT` element widths (while sliding, for the
         transient test; the warning :func:`impaled_message`): friction and contact
         fraction are not meaningful.
+    patch_columns
+        Steady solver: the narrowest contact patch in columns (``inf`` without patch
+        edges; NaN: not measured, transient).
+    under_resolved
+        ``patch_columns`` is below ``FemOptions.patch_columns`` (:mod:`.resolution`).
+    refined
+        The automatic mesh was refined (``nx`` doubled) after the first solve's check.
 
     Notes
     -----
@@ -132,6 +139,9 @@ class SolverStats:
     period_change: float = np.nan
     period_area_change: float = np.nan
     bulk_shear_change: float = np.nan
+    patch_columns: float = np.nan
+    under_resolved: bool = False
+    refined: bool = False
 
     def as_dict(self) -> dict[str, Any]:
         """Plain values; an undefined float (NaN) is None so the dict is valid JSON."""

@@ -24,6 +24,7 @@ from ..roughness.sines import SineSeries
 from .constitutive import cauchy_from_pk2
 from .contact import face_contact_fraction, mean_separation, segment_penetration
 from .options import FemOptions, SteadyOptions, TransientOptions
+from .resolution import auto_mesh, narrowest_patch, under_resolved_message
 from .result import (
     BULK_SHEAR_LIMIT,
     SEGMENT_PENETRATION_LIMIT,
@@ -81,7 +82,7 @@ def check_test(surface, material, mean_pressure, velocity, options: FemOptions
                          f"{type(material).__name__}")
     p = positive_scalar("mean_pressure", mean_pressure, unit="MPa")
     v = positive_scalar("velocity", velocity, allow_zero=True, unit="mm/s")
-    nx = options.mesh[0]
+    nx = options.resolved(surface).mesh[0]
     per_wave = nx * surface.wavelengths[0] / surface.period
     if per_wave < MIN_ELEMENTS_PER_WAVELENGTH - 1e-9:
         nx_min = int(np.ceil(MIN_ELEMENTS_PER_WAVELENGTH * surface.period
@@ -150,9 +151,63 @@ def sliding_test(surface: SineSeries, material: GeneralizedMaxwell, mean_pressur
         changes["solver"] = solver
     opts = make_options(options, **changes)
     p, v = check_test(surface, material, mean_pressure, velocity, opts)
+    refine, opts = opts.auto, opts.resolved(surface)
     if opts.solver == "transient":
         return TransientTest(surface, material, p, v, opts, progress).run()
-    return _steady(surface, material, p, v, opts, start)
+    if not refine:
+        return _steady(surface, material, p, v, opts, start)
+    return _resolved_steady(surface, material, p, v, opts, start)
+
+
+def _doubled(surface, opts: FemOptions) -> FemOptions:
+    """The resolved automatic ``opts`` on the rule's mesh for twice the columns per wave
+    (``nx`` doubled, rows and grading the rule's for it: the face rows keep their aspect),
+    the nested iteration still starting at the old ``nx``."""
+    m = auto_mesh(surface, opts.height_ratio, 2 * opts.columns_per_wave)
+    return opts.with_(mesh=(m.nx, m.ny), grading=m.grading)
+
+
+def _resolved_steady(surface, material, p, v, opts: FemOptions, start) -> SlidingTestResult:
+    """The steady test on an automatic mesh: solved, its narrowest contact patch checked,
+    and where that is below ``opts.patch_columns`` re-solved once on the mesh with ``nx``
+    doubled (:func:`_doubled`). A neighbour that was refined starts this test on the
+    refined mesh directly."""
+    fine = _doubled(surface, opts)
+    if start is not None and tuple(start.mesh) == fine.mesh:
+        res = _steady(surface, material, p, v, fine, start)
+        return _say_resolution(_mark_refined(res, "on the neighbour's refined mesh"), opts)
+    res = _steady(surface, material, p, v, opts, start)
+    if not res.stats.under_resolved:
+        return _say_resolution(res, opts)
+    first = res.stats.patch_columns
+    try:
+        # afresh, nested from the first mesh's columns: carrying the first solution over
+        # onto the finer rows cost 4x more on the steep CAPTIF cell (mesh_resolution.md)
+        again = _steady(surface, material, p, v, fine.with_(steady={"fallback": False}),
+                        None)
+    except ConvergenceError as exc:
+        note = (f"refine {fine.mesh[0]}x{fine.mesh[1]} (narrowest patch {first:.1f} columns) "
+                f"failed: {exc}")
+        res = replace(res, stats=replace(res.stats, tried=res.stats.tried + (note,)))
+        return _say_resolution(res, opts)
+    return _say_resolution(_mark_refined(again, f"narrowest patch {first:.1f} columns on "
+                                                 f"{opts.mesh[0]}x{opts.mesh[1]}"), opts)
+
+
+def _say_resolution(res: SlidingTestResult, opts: FemOptions) -> SlidingTestResult:
+    """Warn (one line) if the automatic mesh's test is still under-resolved."""
+    if res.stats.under_resolved:
+        warnings.warn(under_resolved_message(res.stats.patch_columns, opts.patch_columns,
+                                             res.mesh, res.mean_pressure, res.velocity),
+                      RuntimeWarning, stacklevel=4)
+    return res
+
+
+def _mark_refined(res: SlidingTestResult, why: str) -> SlidingTestResult:
+    """``res`` flagged as refined, with why in its stages."""
+    note = f"refined to {res.mesh[0]}x{res.mesh[1]} ({why})"
+    return replace(res, stats=replace(res.stats, refined=True,
+                                      tried=(note,) + tuple(res.stats.tried)))
 
 
 def steady_sliding(surface: SineSeries, material: GeneralizedMaxwell, mean_pressure: float,
@@ -207,6 +262,7 @@ def steady_result(sol: SteadySolution, surface, material, p: float, v: float,
     if impaled:
         warnings.warn(impaled_message(seg_pen, setup.cell.hx, p, v), RuntimeWarning,
                       stacklevel=4)
+    patch = narrowest_patch(surface, sol.shift, cs, L0, setup.cell.hx)
     c = sol.counters
     stats = SolverStats(
         solver="steady", newton_iterations=c.newton_iterations,
@@ -217,7 +273,8 @@ def steady_result(sol: SteadySolution, surface, material, p: float, v: float,
         bulk_shear=bulk_shear, krylov_iterations=c.krylov_iterations,
         continuation_steps=c.continuation_steps, tried=tuple(sol.path),
         surface_offset=float(np.mod(sol.shift, setup.cell.hx)),
-        factorization_time=c.factorization_time)
+        factorization_time=c.factorization_time, patch_columns=patch,
+        under_resolved=bool(patch < opts.patch_columns))
     ue = ev.u_full[model.asm.edofs].reshape(-1, 4, 2)
     return SlidingTestResult(
         friction=mu, shear_stress=mu * p,
