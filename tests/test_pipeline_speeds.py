@@ -82,7 +82,7 @@ def test_hybrid_at_a_temperature_is_the_hand_shifted_material_at_the_same_speed(
     # The same identity through the FEM law (steady solver) and the hybrid solve.
     over = {"surface": {"preset": "section3"}, "models": ["hybrid"], "realizations": 1,
             "loads": {"pressures": [0.3]}, "fem": {"mesh": [40, 30]},
-            "law": {"pressures": [0.2, 0.6, 2.0]}}
+            "law": {"pressures": [0.2, 0.6, 2.0], "extend": False}}
     ds = rc.pipeline.run(_config(tmp_path / "t", temperatures=[20.0, 30.0], **over),
                          progress=False)
     ref = rc.pipeline.run(_config(tmp_path / "r", **{**over, "material": _shifted_material(30.0)}),
@@ -160,10 +160,12 @@ def test_the_law_by_continuation_in_speed_equals_the_points_solved_one_by_one(tm
     over = {"surface": {"preset": "section3"}, "models": ["hybrid"], "realizations": 1,
             "loads": {"pressures": [0.3]}, "velocities": [3.0, 10.0, 30.0],
             "fem": {"mesh": [40, 30]}, "material": {"preset": "sbr"}}
-    path = rc.pipeline.run(_config(tmp_path / "c", law={"pressures": [0.2, 0.6],
-                                                        "speed_path": "continuation"}, **over),
+    path = rc.pipeline.run(_config(tmp_path / "c", law={"pressures": [0.2, 0.6], "extend": False,
+                                                        "speed_path": "continuation"},
+                                   **over),
                            progress=False)
     points = rc.pipeline.run(_config(tmp_path / "p", law={"pressures": [0.2, 0.6],
+                                                          "extend": False,
                                                           "speed_path": "points"}, **over),
                              progress=False)
     for k in ("law_friction", "law_contact_fraction", "law_mean_separation"):

@@ -13,6 +13,7 @@ from __future__ import annotations
 import json
 import time
 from collections.abc import Callable
+from dataclasses import dataclass
 from pathlib import Path
 
 import numpy as np
@@ -23,10 +24,11 @@ from ..materials import GeneralizedMaxwell
 from .adhesion import AdhesionLaw, add_adhesion
 from .assemble import add_law, add_profiles, assemble, model_times
 from .flash import add_flash, plan_flash
-from .lawstage import add_vhs, build_law
+from .lawcover import MAX_ROUNDS, coverage, describe, plan_extension
+from .lawstage import LawStage, add_vhs, build_law, extend_law
 from .loads import at_areas, pressure_grid_for_areas
 from .plan import model_tasks
-from .setup import RunSetup, pressure_array, resolve, task_material
+from .setup import LAW_MODELS, RunSetup, pressure_array, resolve, task_material
 from .statistics import add_errors, add_phase_means, add_realization_statistics
 from .temperature import spread_over_temperatures
 
@@ -105,18 +107,14 @@ def run(config: RunConfig | dict | str | Path, *, runner: Runner | None = None,
     stage = None
     if setup.needs_law:
         stage = build_law(cfg, setup.hs0, material, pressures, runner, law, velocities=speeds)
+    t0 = time.perf_counter()
+    models = run_models(setup, material, pressures, stage, runner)
+    timings["models"] = time.perf_counter() - t0 - models.law_time
+    stage, slots, results, ds = models.stage, models.slots, models.results, models.ds
+    if stage is not None:
         if stage.fem_time is not None:
             timings["law"] = stage.fem_time
         stage_law = add_vhs(stage.law, setup.hs0, material, cfg, runner)
-    tables = stage.tables if stage is not None else {}
-
-    slots, tasks = model_tasks(setup, material, pressures, tables)
-    t0 = time.perf_counter()
-    results = runner(tasks)
-    timings["models"] = time.perf_counter() - t0
-
-    ds = assemble(setup.models, speeds, len(setup.realizations), pressures, slots, results,
-                  material, setup.n_fem)
     ds = add_profiles(ds, slots, results)
     per_model_time = model_times(slots, results)
     if stage is not None:
@@ -138,8 +136,79 @@ def run(config: RunConfig | dict | str | Path, *, runner: Runner | None = None,
     if stage is not None and not setup.speeds.isothermal:
         ds = add_law(ds, stage_law, on="law_velocity")
     ds = _with_validity(ds, setup)
+    if models.coverage:
+        ds.attrs["law_coverage"] = models.coverage
     timings["total"] = time.perf_counter() - t_start
     return _describe(ds, setup, timings, per_model_time)
+
+
+@dataclass(frozen=True)
+class ModelRuns:
+    """The model tasks of a run, after the law was extended to cover them.
+
+    Attributes
+    ----------
+    stage
+        The law (extended), or None without one.
+    slots, results
+        The model tasks' slots and results (:func:`~.plan.model_tasks`).
+    ds
+        The results assembled (:func:`~.assemble.assemble`).
+    coverage
+        One line on the law's coverage of the local pressures ("" without a law).
+    law_time
+        Wall time of the law's extension FEM [s] (counted in ``stage.fem_time``).
+    """
+
+    stage: LawStage | None
+    slots: list
+    results: list
+    ds: xr.Dataset
+    coverage: str
+    law_time: float
+
+
+def run_models(setup: RunSetup, material: GeneralizedMaxwell, pressures: np.ndarray,
+               stage: LawStage | None, runner: Runner) -> ModelRuns:
+    """Run the model tasks; while the law models' local pressures go beyond the law's FEM
+    points, extend the law (``law.extend``, :mod:`.lawcover`) and run those models again."""
+    cfg = setup.config
+    slots, tasks = model_tasks(setup, material, pressures, stage.tables if stage else {})
+    results = runner(tasks)
+    ds = _assemble(setup, material, pressures, slots, results)
+    if stage is None:
+        return ModelRuns(None, slots, results, ds, "", 0.0)
+    law_time0 = stage.fem_time or 0.0
+    added: list[float] = []
+    stopped: dict[float, str] = {}
+    rounds = 0
+    cov = coverage(ds, stage.law)
+    top = cfg.law.max_pressure or np.inf
+    while (cfg.law.extend and stage.raw is not None and cov.uncovered.any()
+           and rounds < MAX_ROUNDS):
+        ext = plan_extension(cov, stage.law, top, float(material.glassy_modulus))
+        stopped.update(ext.stopped)
+        if not ext.points:
+            break
+        rounds += 1
+        added += list(ext.points)
+        stage = extend_law(stage, ext.points, cfg, setup.hs0, material,
+                           setup.speeds.computed, runner)
+        slots, tasks = model_tasks(setup, material, pressures, stage.tables)
+        redo = [k for k, sl in enumerate(slots) if sl.model in LAW_MODELS]
+        for k, res in zip(redo, runner([tasks[k] for k in redo]), strict=True):
+            results[k] = res
+        ds = _assemble(setup, material, pressures, slots, results)
+        cov = coverage(ds, stage.law)
+    law_time = (stage.fem_time or 0.0) - law_time0
+    text = describe(cov, added, stopped, rounds) if stage.raw is not None else ""
+    return ModelRuns(stage, slots, results, ds, text, law_time)
+
+
+def _assemble(setup: RunSetup, material: GeneralizedMaxwell, pressures: np.ndarray,
+              slots: list, results: list) -> xr.Dataset:
+    return assemble(setup.models, setup.speeds.computed, len(setup.realizations), pressures,
+                    slots, results, material, setup.n_fem)
 
 
 def _with_validity(ds: xr.Dataset, setup: RunSetup) -> xr.Dataset:

@@ -21,12 +21,12 @@ from ..hybrid.law import (
     assemble_law,
     check_law_matches,
     continue_with_linear_shape,
-    effective_law,
     law_at_velocity,
     screen_monotone,
 )
 from ..materials import GeneralizedMaxwell
 from ..roughness import SineSeries
+from .lawcover import NOT_NEEDED, merge_points
 from .setup import task_material
 
 #: ``law.speed_path = "auto"`` follows the speeds by continuation from this many speeds on.
@@ -48,11 +48,16 @@ class LawStage:
         highest pressure with the linear law's shape).
     fem_time
         Wall time of the FEM sweep [s] (None when the law was given).
+    raw
+        The law table before the monotonicity screen (every FEM point tried, with its
+        status), which an extension (:func:`extend_law`) adds to; None when the law was
+        given.
     """
 
     law: xr.Dataset
     tables: dict
     fem_time: float | None
+    raw: xr.Dataset | None = None
 
 
 def law_pressures(cfg: RunConfig, pressures: np.ndarray) -> np.ndarray:
@@ -86,7 +91,6 @@ def build_law(cfg: RunConfig, hs0: SineSeries, material: GeneralizedMaxwell,
         passes its reduced speeds).
     """
     speeds = np.asarray(cfg.velocities if velocities is None else velocities, float)
-    fem_time = None
     if law is None and cfg.law.file is not None:
         from ..io.results import read_results
 
@@ -96,39 +100,89 @@ def build_law(cfg: RunConfig, hs0: SineSeries, material: GeneralizedMaxwell,
     if law is not None:
         law = as_law(law, source)
         check_law_matches(law, hs0, material, speeds, source)
-    else:
-        t0 = time.perf_counter()
-        law = fem_law(cfg, hs0, material, law_pressures(cfg, pressures), speeds, runner)
-        fem_time = time.perf_counter() - t0
+        return _stage(law, None, hs0, material, speeds, cfg, raw=None)
+    t0 = time.perf_counter()
+    raw = fem_law(cfg, hs0, material, law_pressures(cfg, pressures), speeds, runner)
+    return _stage(raw, time.perf_counter() - t0, hs0, material, speeds, cfg, raw=raw)
+
+
+def extend_law(stage: LawStage, points: dict[float, list[float]], cfg: RunConfig,
+               hs0: SineSeries, material: GeneralizedMaxwell, speeds: np.ndarray,
+               runner) -> LawStage:
+    """``stage`` with FEM law points added at ``{pressure [MPa]: speeds [mm/s]}``
+    (:mod:`.lawcover`), screened and tabulated again."""
+    if stage.raw is None:
+        raise ValueError("extend_law: a given law cannot be extended (no FEM options)")
+    t0 = time.perf_counter()
+    v = stage.raw["velocity"].values
+    new = fem_points(cfg, hs0, material, points, v, runner,
+                     continuation=uses_continuation(cfg, np.unique(speeds).size))
+    raw = merge_points(stage.raw, new)
+    fem_time = (stage.fem_time or 0.0) + time.perf_counter() - t0
+    return _stage(raw, fem_time, hs0, material, speeds, cfg, raw=raw)
+
+
+def _stage(law: xr.Dataset, fem_time: float | None, hs0: SineSeries,
+           material: GeneralizedMaxwell, speeds: np.ndarray, cfg: RunConfig,
+           raw: xr.Dataset | None) -> LawStage:
+    """Screen ``law`` for monotonicity and tabulate it at each speed."""
     law = screen_monotone(law)
     tables = {float(v): continue_with_linear_shape(law_at_velocity(law, float(v)), hs0,
                                                    material, float(v), nu=cfg.material.nu)
               for v in speeds}
-    return LawStage(law, tables, fem_time)
+    return LawStage(law, tables, fem_time, raw)
 
 
 def fem_law(cfg: RunConfig, hs0: SineSeries, material: GeneralizedMaxwell,
             pressures: np.ndarray, speeds: np.ndarray, runner) -> xr.Dataset:
-    """Run the FEM law points, by continuation in speed where :func:`uses_continuation`."""
-    options = cfg.fem.options(material)
+    """Run the FEM law points on ``pressures × speeds``, by continuation in speed where
+    :func:`uses_continuation`."""
     v = np.unique(speeds)
-    if not uses_continuation(cfg, v.size):
-        return effective_law(hs0, material, pressures, v, options=options, runner=runner)
+    points = {float(p): v.tolist() for p in pressures}
+    return fem_points(cfg, hs0, material, points, v, runner,
+                      continuation=uses_continuation(cfg, v.size))
+
+
+def fem_points(cfg: RunConfig, hs0: SineSeries, material: GeneralizedMaxwell,
+               points: dict[float, list[float]], speeds: np.ndarray, runner,
+               continuation: bool) -> xr.Dataset:
+    """The raw law table of the FEM points ``{pressure [MPa]: speeds [mm/s]}`` on the
+    grid ``speeds × pressures``; the grid points not asked for have the status
+    :data:`~.lawcover.NOT_NEEDED`. ``continuation``: one task per pressure following its
+    speeds (steady solver), else one task per point."""
+    from ..fem import make_options
     from ..sweep import Task
 
-    p = np.sort(np.asarray(pressures, float))
-    opts = options.to_dict()
-    # highest pressure first: the paths at the highest loads take the longest (most Newton
-    # iterations per speed), and started last they would leave the other workers idle
-    tasks = [Task(function="rubbercontact.hybrid.tasks:fem_speed_path_task",
-                  kwargs={"surface": hs0.as_dict(), "material": task_material(material),
-                          "velocities": v.tolist(), "mean_pressure": float(pi),
-                          "options": opts},
-                  label=f"law FEM p={pi:g} MPa, {v.size} speeds by continuation")
-             for pi in p[::-1]]
-    paths = runner(tasks)[::-1]
-    points = [_path_point(paths[j], i) for i in range(v.size) for j in range(p.size)]
-    return assemble_law(points, p, v, hs0, material, opts)
+    opts = make_options(cfg.fem.options(material)).to_dict()   # fails here, not per task
+    p = np.sort(np.asarray(list(points), float))
+    v = np.sort(np.asarray(speeds, float))
+    wanted = np.array([[float(vi) in set(points[float(pj)]) for pj in p] for vi in v])
+    results = np.full(wanted.shape, NOT_NEEDED, dtype=object)
+    if continuation:
+        # highest pressure first: the paths at the highest loads take the longest (most
+        # Newton iterations per speed), and started last they would leave workers idle
+        order = [j for j in range(p.size)[::-1] if wanted[:, j].any()]
+        tasks = [Task(function="rubbercontact.hybrid.tasks:fem_speed_path_task",
+                      kwargs={"surface": hs0.as_dict(), "material": task_material(material),
+                              "velocities": v[wanted[:, j]].tolist(),
+                              "mean_pressure": float(p[j]), "options": opts},
+                      label=f"law FEM p={p[j]:g} MPa, {int(wanted[:, j].sum())} speeds by "
+                            f"continuation")
+                 for j in order]
+        for j, path in zip(order, runner(tasks), strict=True):
+            for k, i in enumerate(np.flatnonzero(wanted[:, j])):
+                results[i, j] = _path_point(path, k)
+    else:
+        at = np.argwhere(wanted)
+        tasks = [Task(function="rubbercontact.hybrid.tasks:fem_task",
+                      kwargs={"surface": hs0.as_dict(), "material": material.as_dict(),
+                              "velocity": float(v[i]), "mean_pressure": float(p[j]),
+                              "options": opts},
+                      label=f"law FEM v={v[i]:g} mm/s p={p[j]:g} MPa")
+                 for i, j in at]
+        for (i, j), res in zip(at, runner(tasks), strict=True):
+            results[i, j] = res
+    return assemble_law(results.ravel().tolist(), p, v, hs0, material, opts)
 
 
 def _path_point(path, i: int):

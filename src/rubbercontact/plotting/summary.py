@@ -44,7 +44,8 @@ def summary_table(ds: xr.Dataset) -> str:
     else:
         for v in ds["velocity"].values:
             lines += _per_speed(ds, v)
-    return "\n".join(lines + _validity(ds))
+    coverage = [f"law: {ds.attrs['law_coverage']}"] if ds.attrs.get("law_coverage") else []
+    return "\n".join(lines + coverage + _validity(ds))
 
 
 def _validity(ds: xr.Dataset) -> list[str]:
