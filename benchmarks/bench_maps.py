@@ -115,8 +115,10 @@ def table(rows: list[dict]) -> str:
 
 # -- the 2D BEM: previous path against the current one (issue 42, item 5) -------------------
 #: The solver as before the 2D speed-ups (no coarse-grid start on maps, double-precision
-#: GMRES, the multi-shift preconditioner on maps): bitwise the previous commit's results.
-PREVIOUS = SolverOptions(coarse_min_side_2d=None, single_precision_2d=False, multi_shift_2d=True)
+#: GMRES, the multi-shift preconditioner on maps, the plain Newton at the end of a wall +
+#: soft law): bitwise the results of the code before commit 9a375d4.
+PREVIOUS = SolverOptions(coarse_min_side_2d=None, single_precision_2d=False, multi_shift_2d=True,
+                          wall_soft_mixed_newton_2d=False)
 BEM_HEADING = "## 2D BEM: the previous solver against the current one"
 
 

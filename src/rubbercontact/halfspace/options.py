@@ -67,6 +67,10 @@ class SolverOptions:
         soft law, elastic active set); a map of even sides at least twice this starts from
         the solution on every 2nd point of each axis (recursively). ``None``: no coarse-grid
         start on maps. The 1D switches above (``None``) turn it off as well.
+    wall_soft_mixed_newton_2d : bool, default True
+        Maps: the final Newton of a Lennard-Jones wall + soft law linearises the wall's
+        contact rows in the wall's inverse form (the mixed Newton with a soft member);
+        ``False``: the plain Newton there.
     multi_shift_2d : bool, default False
         Maps: ``multi_shift`` also on maps. Off by default: on the self-affine maps of
         ``benchmarks/maps.md`` it saved no GMRES iterations and doubled their FFTs.
@@ -91,6 +95,7 @@ class SolverOptions:
     wall_soft_coarse_min_points: int | None = 256
     wall_soft_linear_rtol: float = 1e-3
     coarse_min_side_2d: int | None = 128
+    wall_soft_mixed_newton_2d: bool = True
     multi_shift_2d: bool = False
     single_precision_2d: bool = True
 
