@@ -104,7 +104,7 @@ def westergaard_cascade_area(psd: mf.PSD, mean_pressure: float, velocity: float 
 
 def separation_table(rows) -> str:
     """Persson, the Westergaard cascade and the elastic BEM on the separation profiles."""
-    lines = ["| profile | Persson A | Westergaard cascade A | strips A (default) | BEM A "
+    lines = ["| profile | Persson A | Westergaard cascade A | strips A | BEM A "
              "(8 realizations) | Persson error | cascade error | strips error |",
              "|---|---|---|---|---|---|---|---|"]
     for r in (r for r in rows if r["kind"] == "separation"):
@@ -120,7 +120,7 @@ def separation_table(rows) -> str:
 
 
 def broadband_table(rows) -> tuple[str, dict]:
-    """Self-affine profiles over 2 and 3 decades: the default (patch spectrum) against
+    """Self-affine profiles over 2 and 3 decades: S = 1 with the patch spectrum against
     Persson's dissipation, BEM averaged over the realizations."""
     from ._meanfield_cases import self_affine_profile
 
@@ -128,7 +128,7 @@ def broadband_table(rows) -> tuple[str, dict]:
     for r in (r for r in rows if r["kind"] == "broadband"):
         groups.setdefault((r["case"], r["v"], r["target"]), []).append(r)
     lines = ["| profile | v [mm/s] | BEM μ | BEM A | theory A | A error | μ, patch spectrum "
-             "(default) | error | μ, Persson's dissipation | error |", "|---" * 10 + "|"]
+             "(S = 1) | error | μ, Persson's dissipation (S = 1) | error |", "|---" * 10 + "|"]
     errs: dict[str, list] = {"patch": [], "mode": [], "area": []}
     for (case, v, _), rs in groups.items():
         par = rs[0]["params"]

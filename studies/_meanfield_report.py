@@ -31,14 +31,15 @@ from ._meanfield_cases import (
     self_affine_profile,
 )
 from ._meanfield_diagnosis import broadband_table, diagnosis
+from ._meanfield_gamma import gamma_table
 from ._meanfield_sine import sine_table
 from ._templates import render
 
 SBR = rc.materials.sbr()
 TARGET = 0.15
-#: meanfield-hybrid as measured here: S = 1, after the wave (the law layer, or rigid).
-HYBRID = mf.MeanFieldOptions(correction=1.0, weighting="after", interface="law")
-HYBRID_RIGID = mf.MeanFieldOptions(correction=1.0, weighting="after", interface="rigid")
+#: meanfield-hybrid with its defaults (Persson's S, the law layer) and a rigid interface.
+HYBRID = mf.MeanFieldOptions(interface="law")
+HYBRID_RIGID = mf.MeanFieldOptions(interface="rigid")
 A_RANGE = (0.01, 0.5)
 
 
@@ -119,10 +120,11 @@ def _ok_sampled(p: dict) -> bool:
 
 
 def _validation_table(points, old) -> str:
-    """Per surface: the default against the BEM, and the previous default (the diffusion)
+    """Per surface: the strips (or S = 1 with the patch spectrum) against the BEM, and the
+    diffusion with S = 1 (the earlier defaults)
     beside it (the same rows; continuous spectra have no strips, the two coincide)."""
     lines = ["| surface | waves | max m2 | points (BEM A in 1–50 %) | μ error mean [min, max] "
-             "| A error mean [min, max] | μ and A within 15 % | previous default (diffusion): "
+             "| A error mean [min, max] | μ and A within 15 % | diffusion, S = 1: "
              "μ error | A error | within 15 % |", "|---" * 10 + "|"]
     for case in dict.fromkeys(p["case"] for p in points):
         pts = [p for p in points if p["case"] == case and p["in_range"]]
@@ -146,10 +148,10 @@ def _validation_table(points, old) -> str:
 
 
 def _share_table(points, old, nested) -> tuple[str, dict]:
-    """Random-ladder points with μ and A within 15 %, by speed: previous default, the strips
-    without outer crests (``nested-strips``) and the default."""
-    lines = ["| v [mm/s] | points | BEM realizations | previous default (diffusion) | "
-             "strips without outer crests | default (strips) | default, within 15 % + 2 s.e. "
+    """Random-ladder points with μ and A within 15 %, by speed: the diffusion with S = 1,
+    the strips without outer crests and the strips (``meanfield-strips``)."""
+    lines = ["| v [mm/s] | points | BEM realizations | diffusion, S = 1 | "
+             "strips without outer crests | strips | strips, within 15 % + 2 s.e. "
              "of the BEM mean |", "|---|---|---|---|---|---|---|"]
     fields = {}
     for v in (*SPEEDS, None):
@@ -213,7 +215,7 @@ def _area_bias(points) -> dict:
 
 def _self_affine_table(points) -> tuple[str, dict]:
     lines = ["| v [mm/s] | σ0 [MPa] | N | realization | BEM μ | BEM A | theory μ | theory A "
-             "| μ error | A error | μ, mode dissipation (old default) | its error "
+             "| μ error | A error | μ, S = 1, mode dissipation | its error "
              "| μ with S = ½ + ½A² | its error | BEM time [s] |",
              "|---" * 15 + "|"]
     persson = mf.MeanFieldOptions(correction=0.5)
@@ -317,16 +319,21 @@ def _hybrid_table(hyb) -> tuple[str, dict]:
 
 
 def _two_d_table(rows) -> tuple[str, list]:
-    lines = ["| v [mm/s] | σ0 [MPa] | map | BEM μ | BEM A | theory μ | theory A | μ error "
-             "| A error | BEM time [s] |", "|---|---|---|---|---|---|---|---|---|---|"]
+    lines = ["| v [mm/s] | σ0 [MPa] | map | BEM μ | BEM A | theory μ (default) | theory A "
+             "| μ error | A error | μ with S = 1 | its error | BEM time [s] |",
+             "|---" * 12 + "|"]
     errs = []
     for r in sorted((r for r in rows if r["kind"] == "2d"), key=lambda r: (r["v"], r["p"])):
         res = mf.solve(_psd(r), SBR, r["v"], r["p"])
-        e = (res.friction / r["bem_mu"][0] - 1, res.contact_fraction / r["bem_A"][0] - 1)
+        one = mf.solve(_psd(r), SBR, r["v"], r["p"],
+                       options=mf.MeanFieldOptions(correction=1.0)).friction
+        e = (res.friction / r["bem_mu"][0] - 1, res.contact_fraction / r["bem_A"][0] - 1,
+             one / r["bem_mu"][0] - 1)
         errs.append(e)
         lines.append(f"| {r['v']:g} | {r['p']:.4g} | {r['seed']} | {r['bem_mu'][0]:.4f} | "
                      f"{r['bem_A'][0]:.4f} | {res.friction:.4f} | {res.contact_fraction:.4f} "
-                     f"| {_pct(e[0])} | {_pct(e[1])} | {r['bem_time']:.1f} |")
+                     f"| {_pct(e[0])} | {_pct(e[1])} | {one:.4f} | {_pct(e[2])} "
+                     f"| {r['bem_time']:.1f} |")
     return "\n".join(lines), errs
 
 
@@ -466,7 +473,7 @@ def _cost(points) -> dict:
 
 def report(rows, *, figures: Path, date: str, commit: str, wall: float, variants) -> str:
     points = _points(rows)
-    old = _points(rows, DIFFUSION)
+    old = _points(rows, diffusion)
     shares, share_fields = _share_table(points, old, _points(rows, NESTED, ("1d",)))
     hyb = _hybrid_rows(rows)
     hyb_table, hyb_fields = _hybrid_table(hyb)
@@ -480,15 +487,19 @@ def report(rows, *, figures: Path, date: str, commit: str, wall: float, variants
     trip_table, trip_fields = triplets_table(rows)
     scale, oracle, separation, log_area, diag_fields = diagnosis(rows)
     broad, broad_fields = broadband_table(rows)
+    gamma_tab, gamma_fields = gamma_table(rows, _psd)
     names = _figures(points, hyb, rows, figures)
     rnd = [p for p in points if _is_random(p["case"]) and p["in_range"]]
     n_1d = sum(r["kind"] == "1d" for r in rows)
     out = [render("meanfield", "title"), "",
            render("meanfield", "intro", date=date, commit=commit, points=n_1d,
+                  gamma=gamma_fields["gamma"], two_d_within=gamma_fields["two_d_within"],
                   wall=f"{wall / 60:.1f}", **share_fields, **bands_fields), "",
            render("meanfield", "theory"), "", render("meanfield", "strips"), "",
            render("meanfield", "sine", **sine_fields), "", sine_tab, "",
-           render("meanfield", "choices"), "", _choices_table(rows, variants), "",
+           render("meanfield", "choices", gamma=gamma_fields["gamma"]), "",
+           _choices_table(rows, variants), "",
+           render("meanfield", "gamma", **gamma_fields), "", gamma_tab, "",
            render("meanfield", "validation", n_random=len(rnd), **share_fields), "",
            _validation_table(points, old), "", shares, "",
            render("meanfield", "by_speed"), "", _speed_table(points), "",
@@ -511,10 +522,13 @@ def report(rows, *, figures: Path, date: str, commit: str, wall: float, variants
            render("meanfield", "broadband", sa_default=sa_fields["sa_default"],
                   sa_persson=sa_fields["sa_persson"], sa_mode=sa_fields["sa_mode"]), "",
            render("meanfield", "broadband_more", **broad_fields), "", broad, "",
-           render("meanfield", "hybrid", **hyb_fields), "", hyb_table, "",
+           render("meanfield", "hybrid", gamma=gamma_fields["gamma"], **hyb_fields), "",
+           hyb_table, "",
            render("meanfield", "two_d",
                   mu=_rng(np.array([e[0] for e in errs_2d])) if errs_2d else "–",
-                  area=_rng(np.array([e[1] for e in errs_2d])) if errs_2d else "–"), "",
+                  area=_rng(np.array([e[1] for e in errs_2d])) if errs_2d else "–",
+                  mu_one=_rng(np.array([e[2] for e in errs_2d])) if errs_2d else "–",
+                  gamma=f"{mf.DEFAULT_GAMMA:g}"), "",
            two_d, "", render("meanfield", "cost", **_cost(points)), ""]
     out += [f"![{n[:-4]}]({n})" for n in names]
     return "\n".join(out) + "\n"

@@ -36,8 +36,8 @@ def _westergaard_friction(x: float, p_star: float, q: float, v: float) -> float:
 
 
 def sine_table(rows) -> tuple[str, dict]:
-    lines = ["| v [mm/s] | σ0/p* | BEM A | Westergaard A | strips A (default) | diffusion A "
-             "| BEM μ | Westergaard + patch spectrum μ | error | strips μ (default) | error "
+    lines = ["| v [mm/s] | σ0/p* | BEM A | Westergaard A | strips A | diffusion A "
+             "| BEM μ | Westergaard + patch spectrum μ | error | strips μ | error "
              "| diffusion μ, mode | error | diffusion μ, patch r = A | error |",
              "|---" * 15 + "|"]
     errs: dict[str, list] = {"west": [], "mode": [], "patch": [], "strips": [],

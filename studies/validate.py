@@ -159,15 +159,16 @@ def _assemble(header: list[str], outdir: Path, report: Path) -> None:
 
 def meanfield_summary(path: Path) -> str:
     """The mean-field study's headline section (its own report, ``python -m studies
-    meanfield``, against the VHS BEM), as a VALIDATION.md section; empty without it."""
+    meanfield``, against the VHS BEM: the strips, ``meanfield-strips``), as a VALIDATION.md
+    section; empty without it."""
     if not path.exists():
         return ""
     text = path.read_text()
-    head = "## Validation (the default model)"
+    head = "## Validation of the strips (meanfield-strips)"
     if head not in text:
         return ""
     body = text.split(head, 1)[1].split("\n## ", 1)[0].strip()
-    return ("\n## Mean-field (Persson) model against the VHS BEM\n\n"
+    return ("\n## Mean-field strips (meanfield-strips) against the VHS BEM\n\n"
             "From the mean-field study (`python -m studies meanfield`, "
             "docs/validation/meanfield.md, which has the "
             "self-affine, 2D and meanfield-hybrid cases and the cost).\n\n" + body + "\n")
