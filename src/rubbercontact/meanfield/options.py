@@ -18,9 +18,9 @@ Why ``γ = 0.8`` by default
 --------------------------
 Persson's ``S = γ + (1 − γ)A²`` (Yang & Persson 2008; Persson quotes ``γ ≈ 1/2``) with
 ``γ`` from 0.5 to 1 against every stored BEM point of the validation (1D sine series and
-profiles, the 2D map): ``γ = 0.8`` puts the most points within 15 % and the 2D map, the
-theory's own dimension, within 15 % on 11 of its 12 points; ``γ = ½`` is low by 20–40 %
-on most classes (docs/validation/meanfield.md, "Persson's S(q) and its γ").
+profiles, the 2D map): ``γ = 0.8`` puts the most points within 15 %, the 2D map (the
+theory's own dimension) among them; ``γ ≈ 1/2`` is low on most surface classes
+(docs/validation/meanfield.md, "Persson's S(q) and its γ").
 """
 
 from __future__ import annotations

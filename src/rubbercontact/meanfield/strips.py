@@ -1,4 +1,5 @@
-r"""The 1D contact of a sine series as a cascade of Westergaard strips (``geometry="strips"``).
+r"""The 1D contact of a sine series as a cascade of Westergaard strips (the model
+``meanfield-strips``, :class:`~.options.StripOptions`).
 
 Persson's diffusion (:mod:`.contact`) gives every mode a Gaussian pressure step. In 1D the
 exact answer for one wave is known (Westergaard; :mod:`.patches`): a sine ``Δ cos qx`` under
