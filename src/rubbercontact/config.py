@@ -78,6 +78,11 @@ class HalfSpaceConfig(_Strict):
 Mesh = tuple[int, int]
 
 
+def _mesh(mesh: Mesh | str) -> Mesh | str:
+    """A config mesh as :class:`~rubbercontact.fem.FemOptions` takes it."""
+    return mesh if mesh == "auto" else tuple(mesh)
+
+
 #: FemConfig fields that only the time-stepped (transient) solver uses.
 TRANSIENT_ONLY = ("periods", "steps_per_period", "full_periods", "full_steps_per_period",
                   "min_creep_times")
@@ -89,9 +94,18 @@ class FemConfig(_Strict):
     solver: Literal["steady", "transient"] = Field(
         "steady", description="steady: the steady state solved directly (settled by "
                               "construction); transient: time-stepped press/settle/slide")
-    mesh: Mesh = Field((120, 90), description="elements (nx, ny) of the high-slope cell")
+    mesh: Mesh | Literal["auto"] = Field(
+        "auto", description="elements (nx, ny) of the high-slope cell, or 'auto': from the "
+                            "cell's shortest wave (columns_per_wave), rows and grading from "
+                            "its height; each law point checks its narrowest contact patch "
+                            "and refines once where it is too narrow "
+                            "(docs/validation/mesh_resolution.md)")
+    columns_per_wave: int = Field(
+        64, ge=8, le=256, description="mesh = 'auto': columns per shortest wave of the law "
+                                      "cell")
     full_mesh: Mesh | None = Field(
-        None, description="elements (nx, ny) of the full-surface FEM model (default: mesh)")
+        None, description="elements (nx, ny) of the full-surface FEM model (default: mesh if "
+                          "given, else 120 x 90)")
     height_ratio: PositiveFloat = Field(0.75, description="cell height / width [-]")
     periods: int = Field(4, ge=1, le=100, description="transient: maximum sliding distance "
                                                       "in periods")
@@ -108,7 +122,8 @@ class FemConfig(_Strict):
                             "split, first order in dt; transient solver only)")
     grading: PositiveFloat = Field(
         1.0, le=100, description="top/bottom element height ratio of the law cell's mesh "
-                                 "(> 1 refines toward the contact face)")
+                                 "(> 1 refines toward the contact face; set by mesh = "
+                                 "'auto')")
     full_grading: PositiveFloat = Field(
         1.0, le=100, description="top/bottom element height ratio of the full-surface FEM mesh "
                                  "(> 1 refines toward the contact face)")
@@ -144,7 +159,7 @@ class FemConfig(_Strict):
     def _meshes(cls, mesh: Mesh | None) -> Mesh | None:
         from .fem.options import FemOptions
 
-        if mesh is not None:
+        if mesh is not None and mesh != "auto":
             try:
                 FemOptions(mesh=mesh)
             except InputError as exc:
@@ -163,6 +178,9 @@ class FemConfig(_Strict):
                                  f"(the steady solver has no time steps or sliding distance)")
             if self.viscous_model != "simo":
                 raise ValueError("viscous_model = 'reese-govindjee' needs solver = 'transient'")
+        if self.mesh == "auto" and self.grading != 1.0:
+            raise ValueError("grading: mesh = 'auto' sets the law cell's grading; give an "
+                             "explicit mesh = [nx, ny] to set it")
         from .fem.options import SteadyOptions
 
         unknown = set(self.steady) - set(SteadyOptions.__dataclass_fields__)
@@ -188,6 +206,14 @@ class FemConfig(_Strict):
         except InputError as exc:
             raise ValueError(f"numerics: {exc}") from None
 
+    @property
+    def full_mesh_or_default(self) -> tuple[int, int]:
+        """The full-surface FEM's mesh: ``full_mesh``, else ``mesh`` if given, else 120 x 90
+        (the automatic rule would put tens of thousands of columns on a whole surface)."""
+        if self.full_mesh is not None:
+            return tuple(self.full_mesh)
+        return (120, 90) if self.mesh == "auto" else tuple(self.mesh)
+
     def options(self, material, full: bool = False):
         """The :class:`~rubbercontact.fem.FemOptions` of the law cell, or of the full-surface
         model (``full=True``), for ``material`` (whose retardation time sizes
@@ -203,7 +229,8 @@ class FemConfig(_Strict):
                               else self.steps_per_period),
             min_sliding_time=min_time)
         return FemOptions(
-            mesh=tuple((self.full_mesh or self.mesh) if full else self.mesh),
+            mesh=self.full_mesh_or_default if full else _mesh(self.mesh),
+            columns_per_wave=self.columns_per_wave,
             height_ratio=self.height_ratio,
             grading=self.full_grading if full else self.grading,
             contact_points=self.contact_points, history_order=self.history_order,

@@ -25,6 +25,12 @@ STEADINESS_VARIABLES = {
                   "x-displacement| / H (NaN: not recorded)",
     "impaled": "the surface passed through the rubber face between nodes, so friction and "
                "contact fraction are not meaningful (1/0; NaN: failed or not recorded)",
+    "patch_columns": "narrowest contact patch in columns of the mesh (inf: no patch edge; "
+                     "NaN: not measured)",
+    "under_resolved": "narrowest contact patch below FemOptions.patch_columns columns (1/0; "
+                      "NaN: not measured)",
+    "refined": "the automatic mesh was refined once (nx doubled) by the resolution check "
+               "(1/0; NaN: not recorded)",
 }
 #: Units of ``STEADINESS_VARIABLES`` other than "1".
 STEADINESS_UNITS = {"sliding_time": "s"}
@@ -89,6 +95,25 @@ def impaled_tests(diag: dict, label) -> tuple[int, str]:
     hit = [tuple(i) for i in np.argwhere(np.asarray(diag.get("impaled", np.nan)) == 1.0)]
     where = "; ".join(label(*idx) for idx in hit[:6]) + ("; ..." if len(hit) > 6 else "")
     return len(hit), where
+
+
+def under_resolved_message(diag: dict, label, what: str,
+                           hint: str = "a finer fem.columns_per_wave resolves them"
+                           ) -> str | None:
+    """One line naming the FEM tests of ``diag`` whose narrowest contact patch was below
+    the resolution check's width (narrowest first, at most 6 named), or None; ``hint``
+    says what refines them."""
+    from ..fem.resolution import RESOLUTION_STUDY
+
+    flag = np.asarray(diag.get("under_resolved", np.nan), float)
+    cols = np.asarray(diag.get("patch_columns", np.nan), float)
+    hit = sorted(map(tuple, np.argwhere(flag == 1.0)), key=lambda i: cols[i])
+    if not hit:
+        return None
+    where = ", ".join(f"{label(*idx)} ({cols[idx]:.1f})" for idx in hit[:6])
+    return (f"{what}: {len(hit)} of {int(np.isfinite(flag).sum())} FEM points under-resolved, "
+            f"narrowest contact patch in columns: {where}{', ...' if len(hit) > 6 else ''}; "
+            f"{hint} ({RESOLUTION_STUDY})")
 
 
 def describe_unsteady(diag: dict, label) -> tuple[int, str, bool]:

@@ -329,4 +329,6 @@ def _fem_scalars(out, surf: SineSeries, velocity: float, mean_pressure: float,
         "max_segment_penetration": st.max_segment_penetration,
         "bulk_shear": st.bulk_shear, "surface_offset": st.surface_offset,
         "sliding_time": sliding_time, "impaled": int(st.impaled),
+        "patch_columns": st.patch_columns, "under_resolved": int(st.under_resolved),
+        "refined": int(st.refined),
     }

@@ -18,7 +18,7 @@ from ..hybrid.law import (
     describe_unsteady,
     sheared_cells_message,
 )
-from ..hybrid.steadiness import impaled_tests
+from ..hybrid.steadiness import impaled_tests, under_resolved_message
 from ..materials import GeneralizedMaxwell
 from .plan import Slot
 from .setup import SPLIT_MODELS
@@ -162,6 +162,10 @@ def add_fem_steadiness(ds: xr.Dataset, diag: dict, material: GeneralizedMaxwell,
     sheared = sheared_cells_message(diag, label, "full FEM")
     if sheared:
         warnings.warn(sheared, RuntimeWarning, stacklevel=stacklevel)
+    coarse = under_resolved_message(diag, label, "full FEM", "a finer fem.full_mesh resolves "
+                                                              "them")
+    if coarse:
+        warnings.warn(coarse, RuntimeWarning, stacklevel=stacklevel)
     n_impaled, where = impaled_tests(diag, label)
     if n_impaled:
         # kept (nothing is lost) and still "ok": the run names them instead

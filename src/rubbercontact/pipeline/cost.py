@@ -114,6 +114,13 @@ def _duration(seconds: float) -> str:
     return f"{seconds / 3600:.1f} h"
 
 
+def law_mesh(setup: RunSetup) -> tuple[int, int]:
+    """The law cell's mesh: ``fem.mesh``, or the automatic one of the high-slope cell
+    (:meth:`rubbercontact.fem.FemOptions.resolved`; a point refined by its resolution check
+    costs more, which the estimate does not foresee)."""
+    return tuple(setup.config.fem.options(setup.material).resolved(setup.hs0).mesh)
+
+
 def estimate_cost(setup: RunSetup) -> CostEstimate:
     """Count the solves of a resolved run (:func:`~.setup.resolve`) and price them."""
     from .lawstage import law_pressures, uses_continuation
@@ -128,17 +135,18 @@ def estimate_cost(setup: RunSetup) -> CostEstimate:
         import numpy as np
 
         n_law = len(law_pressures(cfg, np.ones(1)))
-        each = fem_point_seconds(cfg.fem.mesh, cfg.fem.solver)
-        how = ""
+        mesh = law_mesh(setup)
+        each = fem_point_seconds(mesh, cfg.fem.solver)
+        how = " (auto)" if cfg.fem.mesh == "auto" else ""
         if uses_continuation(cfg, speeds):
-            each, how = each * CONTINUATION_FACTOR, ", by continuation in speed"
-        stages.append(Stage(f"law FEM points ({cfg.fem.mesh[0]} x {cfg.fem.mesh[1]}{how})",
+            each, how = each * CONTINUATION_FACTOR, f"{how}, by continuation in speed"
+        stages.append(Stage(f"law FEM points ({mesh[0]} x {mesh[1]}{how})",
                             n_law * speeds, each))
         stages.append(Stage("half-space solves of the high-slope waves (Fig. 7)",
                             n_law * speeds,
                             halfspace_solve_seconds(min(cfg.halfspace.n, 4096))))
     if "fem" in setup.models:
-        mesh = cfg.fem.full_mesh or cfg.fem.mesh
+        mesh = cfg.fem.full_mesh_or_default
         stages.append(Stage(f"full FEM tests ({mesh[0]} x {mesh[1]})",
                             speeds * setup.n_fem * loads,
                             fem_point_seconds(mesh, cfg.fem.solver)))

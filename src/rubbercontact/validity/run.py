@@ -49,7 +49,29 @@ def assess_run(ds: xr.Dataset, setup) -> tuple[Note, ...]:
             found = assess(model, stats, points, peak / shift)
             # the surface's notes once per model, not once per temperature
             notes.extend(n for n in found if n.velocity is not None or n not in notes)
+        notes.extend(_law_resolution(model, law))
     return tuple(notes)
+
+
+def _law_resolution(model: str, law: xr.Dataset | None) -> list[Note]:
+    """One note if ``model`` reads a law whose FEM points were under-resolved (their
+    narrowest contact patch below the check's width, :mod:`rubbercontact.fem.resolution`)."""
+    from ..fem.resolution import RESOLUTION_STUDY
+    from ..pipeline.setup import LAW_MODELS
+
+    if model not in LAW_MODELS or law is None or "under_resolved" not in law:
+        return []
+    law = law.transpose("velocity", "pressure")
+    flag = law["under_resolved"].values == 1
+    if not flag.any():
+        return []
+    cols = law["patch_columns"].values
+    i, j = np.unravel_index(np.argmin(np.where(flag, cols, np.inf)), flag.shape)
+    v, p = law["velocity"].values[i], law["pressure"].values[j]
+    return [Note(model, "law_resolution",
+                 f"{int(flag.sum())} of {flag.size} law FEM points under-resolved, narrowest "
+                 f"contact patch {cols[i, j]:.1f} columns (p = {p:g} MPa, v = {v:g} mm/s); "
+                 f"a finer fem.columns_per_wave resolves them ({RESOLUTION_STUDY})")]
 
 
 def _temperatures(ds: xr.Dataset, setup) -> list[tuple[float | None, float]]:

@@ -1,0 +1,203 @@
+"""The automatic FEM mesh and each test's check of its own resolution (issue 41, item 2).
+
+References: the rule's arithmetic (columns per shortest wave, geometric rows that fill the
+cell), the widths of contact patches given by hand, and Westergaard's elastic sine, whose
+contact half-width ``a`` follows from ``sin²(πa/λ) = p̄/p*`` — so its patch spans a known
+number of columns.
+"""
+
+from __future__ import annotations
+
+import numpy as np
+import pytest
+
+import rubbercontact as rc
+from rubbercontact.errors import InputError
+from rubbercontact.fem.options import FemOptions
+from rubbercontact.fem.resolution import (
+    FACE_ASPECT,
+    MIN_ROWS,
+    TOP_ROWS_PER_WIDTH,
+    auto_mesh,
+    auto_nx,
+    graded_rows,
+    patch_widths,
+)
+
+#: The high-slope cell of both CAPTIF stations (examples/captif_road.toml).
+STEEP = rc.roughness.SineSeries([0.25, 0.5], [0.1273, 0.1208], [0.0, 0.0])
+
+
+@pytest.mark.parametrize("n, nx", [(8, 16), (16, 32), (32, 64), (64, 128)])
+def test_columns_per_shortest_wave(n, nx):
+    assert auto_nx(STEEP, n) == nx
+    one = rc.roughness.SineSeries([1.0 / 3.0, 1.0], [0.01, 0.02])
+    assert auto_nx(one, 11) == 34          # 33 rounded up to even (the nested iteration)
+
+
+@pytest.mark.parametrize("n", [8, 16, 32, 64, 128])
+def test_rows_fill_the_cell_from_the_face_row_to_the_top_row(n):
+    m = auto_mesh(STEEP, 0.75, n)
+    width, height = STEEP.period, 0.75 * STEEP.period
+    cell = rc.fem.mesh.periodic_cell(width, height, m.nx, m.ny, grading=m.grading)
+    dy = np.diff(cell.y_nodes)
+    assert dy.sum() == pytest.approx(height)
+    assert m.ny >= MIN_ROWS
+    assert dy[-1] <= width / TOP_ROWS_PER_WIDTH * (1 + 1e-9) or m.grading == 1.0
+    if m.grading > 1.0:
+        # the face row is the rule's, and one row fewer would leave the top row too tall
+        assert dy[0] == pytest.approx(FACE_ASPECT * width / m.nx, rel=1e-6)
+        fewer, _ = graded_rows(height, dy[0], width / TOP_ROWS_PER_WIDTH)
+        assert fewer == m.ny
+    else:
+        assert dy[0] <= FACE_ASPECT * width / m.nx * (1 + 1e-9)
+
+
+def test_rows_on_a_shallow_cell_are_uniform():
+    assert graded_rows(1.0, 0.2, 0.5) == (MIN_ROWS, 1.0)
+    ny, g = graded_rows(1.0, 0.01, 1.0)     # the top row may be as tall as the cell
+    assert ny == MIN_ROWS and g > 1
+
+
+def test_patch_widths():
+    x = np.linspace(0.0, 1.0, 100, endpoint=False)
+    gap = np.ones_like(x)
+    gap[10:20] = -1.0                        # nodes 10..19: 9 intervals + two crossings
+    gap[50:52] = -1.0
+    w = np.sort(patch_widths(x, gap, 1.0))
+    assert w == pytest.approx([0.02, 0.10])  # each end crossing half an interval out
+    # a patch over the seam is one patch
+    gap = np.ones_like(x)
+    gap[:5] = gap[-5:] = -1.0
+    assert patch_widths(x, gap, 1.0) == pytest.approx([0.10])
+    assert patch_widths(x, np.ones_like(x), 1.0).size == 0
+    assert patch_widths(x, -np.ones_like(x), 1.0) == pytest.approx([1.0])
+
+
+def test_auto_options_round_trip_and_resolve():
+    opts = FemOptions(mesh="auto", columns_per_wave=16)
+    assert opts.auto and FemOptions.from_dict(opts.to_dict()) == opts
+    res = opts.resolved(STEEP)
+    assert res.mesh == (32, 10) and not res.auto and res.grading > 1
+    # the nested iteration's coarsest mesh keeps the rule's columns per wave
+    assert res.steady.coarse_elements == 16
+    explicit = FemOptions(mesh=(40, 30))
+    assert explicit.resolved(STEEP) is explicit
+    # an explicit mesh keeps its task arguments (and cache keys): no rule fields
+    assert "columns_per_wave" not in explicit.to_dict()
+    assert "patch_columns" not in explicit.to_dict()
+    with pytest.raises(InputError, match="grading"):
+        FemOptions(mesh="auto", grading=4.0)
+    with pytest.raises(InputError, match="'auto'"):
+        FemOptions(mesh="fine")
+
+
+def _westergaard(fraction_of_full: float):
+    """An elastic sine pressed to ``fraction_of_full`` of full contact, and its contact
+    width ``2a/λ`` (Westergaard)."""
+    E, lam, amp = 4.0, 1.0, 0.01
+    surf = rc.roughness.SineSeries([lam], [amp], [np.pi / 2])
+    p_full = np.pi * (4 * E / 3) * amp / lam
+    pbar = fraction_of_full * p_full
+    width = 2 / np.pi * np.arcsin(np.sqrt(fraction_of_full))
+    return surf, rc.materials.GeneralizedMaxwell.elastic(E), pbar, width
+
+
+def test_patch_check_on_westergaard():
+    surf, mat, pbar, width = _westergaard(0.3)
+    out = rc.fem.sliding_test(surf, mat, pbar, 0.0, mesh=(40, 30))
+    # the patch spans 2a/λ · nx columns, edges resolved to about one column each
+    assert out.stats.patch_columns == pytest.approx(width * 40, abs=1.5)
+    assert not out.stats.under_resolved and not out.stats.refined
+
+
+def test_narrow_patch_is_flagged_and_refined_once():
+    surf, mat, pbar, width = _westergaard(0.01)      # 2a/λ = 0.064: 2.6 of 40 columns
+    out = rc.fem.sliding_test(surf, mat, pbar, 0.0, mesh=(40, 30))
+    assert out.stats.under_resolved and not out.stats.refined   # explicit: flagged only
+    assert out.stats.patch_columns == pytest.approx(width * 40, abs=1.5)
+    with pytest.warns(RuntimeWarning, match="under-resolved"):
+        auto = rc.fem.sliding_test(surf, mat, pbar, 0.0, mesh="auto", columns_per_wave=40,
+                                   patch_columns=6)
+    # 40 columns -> 2.6 wide: refined once to 80 (5.1 wide), still below 6, and says so
+    assert auto.mesh[0] == 80 and auto.stats.refined and auto.stats.under_resolved
+    assert auto.stats.patch_columns == pytest.approx(width * 80, abs=1.5)
+    assert auto.stats.tried[0].startswith("refined to 80x")
+    assert auto.contact_fraction == pytest.approx(width, abs=2 / 80)
+
+
+def test_config_mesh_is_auto_by_default_and_explicit_still_works():
+    base = {"surface": {"preset": "section3"}, "velocities": [10.0],
+            "loads": {"pressures": [0.2]}}
+    mat = rc.materials.sbr()
+    cfg = rc.config.parse_config(base)
+    assert cfg.fem.mesh == "auto" and cfg.fem.options(mat).auto
+    assert cfg.fem.options(mat).columns_per_wave == cfg.fem.columns_per_wave
+    # the full-surface FEM does not follow the rule (a whole surface's columns)
+    assert cfg.fem.options(mat, full=True).mesh == (120, 90)
+    cfg = rc.config.parse_config({**base, "fem": {"mesh": [60, 45], "grading": 2.0}})
+    assert cfg.fem.options(mat).mesh == (60, 45)
+    assert cfg.fem.options(mat, full=True).mesh == (60, 45)
+    with pytest.raises(InputError, match="grading"):
+        rc.config.parse_config({**base, "fem": {"grading": 2.0}})
+    with pytest.raises(InputError, match="columns_per_wave"):
+        rc.config.parse_config({**base, "fem": {"columns_per_wave": 4}})
+
+
+def test_cost_estimate_prices_the_automatic_mesh():
+    from rubbercontact.pipeline import resolve
+    from rubbercontact.pipeline.cost import estimate_cost, fem_point_seconds, law_mesh
+
+    cfg = rc.config.parse_config({
+        "surface": {"preset": "section3"}, "velocities": [10.0],
+        "loads": {"pressures": [0.2]}, "models": ["vhs", "hybrid"],
+        "law": {"pressures": [0.1, 0.5]}, "fem": {"columns_per_wave": 16}})
+    setup = resolve(cfg)
+    mesh = law_mesh(setup)
+    assert mesh == cfg.fem.options(setup.material).resolved(setup.hs0).mesh
+    assert mesh[0] == auto_nx(setup.hs0, 16)
+    stage = next(s for s in estimate_cost(setup).stages if s.name.startswith("law FEM"))
+    assert f"{mesh[0]} x {mesh[1]} (auto)" in stage.name
+    assert stage.each_s == pytest.approx(fem_point_seconds(mesh))
+
+
+def test_quasi_static_friction_vanishes_on_the_chosen_mesh():
+    # The coarse subset of docs/validation/mesh_resolution.md (whose quasi-static point is
+    # 1 MPa, 35 s): the steep CAPTIF cell at 0.3 MPa, 1e-3 mm/s (loss tangent 1e-4: μ must
+    # vanish). On 32 columns per 0.25 mm wave its narrowest patch is under 2 columns, which
+    # the check flags; on the chosen 64 μ is within 0.005 of zero (6e-4 measured).
+    mat = rc.materials.sbr()
+    coarse = rc.fem.steady_sliding(STEEP, mat, 0.3, 1e-3, mesh=(64, 13), grading=4.8,
+                                   coarse_elements=32, fallback=False)
+    assert coarse.stats.under_resolved and coarse.stats.patch_columns < 4
+    m = auto_mesh(STEEP, 0.75, FemOptions().columns_per_wave)
+    fine = rc.fem.steady_sliding(STEEP, mat, 0.3, 1e-3, mesh=(m.nx, m.ny), grading=m.grading,
+                                 coarse_elements=64, fallback=False)
+    assert not fine.stats.under_resolved
+    assert abs(fine.friction) < 0.005
+
+
+def test_under_resolved_law_points_are_one_line_in_the_law_and_the_notes():
+    import warnings
+
+    import xarray as xr
+
+    from rubbercontact.hybrid.steadiness import under_resolved_message
+    from rubbercontact.validity.run import _law_resolution
+
+    flag = np.array([[0.0, 1.0, np.nan], [0.0, 1.0, 0.0]])
+    cols = np.array([[9.0, 2.5, np.nan], [12.0, 3.1, np.inf]])
+    diag = {"under_resolved": flag, "patch_columns": cols}
+    line = under_resolved_message(diag, lambda i, j: f"v{i} p{j}", "law")
+    assert line.startswith("law: 2 of 5 FEM points under-resolved") and "\n" not in line
+    assert line.index("v0 p1 (2.5)") < line.index("v1 p1 (3.1)")     # narrowest first
+    assert under_resolved_message({"under_resolved": flag * 0}, str, "law") is None
+    law = xr.Dataset({"under_resolved": (("pressure", "velocity"), flag.T),
+                      "patch_columns": (("pressure", "velocity"), cols.T)},
+                     coords={"velocity": [1.0, 10.0], "pressure": [0.1, 0.3, 1.0]})
+    with warnings.catch_warnings():
+        warnings.simplefilter("error")
+        (note,) = _law_resolution("hybrid", law)
+    assert "2 of 6 law FEM points under-resolved" in note.text
+    assert "2.5 columns (p = 0.3 MPa, v = 1 mm/s)" in note.text
+    assert _law_resolution("vhs", law) == []
