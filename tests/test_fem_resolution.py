@@ -201,3 +201,17 @@ def test_under_resolved_law_points_are_one_line_in_the_law_and_the_notes():
     assert "2 of 6 law FEM points under-resolved" in note.text
     assert "2.5 columns (p = 0.3 MPa, v = 1 mm/s)" in note.text
     assert _law_resolution("vhs", law) == []
+
+
+def test_a_refined_neighbour_starts_the_next_point_on_its_mesh():
+    # continuation along loads (as the law's speed paths): the first point refines, the
+    # next starts on the refined mesh from its neighbour instead of checking afresh
+    surf, mat, _, _ = _westergaard(0.01)
+    p_full = np.pi * (4 * 4.0 / 3) * 0.01
+    with pytest.warns(RuntimeWarning, match="under-resolved"):
+        out = rc.fem.steady_sweep(surf, mat, [0.010 * p_full, 0.012 * p_full], 0.0,
+                                  first=0, mesh="auto", columns_per_wave=40,
+                                  patch_columns=6)
+    assert [r.mesh[0] for r in out] == [80, 80] and all(r.stats.refined for r in out)
+    assert "neighbour's refined mesh" in out[1].stats.tried[0]
+    assert "from the neighbour" in " ".join(out[1].stats.tried)
