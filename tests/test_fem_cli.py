@@ -59,3 +59,13 @@ def test_fem_cli_bad_input_exit_code(capsys):
     # a transient-only option with the (default) steady solver: one clear line, exit 2
     assert main(["fem", "--mesh", "16x12", "--periods", "2", "--quiet"]) == 2
     assert "solver='transient'" in capsys.readouterr().err
+
+
+def test_fem_cli_automatic_mesh(capsys):
+    # 64 columns per shortest wave (rubbercontact.fem.resolution), and the patch check
+    code = main(["fem", "--wavelength", "0.0625", "--amplitude", "0.004", "--pressure", "0.5",
+                 "--velocity", "10", "--mesh", "auto", "--json"])
+    assert code == 0
+    out = json.loads(capsys.readouterr().out)
+    assert out["mesh"][0] == 64
+    assert out["stats"]["patch_columns"] is None or out["stats"]["patch_columns"] >= 4

@@ -42,10 +42,13 @@ def _material(spec):
 def _mesh(text):
     if isinstance(text, list | tuple):
         return tuple(text)
+    if str(text).lower() == "auto":        # from the surface (rubbercontact.fem.resolution)
+        return "auto"
     try:
         nx, ny = (int(v) for v in str(text).lower().split("x"))
     except ValueError:
-        raise InputError(f"mesh: expected NXxNY such as 120x90, got {text!r}") from None
+        raise InputError(f"mesh: expected NXxNY such as 120x90, or auto, got "
+                         f"{text!r}") from None
     return nx, ny
 
 
@@ -64,7 +67,8 @@ def command(
                                                  "(mm), one per --wavelength."),
     material: str | None = typer.Option(None, "--material", help="'sbr' (Table 1, default) "
                                         "or a Prony TOML/CSV file."),
-    mesh: str | None = typer.Option(None, "--mesh", help="Elements NXxNY [120x90]."),
+    mesh: str | None = typer.Option(None, "--mesh", help="Elements NXxNY, or 'auto' (from "
+                                    "the surface's shortest wave) [120x90]."),
     solver: str | None = typer.Option(None, "--solver", help="steady (the steady state "
                                       "directly) or transient (time-stepped) [steady]."),
     height_ratio: float | None = typer.Option(None, "--height-ratio",
@@ -154,6 +158,9 @@ def command(
                       if np.isfinite(s.bulk_shear_change) else ""))
         typer.echo(f"  solver {s.solver}" + ("" if s.status == "ok" else f" ({s.status})"))
         if s.solver == "steady":
+            typer.echo(f"  narrowest contact patch  {s.patch_columns:.1f} columns"
+                       + (" (under-resolved)" if s.under_resolved else "")
+                       + (" (refined)" if s.refined else ""))
             typer.echo(f"  Newton iterations {s.newton_iterations}, GMRES iterations "
                        f"{s.krylov_iterations}, factorizations {s.factorizations}, "
                        f"continuation steps {s.continuation_steps}; "
