@@ -18,6 +18,9 @@ continuation step (docs/validation/steep_cells.md). Resumable, one JSON line per
 N = 256 mesh, 512 × 23, takes 2–3 of them)::
 
     OMP_NUM_THREADS=1 .venv/bin/python -m studies mesh_resolution
+
+``--part hard`` runs the points of docs/validation/steep_cells.md that stopped, fell back
+or were impaled there, on the automatic mesh with the library's defaults (10-20 minutes).
 """
 
 from __future__ import annotations
@@ -56,6 +59,14 @@ COLUMNS = (8, 16, 32, 64, 128, 256)
 PROCEDURE = ((32, 4), (64, 4))
 #: The nested iteration of the finest meshes starts here (their own press costs minutes).
 COARSEST = 64
+#: Part ``hard``: points of docs/validation/steep_cells.md that stopped, fell back or
+#: converged only impaled there (40 x 30; station 1 also at 128 x 30 graded x4), run as a
+#: law point runs them on the automatic mesh with the defaults (penalty contact), no
+#: transient fallback.
+HARD_POINTS = (("stations 0+1", 0.1, 10.0), ("stations 0+1", 3.0, 10.0),
+               ("stations 0+1", 3.0, 30.0), ("stations 0+1", 10.0, 1.0),
+               ("stations 0+1", 10.0, 10.0), ("station 1", 0.3, 1.0),
+               ("station 1", 1.0, 10.0), ("station 1", 3.0, 10.0), ("station 1", 10.0, 1.0))
 QUASI_STATIC_COLUMNS = (16, 32, 64)
 TOLERANCE = 0.02
 QUASI_STATIC_TOLERANCE = 0.005
@@ -81,10 +92,14 @@ READING = (
     "(steep_cells.md resolved it on 128 × 30 graded ×4) and was not run here.")
 
 
-def cell() -> rc.roughness.SineSeries:
-    """The high-slope part of the CAPTIF fits (both stations), shortest wave at phase 0."""
+def cell(files: list[int] | None = None) -> rc.roughness.SineSeries:
+    """The high-slope part of the CAPTIF fits (both stations, or the profiles ``files``
+    of examples/captif_road.toml), shortest wave at phase 0."""
     cfg = load_config(ROOT / "examples" / "captif_road.toml")
     data = cfg.model_dump(mode="json", exclude_none=True)
+    if files is not None:
+        prof = data["surface"]["profiles"]
+        prof["files"] = [prof["files"][i] for i in files]
     surf = build_surface(parse_config(data).surface).series
     hs, _ = surf.partition(data["surface"]["m2_threshold"])
     x0 = -hs.phases[0] / hs.wavenumbers[0]
@@ -118,6 +133,63 @@ def run_case(surface, p: float, v: float, n: int) -> dict:
     return {**row, "contact": "stopped", "tried": tried}
 
 
+def run_hard(name: str, surface, p: float, v: float) -> dict:
+    """One hard point on the automatic mesh with the library's defaults."""
+    t0 = time.process_time()
+    row = {"part": "hard", "cell": name, "pressure": p, "velocity": v}
+    with warnings.catch_warnings(record=True) as caught:
+        warnings.simplefilter("always")
+        try:
+            res = rc.fem.steady_sliding(surface, rc.materials.sbr(), p, v, mesh="auto",
+                                        fallback=False)
+        except rc.errors.ConvergenceError as exc:
+            return {**row, "stopped": str(exc)[:200], "cpu_s": time.process_time() - t0}
+    s = res.stats
+    return {**row, "mesh": list(res.mesh), "friction": res.friction,
+            "contact_fraction": res.contact_fraction, "patch_columns": s.patch_columns,
+            "refined": s.refined, "under_resolved": s.under_resolved, "impaled": s.impaled,
+            "cpu_s": time.process_time() - t0, "first": s.tried[0] if s.tried else "",
+            "warnings": sorted({str(w.message)[:100] for w in caught})}
+
+
+def hard_lines(rows: list[dict]) -> list[str]:
+    """The hard points' table."""
+    hard = [r for r in rows if r.get("part") == "hard"]
+    if not hard:
+        return []
+    out = ["", "**Hard points of steep_cells.md on the automatic mesh** (the library's "
+               "defaults: penalty contact, 15 Newton iterations per step, no transient "
+               "fallback; what they did there in the last column).", "",
+           "| cell | p̄ [MPa] | v [mm/s] | final mesh | refined | narrowest patch | μ | A | "
+           "CPU [s] | steep_cells.md |", "|---|---|---|---|---|---|---|---|---|---|"]
+    for r in hard:
+        was = STEEP_CELLS_OUTCOME.get((r["cell"], r["pressure"], r["velocity"]), "")
+        if "stopped" in r:
+            out.append(f"| {r['cell']} | {r['pressure']:g} | {r['velocity']:g} | — | — | — | "
+                       f"stopped: {r['stopped'][:110]} | | {r['cpu_s']:.0f} | {was} |")
+            continue
+        flags = " (impaled)" if r["impaled"] else ""
+        out.append(f"| {r['cell']} | {r['pressure']:g} | {r['velocity']:g} | "
+                   f"{r['mesh'][0]} × {r['mesh'][1]} | {'yes' if r['refined'] else 'no'} | "
+                   f"{r['patch_columns']:.1f} | {r['friction']:.3f}{flags} | "
+                   f"{r['contact_fraction']:.3f} | {r['cpu_s']:.0f} | {was} |")
+    return out
+
+
+#: What the hard points did in docs/validation/steep_cells.md (penalty unless said).
+STEEP_CELLS_OUTCOME = {
+    ("stations 0+1", 0.1, 10.0): "μ 0.272, A 0.039 (40 × 30)",
+    ("stations 0+1", 3.0, 10.0): "stopped (40 × 30); transient μ 0.625, A 0.094",
+    ("stations 0+1", 3.0, 30.0): "stopped; transient failed",
+    ("stations 0+1", 10.0, 1.0): "μ 0.239, A 0.418 impaled (40 × 30)",
+    ("stations 0+1", 10.0, 10.0): "stopped; transient unusable (μ 1.98)",
+    ("station 1", 0.3, 1.0): "stopped (40 × 30 and 128 × 30 ×4, both contacts)",
+    ("station 1", 1.0, 10.0): "stopped (40 × 30 and 128 × 30 ×4, both contacts)",
+    ("station 1", 3.0, 10.0): "stopped (40 × 30 and 128 × 30 ×4, both contacts)",
+    ("station 1", 10.0, 1.0): "stopped (40 × 30 and 128 × 30 ×4, both contacts)",
+}
+
+
 def run_procedure(surface, p: float, v: float, n: int, patch: int) -> dict:
     """One test as a law point runs it: ``mesh = "auto"`` with the resolution check."""
     row = {"pressure": p, "velocity": v, "procedure": [n, patch]}
@@ -148,7 +220,7 @@ def convergence(rows: list[dict]) -> list[dict]:
     """Per N of the steep point: μ, A and their change to 2N."""
     by_n = {r["columns_per_wave"]: r for r in rows
             if (r["pressure"], r["velocity"]) == POINT and "friction" in r
-            and "procedure" not in r}
+            and "columns_per_wave" in r}
     out = []
     for n in sorted(by_n):
         r, f = by_n[n], by_n.get(2 * n)
@@ -193,12 +265,12 @@ def report(rows: list[dict], meta: dict) -> str:
             f"{t['contact_fraction']:.4f} | {_cell(t, 'patch_columns', '.1f')} | "
             f"{_pct(t['dmu'])} | {_pct(t['da'])} | {t['cpu_s']:.0f} |")
     for r in rows:
-        if "friction" not in r and "procedure" not in r:
+        if "friction" not in r and "columns_per_wave" in r:
             lines.append(f"| {r['columns_per_wave']} | {r['mesh'][0]} × {r['mesh'][1]} | "
                          f"stopped ({'; '.join(r['tried'])}) | | | | | | |")
     lines += _procedure_lines(rows, table)
     qs = [r for r in rows if (r["pressure"], r["velocity"]) == QUASI_STATIC
-          and "procedure" not in r]
+          and "columns_per_wave" in r]
     lines += ["", f"**Quasi-static limit: p̄ = {QUASI_STATIC[0]:g} MPa, v = "
                   f"{QUASI_STATIC[1]:g} mm/s** (the friction must vanish; tolerance "
                   f"{QUASI_STATIC_TOLERANCE}).", "",
@@ -211,7 +283,8 @@ def report(rows: list[dict], meta: dict) -> str:
                f"both μ and A is N = {n}" if n else
                f"no N within {100 * TOLERANCE:g} % of 2N")
     lines += ["", f"**Result:** {verdict}; {_procedure_verdict(rows, table)}", "",
-              READING, ""]
+              READING]
+    lines += hard_lines(rows) + [""]
     return "\n".join(lines)
 
 
@@ -276,7 +349,18 @@ def main(argv: list[str] | None = None) -> int:
     ap.add_argument("--rows", type=Path, default=ROWS)
     ap.add_argument("--report", type=Path, default=REPORT)
     ap.add_argument("--report-only", action="store_true")
+    ap.add_argument("--part", choices=("convergence", "hard"), default="convergence",
+                    help="the convergence study (default), or the hard points of "
+                         "steep_cells.md on the automatic mesh")
     args = ap.parse_args(argv)
+    if args.part == "hard" and not args.report_only:
+        cells = {"stations 0+1": cell(), "station 1": cell([1])}
+        have = {(r["cell"], r["pressure"], r["velocity"]) for r in read_rows(args.rows)
+                if r.get("part") == "hard"}
+        for name, p, v in HARD_POINTS:
+            if (name, p, v) not in have:
+                append_row(args.rows, {**run_hard(name, cells[name], p, v), "run": _meta()})
+        args.report_only = True
     rows = read_rows(args.rows)
     done = {(r["pressure"], r["velocity"], r.get("columns_per_wave"),
              tuple(r.get("procedure", ()))) for r in rows}
