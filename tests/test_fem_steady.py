@@ -233,10 +233,38 @@ def test_failure_falls_back_to_the_transient_test_and_says_so():
                                     max_steps=2)
     assert out.stats.solver == "transient (fallback)"
     assert "steady failed" in out.stats.status and "press" in out.stats.status
+    # the barrier rescue ran first (two continuation steps cannot reach the load) and the
+    # status names both failures
+    assert "barrier rescue:" in out.stats.status
     with pytest.raises(ConvergenceError) as info:
         rc.fem.steady_sliding(surf, mat, 1.0, 10.0, mesh=(16, 8), newton_per_step=1,
                               max_steps=2, fallback=False)
     assert info.value.diagnostics["tried"]
+
+
+def test_a_failed_penalty_solve_is_rescued_by_the_barrier_before_the_transient():
+    # One Newton iteration per continuation step stops the penalty's press; the rescue is
+    # the barrier contact with 60 (RESCUE_NEWTON), solved afresh: the very solve of the
+    # barrier asked for directly, so the numbers agree to the last bit, and no transient
+    # test runs.
+    import warnings
+
+    from rubbercontact.fem.options import RESCUE_NEWTON
+
+    surf, mat = rc.roughness.high_slope_wave(), rc.materials.sbr()
+    with warnings.catch_warnings(record=True) as seen:
+        warnings.simplefilter("always")
+        out = rc.fem.steady_sliding(surf, mat, 1.0, 10.0, mesh=(16, 8), newton_per_step=1)
+    assert not [w for w in seen if "transient" in str(w.message)]
+    assert out.stats.solver == "steady (barrier rescue)"
+    assert out.stats.tried[0].startswith("penalty contact failed: frictionless press")
+    direct = rc.fem.steady_sliding(surf, mat, 1.0, 10.0, mesh=(16, 8), contact="barrier",
+                                   newton_per_step=RESCUE_NEWTON)
+    assert (out.friction, out.contact_fraction) == (direct.friction, direct.contact_fraction)
+    assert out.stats.max_penetration == 0.0
+    with pytest.raises(ConvergenceError, match="steady FEM solve failed: frictionless"):
+        rc.fem.steady_sliding(surf, mat, 1.0, 10.0, mesh=(16, 8), newton_per_step=1,
+                              rescue="none", fallback=False)
 
 
 @pytest.mark.parametrize("kw, field", [

@@ -49,6 +49,16 @@ def _integer(name: str, value: Any, low: int) -> int:
     return int(value)
 
 
+#: Rescues of a failed penalty-contact steady solve (:attr:`SteadyOptions.rescue`).
+RESCUES = ("barrier", "none")
+
+#: Newton iterations per continuation step of the barrier rescue: a log barrier's Newton
+#: takes many short steps near the surface; with 15 the barrier stopped where the penalty
+#: did on the steep CAPTIF cells, with 60 it converged 3 of their 4 hard points
+#: (docs/validation/steep_cells.md).
+RESCUE_NEWTON = 60
+
+
 @dataclass(frozen=True)
 class SteadyOptions:
     """Controls of the steady solver (the defaults serve every case tested).
@@ -75,8 +85,13 @@ class SteadyOptions:
         least ``coarse_elements`` elements per shortest wavelength and ``coarse_columns``
         columns (a contact patch must stay several columns wide for its solution to
         start the finer mesh); ``coarse_elements = 0`` switches nested iteration off.
+    rescue
+        If the steady solve with penalty contact fails: ``"barrier"`` solves it again with
+        the barrier contact (:mod:`.barrier`, at least :data:`RESCUE_NEWTON` Newton
+        iterations per continuation step) before any transient fallback; ``"none"``.
     fallback
-        If the steady solve fails, run the transient test and say so in the status.
+        If the steady solve (and its rescue) fails, run the transient test and say so in
+        the status.
     """
 
     krylov_rtol: float = 1e-2
@@ -88,6 +103,7 @@ class SteadyOptions:
     max_steps: int = 60
     coarse_elements: int = 16
     coarse_columns: int = 48
+    rescue: str = "barrier"
     fallback: bool = True
 
     def validate(self) -> SteadyOptions:
@@ -100,6 +116,8 @@ class SteadyOptions:
         _integer("steady.max_steps", self.max_steps, 1)
         _integer("steady.coarse_elements", self.coarse_elements, 0)
         _integer("steady.coarse_columns", self.coarse_columns, 3)
+        if self.rescue not in RESCUES:
+            raise InputError(f"steady.rescue: one of {', '.join(RESCUES)}, got {self.rescue!r}")
         for name in ("first_step", "min_step"):
             v = positive_scalar(f"steady.{name}", getattr(self, name))
             if v > 1:
@@ -324,6 +342,10 @@ class FemOptions:
         for name in ("columns_per_wave", "patch_columns"):
             if not self.auto and out[name] == _DEFAULTS[name]:
                 del out[name]
+        # and the steady solve's rescue at its default (the code digest still tells apart
+        # the results computed before it existed)
+        if out["steady"]["rescue"] == SteadyOptions.rescue:
+            del out["steady"]["rescue"]
         return out
 
     @classmethod

@@ -23,7 +23,7 @@ from ..materials.maxwell import GeneralizedMaxwell
 from ..roughness.sines import SineSeries
 from .constitutive import cauchy_from_pk2
 from .contact import face_contact_fraction, mean_separation, segment_penetration
-from .options import FemOptions, SteadyOptions, TransientOptions
+from .options import RESCUE_NEWTON, FemOptions, SteadyOptions, TransientOptions
 from .resolution import auto_mesh, narrowest_patch, under_resolved_message
 from .result import (
     BULK_SHEAR_LIMIT,
@@ -230,19 +230,51 @@ def _steady(surface, material, p, v, opts: FemOptions, start) -> SlidingTestResu
     try:
         sol = solve_steady(surface, material, p, v, opts, start)
     except SteadyFailure as fail:
-        tried = "; ".join(fail.tried)
-        if not opts.steady.fallback:
-            raise ConvergenceError(f"steady FEM solve failed: {fail.reason}",
-                                   diagnostics={"tried": list(fail.tried),
-                                                "reason": fail.reason}) from None
-        warnings.warn(f"steady FEM solve failed (p̄ = {p:g} MPa, v = {v:g} mm/s: "
-                      f"{fail.reason}); running the transient test instead",
-                      RuntimeWarning, stacklevel=3)
-        res = TransientTest(surface, material, p, v, opts.with_(solver="transient")).run()
-        stats = replace(res.stats, solver="transient (fallback)",
-                        status=f"steady failed: {fail.reason} (tried: {tried})")
-        return replace(res, stats=stats)
+        failures = [fail]
+        rescue = _rescue_options(opts)
+        if rescue is not None:
+            wall0 = time.perf_counter()
+            try:
+                # afresh: a penalty state penetrates the surface, where the barrier is
+                # infinite
+                sol = solve_steady(surface, material, p, v, rescue, None)
+            except SteadyFailure as again:
+                failures.append(again)
+            else:
+                res = steady_result(sol, surface, material, p, v, rescue,
+                                    time.perf_counter() - wall0)
+                note = f"penalty contact failed: {fail.reason}; barrier rescue"
+                return replace(res, stats=replace(res.stats, solver="steady (barrier rescue)",
+                                                  tried=(note,) + tuple(res.stats.tried)))
+        return _after_failure(surface, material, p, v, opts, failures)
     return steady_result(sol, surface, material, p, v, opts, time.perf_counter() - wall0)
+
+
+def _rescue_options(opts: FemOptions) -> FemOptions | None:
+    """The options of the barrier rescue of a failed penalty solve (None: no rescue)."""
+    if opts.contact != "penalty" or opts.steady.rescue != "barrier":
+        return None
+    return opts.with_(contact="barrier", steady={
+        "newton_per_step": max(RESCUE_NEWTON, opts.steady.newton_per_step),
+        "rescue": "none", "fallback": False})
+
+
+def _after_failure(surface, material, p, v, opts: FemOptions,
+                   failures: list[SteadyFailure]) -> SlidingTestResult:
+    """The steady solve (and its rescue) failed: the transient test, or the error."""
+    names = ("", "; barrier rescue: ")
+    reason = "".join(f"{n}{f.reason}" for n, f in zip(names, failures, strict=False))
+    tried = [t for f in failures for t in f.tried]
+    if not opts.steady.fallback:
+        raise ConvergenceError(f"steady FEM solve failed: {reason}",
+                               diagnostics={"tried": tried, "reason": reason}) from None
+    warnings.warn(f"steady FEM solve failed (p̄ = {p:g} MPa, v = {v:g} mm/s: "
+                  f"{reason}); running the transient test instead",
+                  RuntimeWarning, stacklevel=4)
+    res = TransientTest(surface, material, p, v, opts.with_(solver="transient")).run()
+    stats = replace(res.stats, solver="transient (fallback)",
+                    status=f"steady failed: {reason} (tried: {'; '.join(tried)})")
+    return replace(res, stats=stats)
 
 
 def steady_result(sol: SteadySolution, surface, material, p: float, v: float,
