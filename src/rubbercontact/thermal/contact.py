@@ -18,11 +18,22 @@ over the contact, ``T_c`` (:attr:`ContactHeating.contact_rise`). The solve is re
 the reduced speed ``a_T(T0 + T_c) v`` (by time–temperature superposition the rubber at
 ``T0 + T_c`` sliding at ``v`` is the reference rubber at ``a_T v``), the heat at the true
 ``v``, until ``T_c`` is the rise its own friction gives: the scalar root of
-``F(T) − T``, bracketed from the isothermal estimate ``F(0)`` (secant steps beyond it
-while ``F(T) > T``), then false position (Illinois) until ``|F(T) − T|`` is below the
-tolerance: 1–10 solves per speed on a three-wave profile (0.01–10 m/s), the first being
-the isothermal one. A hybrid run passes a ``solve`` that evaluates its high-slope law
-at the same reduced speed. What this leaves out: the temperature varies over the contact
+``F(T) − T``. Two searches (:class:`FlashSearch`):
+
+* ``"bracket"`` (the plain one): bracketed from the isothermal estimate ``F(0)`` (secant
+  steps beyond it while ``F(T) > T``), then false position (Illinois) until
+  ``|F(T) − T|`` is below the tolerance: 1–10 solves per speed, the first the isothermal.
+* ``"secant"`` (the default): secant steps on ``h(ln T) = ln F − ln T``, which is nearly
+  linear (``F`` follows the shift ``ln a_T``, about linear in ``T``, and ``μ`` and the
+  contact's size change smoothly with the reduced speed), kept inside the sign bracket
+  once there is one. It starts at a guess (:class:`FlashStart`; a sweep's neighbouring
+  speed, :mod:`.sweep`) with the previous root's slope, and without one at ``F(0)``;
+  a guess below the tolerance starts at 0 (the isothermal solve, final if ``F(0)`` is
+  below the tolerance). The same roots to the tolerance (tested), in 2–4 solves instead
+  of 4–10 where the contact heats (``benchmarks/flash.md``).
+
+A hybrid run passes a ``solve`` that evaluates its high-slope law at the same reduced
+speed. What this leaves out: the temperature varies over the contact
 and with depth, and each scale of a rough surface sees its own
 (:mod:`rubbercontact.meanfield.flash` resolves that per magnification); in full contact
 the rise averages to zero over the contact and the contact is at the background
@@ -54,7 +65,7 @@ class ContactHeating:
     temperature
         Surface temperature rise above the background [K] on the grid (zero mean).
     contact_rise
-        Mean rise over the contact (``p > 0``) [K].
+        Mean rise over the contact [K] (:func:`contact_mask`).
     peak_rise
         Largest rise [K].
     mean_heat_flux
@@ -78,6 +89,21 @@ def _lengths(result) -> tuple[float, ...]:
     return (period(result.x),) if result.y is None else (period(result.y), period(result.x))
 
 
+def contact_mask(result) -> np.ndarray:
+    """The contact of a solved sliding contact on its grid: ``p > 0`` for the hard wall;
+    with an interaction law (``result.method == "newton"``), whose pressure is positive
+    everywhere, the points of smallest separation, as many as its contact fraction (the
+    law's contact range, e.g. ``u < 2ℓ`` for the Lennard-Jones wall, ties aside)."""
+    p = np.asarray(result.pressure, float)
+    if result.method != "newton":
+        return p > 0
+    u = np.asarray(result.separation, float).ravel()
+    k = int(round(float(result.contact_fraction) * u.size))
+    mask = np.zeros(u.size, bool)
+    mask[np.argsort(u, kind="stable")[:k]] = True
+    return mask.reshape(p.shape)
+
+
 def contact_heating(result, velocity: float | None = None,
                     thermal: ThermalProperties | None = None) -> ContactHeating:
     """Heat and temperature of a solved sliding contact (module docstring).
@@ -99,7 +125,7 @@ def contact_heating(result, velocity: float | None = None,
     p = np.asarray(result.pressure, float)
     flux = abs(float(result.friction)) * p * v
     temp = surface_temperature(flux, _lengths(result), v, thermal)
-    touching = p > 0
+    touching = contact_mask(result)
     rise = float(temp[touching].mean()) if touching.any() else 0.0
     return ContactHeating(flux, temp, rise, float(temp.max()), float(flux.mean()), v)
 
@@ -122,6 +148,64 @@ def _false_position(g, lo: float, g_lo: float, hi: float, g_hi: float, tol: floa
 
 
 @dataclass(frozen=True)
+class FlashStart:
+    """Where the secant search of ``T_c`` starts (e.g. from a sweep's neighbouring speed).
+
+    Attributes
+    ----------
+    rise
+        Guess of ``T_c`` [K] (≥ 0; below the tolerance: start at the isothermal solve).
+    log_slope
+        Estimate of ``d ln F / d ln T`` at the root [-] (None: a damped first step).
+    """
+
+    rise: float
+    log_slope: float | None = None
+
+
+@dataclass(frozen=True)
+class FlashSearch:
+    """How :func:`flash_contact` looks for the contact temperature (module docstring).
+
+    Attributes
+    ----------
+    tolerance
+        On ``|F(T_c) − T_c|`` [K] (1e-2 K moves a WLF shift by ~1e-3 decades).
+    relative_tolerance
+        Added to ``tolerance`` times ``T_c`` [-] (``"secant"`` only): the grid's contact set
+        jumps make ``F`` uneven at ~1e-3 of ``T_c`` (benchmarks/flash.md), and 1e-3 of a
+        30 K rise moves a WLF shift by ~2e-3 decades.
+    max_solves
+        Solves allowed before :class:`~rubbercontact.errors.ConvergenceError`.
+    method
+        ``"secant"`` (default) or ``"bracket"`` (the plain search).
+    start
+        A guess for ``"secant"`` (None: from ``F(0)``).
+    """
+
+    tolerance: float = 1e-2
+    relative_tolerance: float = 1e-3
+    max_solves: int = 30
+    method: str = "secant"
+    start: FlashStart | None = None
+
+    def __post_init__(self) -> None:
+        positive_scalar("tolerance", self.tolerance, unit="K")
+        if not 0.0 <= self.relative_tolerance < 1.0:
+            raise InputError(f"relative_tolerance: expected a number in [0, 1), got "
+                             f"{self.relative_tolerance!r}")
+        if isinstance(self.max_solves, bool) or not isinstance(self.max_solves, int) \
+                or self.max_solves < 1:
+            raise InputError(f"max_solves: expected an integer >= 1, got {self.max_solves!r}")
+        if self.method not in ("secant", "bracket"):
+            raise InputError(f"method: expected 'secant' or 'bracket', got {self.method!r}")
+        if self.start is not None and not (np.isfinite(self.start.rise)
+                                           and self.start.rise >= 0):
+            raise InputError(f"start.rise: expected a finite rise >= 0 K, got "
+                             f"{self.start.rise!r}")
+
+
+@dataclass(frozen=True)
 class ContactFlash:
     """A sliding contact at its own flash temperature.
 
@@ -130,7 +214,8 @@ class ContactFlash:
     result
         The solve at the converged reduced speed ``a_T(T0 + T_c) v``.
     isothermal
-        The solve at the background temperature.
+        The solve at the background temperature (None when the secant search started
+        from a guess and never solved there).
     heating
         :class:`ContactHeating` of ``result`` at the true speed.
     contact_temperature
@@ -140,17 +225,18 @@ class ContactFlash:
     shift_factor
         ``a_T(T0 + T_c)`` relative to the shift law's reference [-].
     residual
-        ``|F(T_c) − T_c|`` [K] at the end: below the tolerance, unless the bracket
+        ``|F(T_c) − T_c|`` [K] at the end: below the tolerance (the secant search's:
+        ``tolerance + relative_tolerance·T_c``), unless the bracket
         closed first (the grid's contact set can jump between two temperatures closer
         than the tolerance).
     evaluations
         ``(T, F(T))`` of every solve, in order [K].
     inputs
-        The thermal properties, the shift law, the speed and the tolerance (provenance).
+        The thermal properties, the shift law, the speed and the search (provenance).
     """
 
     result: object
-    isothermal: object
+    isothermal: object | None
     heating: ContactHeating
     contact_temperature: float
     background_temperature: float
@@ -159,10 +245,24 @@ class ContactFlash:
     evaluations: tuple = field(default_factory=tuple)
     inputs: dict = field(default_factory=dict)
 
+    @property
+    def log_slope(self) -> float | None:
+        """``d ln F / d ln T`` between the two evaluations with ``T, F > 0`` closest to the
+        root [-] (None with fewer than two): the next speed's :class:`FlashStart`."""
+        pts = sorted(((abs(np.log(t / f)), t, f) for t, f in self.evaluations
+                      if t > 0 and f > 0), key=lambda e: e[0])
+        pts = [(t, f) for _, t, f in pts]
+        for t2, f2 in pts[1:]:
+            (t1, f1) = pts[0]
+            if abs(np.log(t2 / t1)) > 1e-9:
+                return float(np.log(f2 / f1) / np.log(t2 / t1))
+        return None
+
 
 def flash_contact(solve: Callable[[float], object], velocity: float, shift: ShiftLaw | dict,
                   thermal: ThermalProperties | None = None, temperature: float | None = None,
-                  tolerance: float = 1e-2, max_solves: int = 30) -> ContactFlash:
+                  tolerance: float = 1e-2, max_solves: int = 30,
+                  search: FlashSearch | None = None) -> ContactFlash:
     """The contact temperature and friction of a sliding contact, self-consistent.
 
     Parameters
@@ -179,10 +279,10 @@ def flash_contact(solve: Callable[[float], object], velocity: float, shift: Shif
         The compound (default: filled SBR).
     temperature
         Background ``T0`` [°C] (default: the shift law's reference).
-    tolerance
-        On ``T_c`` [K] (1e-2 K moves a WLF shift by ~1e-3 decades).
-    max_solves
-        Solves allowed before :class:`~rubbercontact.errors.ConvergenceError`.
+    tolerance, max_solves
+        :class:`FlashSearch`'s, when ``search`` is None.
+    search
+        The search (default: the secant search with ``tolerance`` and ``max_solves``).
     """
     v = positive_scalar("velocity", velocity, unit="mm/s")
     law = shift_law_from_dict(shift)
@@ -191,7 +291,8 @@ def flash_contact(solve: Callable[[float], object], velocity: float, shift: Shif
         raise InputError(f"temperature: expected a number in °C, got {temperature!r}")
     t0 = law.t_ref if temperature is None else float(temperature)
     law.log10_shift(t0)                                     # validity at T0
-    tol = positive_scalar("tolerance", tolerance, unit="K")
+    search = search or FlashSearch(tolerance=tolerance, max_solves=max_solves)
+    tol = search.tolerance
     thermal = thermal or FILLED_SBR
     if not callable(solve):
         raise InputError(f"solve: expected a function of the reduced speed, got {solve!r}")
@@ -199,10 +300,10 @@ def flash_contact(solve: Callable[[float], object], velocity: float, shift: Shif
 
     def evaluate(rise: float) -> float:
         if rise not in seen:
-            if len(seen) >= max_solves:
+            if len(seen) >= search.max_solves:
                 raise ConvergenceError(
                     f"flash temperature: no self-consistent contact temperature in "
-                    f"{max_solves} solves at {v:g} mm/s; raise max_solves",
+                    f"{search.max_solves} solves at {v:g} mm/s; raise max_solves",
                     diagnostics={"evaluations": [(t, s[2]) for t, s in seen.items()]})
             a_t = float(law.shift(t0 + rise))
             res = solve(a_t * v)
@@ -210,21 +311,83 @@ def flash_contact(solve: Callable[[float], object], velocity: float, shift: Shif
             seen[rise] = (res, heat, heat.contact_rise, a_t)
         return seen[rise][2] - rise
 
-    g0 = evaluate(0.0)
-    if g0 > tol:
-        lo, g_lo = 0.0, g0
-        hi = max(g0, tol)
-        g_hi = evaluate(hi)
-        while g_hi > 0:                         # F is bounded: a root lies beyond
-            # secant extrapolation through the last two points, at most 4× further
-            step = g_hi * (hi - lo) / (g_lo - g_hi) if g_lo > g_hi else np.inf
-            lo, g_lo, hi = hi, g_hi, hi + min(step, 3.0 * hi)
-            g_hi = evaluate(hi)
-        rise = _false_position(evaluate, lo, g_lo, hi, g_hi, tol)
+    if search.method == "secant":
+        rise = _secant(evaluate, tol, search.relative_tolerance, search.start)
     else:
-        rise = 0.0
+        rise = _bracket(evaluate, tol)
     res, heat, f_rise, a_t = seen[rise]
     inputs = {"velocity": v, "thermal": thermal.as_dict(), "shift": law.as_dict(),
-              "tolerance_K": tol}
-    return ContactFlash(res, seen[0.0][0], heat, t0 + rise, t0, a_t, abs(f_rise - rise),
+              "tolerance_K": tol, "relative_tolerance": search.relative_tolerance,
+              "method": search.method}
+    iso = seen[0.0][0] if 0.0 in seen else None
+    return ContactFlash(res, iso, heat, t0 + rise, t0, a_t, abs(f_rise - rise),
                         tuple((t, s[2]) for t, s in seen.items()), inputs)
+
+
+def _bracket(evaluate: Callable[[float], float], tol: float) -> float:
+    """The plain search: from ``F(0)``, bracket, then false position (module docstring)."""
+    g0 = evaluate(0.0)
+    if g0 <= tol:
+        return 0.0
+    lo, g_lo = 0.0, g0
+    hi = max(g0, tol)
+    g_hi = evaluate(hi)
+    while g_hi > 0:                         # F is bounded: a root lies beyond
+        # secant extrapolation through the last two points, at most 4× further
+        step = g_hi * (hi - lo) / (g_lo - g_hi) if g_lo > g_hi else np.inf
+        lo, g_lo, hi = hi, g_hi, hi + min(step, 3.0 * hi)
+        g_hi = evaluate(hi)
+    return _false_position(evaluate, lo, g_lo, hi, g_hi, tol)
+
+
+#: Largest step of the secant search in ``ln T`` (a factor 4 in ``T``).
+_MAX_LOG_STEP = np.log(4.0)
+
+
+def _secant(evaluate: Callable[[float], float], tol: float, rtol: float,
+            start: FlashStart | None) -> float:
+    """Secant steps on ``h(x) = ln F(e^x) − x``, ``x = ln T`` (module docstring); a step
+    leaving the sign bracket bisects it, one whose ``F`` is not positive falls back to the
+    plain search (no heat: the contact left)."""
+    if start is None or start.rise <= tol:
+        g0 = evaluate(0.0)
+        if g0 <= tol:
+            return 0.0
+        t_a = g0                                     # F(0): the first fixed-point step
+    else:
+        t_a = float(start.rise)
+    slope = None if start is None else start.log_slope
+    g_a = evaluate(t_a)
+    if abs(g_a) <= tol + rtol * t_a:
+        return t_a
+    if g_a + t_a <= 0:
+        return _bracket(evaluate, tol)
+    x_a, h_a = np.log(t_a), np.log((g_a + t_a) / t_a)
+    # the sign bracket in x (h > 0 below the root): (x, g, T) at its ends
+    inf = np.inf
+    lo, hi = (((x_a, g_a, t_a), (inf, inf, inf)) if h_a > 0
+              else ((-inf, inf, inf), (x_a, g_a, t_a)))
+    # second point: Newton with the previous root's slope, else half the fixed-point step
+    d = 0.5 * h_a if slope is None else -h_a / (min(slope, 0.5) - 1.0)
+    x_b = x_a + float(np.clip(d, -_MAX_LOG_STEP, _MAX_LOG_STEP))
+    while True:
+        t_b = float(np.exp(x_b))
+        g_b = evaluate(t_b)
+        if abs(g_b) <= tol + rtol * t_b:
+            return t_b
+        if g_b + t_b <= 0:
+            return _bracket(evaluate, tol)
+        h_b = np.log((g_b + t_b) / t_b)
+        if h_b > 0:
+            lo = max(lo, (x_b, g_b, t_b))
+        else:
+            hi = min(hi, (x_b, g_b, t_b))
+        if np.exp(hi[0]) - np.exp(lo[0]) <= tol + rtol * t_b:
+            # F jumps here (the grid's contact set): the end closer to a fixed point
+            return min(lo, hi, key=lambda e: abs(e[1]))[2]
+        x_c = x_b - h_b * (x_b - x_a) / (h_b - h_a) if h_b != h_a else np.inf
+        x_c = x_b + float(np.clip(x_c - x_b, -_MAX_LOG_STEP, _MAX_LOG_STEP))
+        if not lo[0] < x_c < hi[0]:
+            x_c = (0.5 * (lo[0] + hi[0]) if np.isfinite(lo[0] + hi[0])
+                   else x_b + np.copysign(_MAX_LOG_STEP, h_b))   # toward the root
+        x_a, h_a, x_b = x_b, h_b, x_c
