@@ -133,13 +133,67 @@ def test_flash_off_is_the_run_without_the_table(tmp_path):
             np.testing.assert_array_equal(off[k].values, none[k].values)
 
 
-def test_half_space_models_are_named_in_a_note_and_left_without_the_flash(tmp_path):
-    cfg = _config(tmp_path, {"enabled": True}, models=["vhs", "meanfield"],
-                  halfspace={"n": 256}, velocities=[1.0, 100.0], loads={"pressures": [0.3]})
+def test_models_without_the_flash_are_named_in_a_note_and_left_nan(tmp_path):
+    cfg = _config(tmp_path, {"enabled": True}, models=["meanfield-strips", "meanfield"],
+                  velocities=[1.0, 100.0], loads={"pressures": [0.3]})
     ds = _run(cfg)
-    assert ds.attrs["flash_note"].count("\n") == 0 and "vhs" in ds.attrs["flash_note"]
-    assert np.all(np.isnan(ds["friction_flash"].sel(model="vhs")))
+    note = ds.attrs["flash_note"]
+    assert note.count("\n") == 0 and "not yet for meanfield-strips" in note
+    assert np.all(np.isnan(ds["friction_flash"].sel(model="meanfield-strips")))
     assert np.all(np.isfinite(ds["friction_flash"].sel(model="meanfield")))
+
+
+#: The VHS runs: two realizations on 512 points, 1 – 1e4 mm/s.
+VHS = {"models": ["vhs"], "halfspace": {"n": 512}, "realizations": 2,
+       "velocities": {"from": 1.0, "to": 1e4, "points": 5}, "loads": {"pressures": [0.3]}}
+
+
+def test_vhs_with_an_infinitely_conducting_rubber_is_its_isothermal_run(tmp_path):
+    """No rise, so every speed's search ends at its isothermal solve: the same solve as
+    the run's own task, bit for bit."""
+    mat = {"preset": "sbr", "reference_temperature": 20.0, "shift": WLF,
+           "thermal": {"conductivity": INFINITE_K}}
+    ds = _run(_config(tmp_path, {"enabled": True}, material=mat, **VHS))
+    np.testing.assert_array_equal(ds["friction_flash"].sel(model="vhs"),
+                                  ds["friction_mean"].sel(model="vhs"))
+    np.testing.assert_array_equal(ds["contact_fraction_flash"].sel(model="vhs"),
+                                  ds["contact_fraction_mean"].sel(model="vhs"))
+    assert np.all(ds["flash_temperature"].values == 0.0)
+    assert ds.attrs["flash_halfspace_solves"] == 2 * 5
+
+
+def test_vhs_of_a_temperature_independent_rubber_heats_but_keeps_its_friction(tmp_path):
+    """WLF with C1 = 1e-300: a_T = 1 exactly at every temperature, so each solve is the
+    isothermal one whatever the rise; the rise itself is the heat's (> 0, growing)."""
+    mat = {"preset": "sbr", "reference_temperature": 20.0,
+           "shift": {"law": "WLF", "c1": 1e-300, "c2": 101.6}}
+    ds = _run(_config(tmp_path, {"enabled": True}, material=mat, temperatures=[0.0, 40.0],
+                      **VHS))
+    np.testing.assert_array_equal(ds["friction_flash"].sel(model="vhs"),
+                                  ds["friction_mean"].sel(model="vhs"))
+    rise = ds["flash_temperature"].sel(model="vhs", pressure=0.3).values
+    assert np.all(rise[:, -1] > 1.0) and np.all(np.diff(rise, axis=-1) > 0)
+
+
+def test_vhs_flash_variables_energy_balance_and_summary(tmp_path):
+    """The heat into the rubber is μ σ0 v (the solver's pressure, averaged over the
+    realizations: to its load balance, tol 1e-8); the flash rises with the speed; units;
+    the summary prints the VHS's two peaks."""
+    ds = _run(_config(tmp_path, {"enabled": True}, **VHS))
+    vhs = ds.sel(model="vhs", pressure=0.3)
+    v = ds["velocity"].values
+    np.testing.assert_allclose(vhs["flash_heat_flux"], vhs["friction_flash"] * 0.3 * v,
+                               rtol=1e-7)
+    rise = vhs["flash_temperature"].values
+    assert rise[0] < 0.1 and rise[-1] > 1.0 and np.all(np.diff(rise[1:]) > 0)
+    units = {k: ds[k].attrs["units"] for k in ("friction_flash", "contact_fraction_flash",
+                                                 "flash_temperature", "flash_heat_flux")}
+    assert units == {"friction_flash": "1", "contact_fraction_flash": "1",
+                     "flash_temperature": "K", "flash_heat_flux": "mW/mm^2"}
+    assert ds.attrs["flash_note"] == "" and ds.attrs["flash_residual_K"] < 1.0
+    assert json.loads(ds.attrs["flash_halfspace_search"])["method"] == "secant"
+    text = summary_table(ds)
+    assert "vhs mu flash" in text and "peak of vhs with flash temperature" in text
 
 
 @pytest.mark.parametrize("over, match", [
@@ -198,7 +252,7 @@ def test_the_plan_names_the_flash_and_check_catches_its_inputs(tmp_path, capsys)
     cfg = rc.config.parse_config(_config(tmp_path, {"enabled": True},
                                          models=["vhs", "meanfield"]))
     line = [x for x in describe_plan(cfg).splitlines() if x.startswith("flash")]
-    assert len(line) == 1 and "not yet for vhs" in line[0]
+    assert len(line) == 1 and "vhs, meanfield" in line[0] and "not yet" not in line[0]
     path = tmp_path / "run.toml"
     path.write_text('velocities = [1.0]\nmodels = ["meanfield"]\n'
                     '[surface]\nwavelengths = [0.5]\namplitudes = [0.01]\n'

@@ -1,18 +1,29 @@
 """A run's friction with the flash temperature (``[friction.flash_temperature]``).
 
 With the flash, a (T, v) point is no longer the single reduced speed ``a_T v``: the heat
-``μσ0v`` depends on the true speed. The mean-field model ``meanfield`` therefore gets one
-:func:`~rubbercontact.meanfield.flash.flash_friction_curve` per temperature and load over
-the run's true speeds (its answer stands for every realization, as the isothermal one
-does). The half-space models (``vhs``, the hybrids), ``meanfield-hybrid`` (the high-slope
-law is an isothermal FEM table) and ``fem`` are not computed with the flash yet: the run
-says so in ``attrs["flash_note"]``, one line.
+``μσ0v`` depends on the true speed. So, in-process, per temperature and load over the
+run's true speeds:
+
+* ``meanfield``: one :func:`~rubbercontact.meanfield.flash.flash_friction_curve` (its
+  answer stands for every realization, as the isothermal one does);
+* ``vhs``: per realization one :func:`~rubbercontact.thermal.flash_sweep` — the
+  half-space solve (the run's grid, interaction law and tolerance) at the contact's own
+  mean temperature ``T0 + T_c``, each speed started from the lower ones — and the mean
+  over the realizations (the isothermal columns' phase average). One temperature for the
+  whole contact (:mod:`rubbercontact.thermal.contact`): its spots are hotter than their
+  mean and each scale sees its own, which the mean-field flash resolves and this does not.
+
+The hybrids (the high-slope law is an isothermal FEM table at the run's speeds),
+``meanfield-hybrid`` and ``fem`` are not computed with the flash yet: the run says so in
+``attrs["flash_note"]``, one line.
 
 Variables added (``model, [temperature,] velocity, pressure``; NaN for the models without
-the flash): ``friction_flash``, ``contact_fraction_flash`` and ``flash_temperature`` [K],
-the rise of the finest contact spots above the run's temperature; per scale,
-``flash_scale_temperature`` [K] on ``flash_wavenumber`` [rad/mm] (the ``meanfield``
-spectrum's nodes), the rise of the contact spots seen at each magnification.
+the flash): ``friction_flash``, ``contact_fraction_flash``, ``flash_temperature`` [K] (the
+rise of the finest contact spots above the run's temperature; ``vhs``: of the contact's
+mean), ``flash_heat_flux`` [mW/mm²] (the frictional heat into the rubber per nominal area,
+``μ σ0 v``; ``vhs``: of the solved pressure); per scale, ``flash_scale_temperature`` [K]
+on ``flash_wavenumber`` [rad/mm] (the ``meanfield`` spectrum's nodes), the rise of the
+contact spots seen at each magnification.
 """
 
 from __future__ import annotations
@@ -25,15 +36,18 @@ import numpy as np
 import xarray as xr
 
 from ..errors import ConvergenceError, InputError
+from ..materials import GeneralizedMaxwell
 from ..materials.spec import load_thermal
 from ..meanfield import PSD, MeanFieldOptions
 from ..meanfield.flash import FlashOptions, flash_friction_curve
-from ..thermal import ThermalProperties
+from ..thermal import FlashSearch, ThermalProperties, flash_sweep
 from .plan import meanfield_surfaces
-from .setup import RunSetup
+from .setup import RunSetup, task_material
 
 #: Models the run computes with the flash temperature.
-FLASH_MODELS = ("meanfield",)
+FLASH_MODELS = ("meanfield", "vhs")
+#: The half-space models among them.
+HALFSPACE_FLASH_MODELS = ("vhs",)
 #: Prefix of every message about the flash (the config table).
 KEY = "friction.flash_temperature"
 #: The variables added, with their units and long names.
@@ -41,7 +55,8 @@ VARIABLES = {
     "friction_flash": ("1", "friction coefficient with the flash temperature"),
     "contact_fraction_flash": ("1", "real contact fraction with the flash temperature"),
     "flash_temperature": ("K", "rise of the finest contact spots above the run's "
-                               "temperature"),
+                               "temperature (vhs: of the contact's mean)"),
+    "flash_heat_flux": ("mW/mm^2", "frictional heat into the rubber per nominal area"),
 }
 #: The per-scale variable, on ``flash_wavenumber`` besides the dims above.
 SCALE_VARIABLES = {
@@ -66,6 +81,8 @@ class FlashPlan:
         The flash options except the temperature (set per run temperature).
     mean_field
         The mean-field options of the run's ``[meanfield]`` table.
+    search
+        The half-space models' search of the contact temperature.
     """
 
     models: tuple[str, ...]
@@ -73,14 +90,19 @@ class FlashPlan:
     thermal: ThermalProperties
     options: FlashOptions
     mean_field: MeanFieldOptions
+    search: FlashSearch = FlashSearch()
 
     @property
     def note(self) -> str:
         """One line naming the models without the flash ("" when none)."""
-        if not self.skipped:
-            return ""
-        return (f"flash temperature computed for {', '.join(self.models) or 'no model'} "
-                f"only; not yet for {', '.join(self.skipped)} (isothermal)")
+        parts = []
+        if self.skipped:
+            parts.append(f"flash temperature computed for {', '.join(self.models) or 'no model'}"
+                         f" only; not yet for {', '.join(self.skipped)} (isothermal)")
+        hs = [m for m in self.models if m in HALFSPACE_FLASH_MODELS]
+        if hs and self.options.contact_time is not None:
+            parts.append(f"{', '.join(hs)}: without contact_time's background heating")
+        return "; ".join(parts)
 
 
 def plan_flash(setup: RunSetup) -> FlashPlan | None:
@@ -114,41 +136,101 @@ def plan_flash(setup: RunSetup) -> FlashPlan | None:
 def add_flash(ds: xr.Dataset, setup: RunSetup, plan: FlashPlan | None
               ) -> tuple[xr.Dataset, float]:
     """``ds`` with the flash variables (module docstring) and their provenance in
-    ``attrs`` (``flash_thermal``, ``flash_options``, ``flash_note``, ``flash_residual_K``),
-    and the wall time [s]; ``ds`` unchanged (and 0 s) when ``plan`` is None."""
+    ``attrs`` (``flash_thermal``, ``flash_options``, ``flash_note``, ``flash_residual_K``,
+    ``flash_halfspace_solves``), and the wall time [s]; ``ds`` unchanged (and 0 s) when
+    ``plan`` is None."""
     if plan is None:
         return ds, 0.0
     t0 = time.perf_counter()
     temps = setup.speeds.temperatures
     per_t = [None] if temps is None else [float(t) for t in temps]
     pressures = ds["pressure"].values
-    v = setup.speeds.velocities
-    shape = (ds.sizes["model"], len(per_t), v.size, pressures.size)
+    shape = (ds.sizes["model"], len(per_t), setup.speeds.velocities.size, pressures.size)
     out = {k: np.full(shape, np.nan) for k in VARIABLES}
     nodes = (PSD.from_dict(meanfield_surfaces(setup)["meanfield"]).wavenumbers
-             if plan.models else np.empty(0))
+             if "meanfield" in plan.models else np.empty(0))
     out["flash_scale_temperature"] = np.full((*shape, nodes.size), np.nan)
-    notes, worst = [plan.note] if plan.note else [], 0.0
+    acc = _Tally([plan.note] if plan.note else [])
     for m in plan.models:
         im = list(ds["model"].values).index(m)
-        psd = PSD.from_dict(meanfield_surfaces(setup)[m])
+        fill = _fill_halfspace if m in HALFSPACE_FLASH_MODELS else _fill_meanfield
         for it, temp in enumerate(per_t):
             for ip, p in enumerate(pressures):
-                try:
-                    curve = _curve(psd, setup, v, float(p), temp, plan)
-                except ConvergenceError as exc:
-                    at = "" if temp is None else f", {temp:g} °C"
-                    notes.append(f"{m} at {p:g} MPa{at}: {str(exc).splitlines()[0]}")
-                    continue
-                worst = max(worst, float(np.max(curve.residual)))
-                for key, values in (("friction_flash", curve.friction),
-                                    ("contact_fraction_flash", curve.contact_fraction),
-                                    ("flash_temperature", curve.flash_temperature)):
-                    out[key][im, it, :, ip] = values
-                out["flash_scale_temperature"][im, it, :, ip] = (
-                    curve.node_temperature - curve.background_temperature)
-    return _with_variables(ds, out, nodes, temps is not None, plan, notes, worst), (
-        time.perf_counter() - t0)
+                fill(out, (im, it, slice(None), ip), m, setup, float(p), temp, plan, acc)
+    ds = _with_variables(ds, out, nodes, temps is not None, plan, acc.notes, acc.residual)
+    ds.attrs["flash_halfspace_solves"] = acc.solves
+    return ds, time.perf_counter() - t0
+
+
+@dataclass
+class _Tally:
+    """Notes, the largest fixed-point residual [K] and the half-space solves of a run."""
+
+    notes: list
+    residual: float = 0.0
+    solves: int = 0
+
+    def failed(self, model: str, pressure: float, temperature: float | None,
+               message: str) -> None:
+        at = "" if temperature is None else f", {temperature:g} °C"
+        self.notes.append(f"{model} at {pressure:g} MPa{at}: {message}")
+
+
+def _fill_meanfield(out: dict, at: tuple, m: str, setup: RunSetup, pressure: float,
+                    temperature: float | None, plan: FlashPlan, acc: _Tally) -> None:
+    """One mean-field flash μ(v) into ``out[...][at]``."""
+    psd = PSD.from_dict(meanfield_surfaces(setup)[m])
+    try:
+        curve = _curve(psd, setup, setup.speeds.velocities, pressure, temperature, plan)
+    except ConvergenceError as exc:
+        acc.failed(m, pressure, temperature, str(exc).splitlines()[0])
+        return
+    acc.residual = max(acc.residual, float(np.max(curve.residual)))
+    for key, values in (("friction_flash", curve.friction),
+                        ("contact_fraction_flash", curve.contact_fraction),
+                        ("flash_temperature", curve.flash_temperature),
+                        ("flash_heat_flux", curve.friction * pressure
+                         * setup.speeds.velocities)):
+        out[key][at] = values
+    out["flash_scale_temperature"][at] = (curve.node_temperature
+                                          - curve.background_temperature)
+
+
+def _fill_halfspace(out: dict, at: tuple, m: str, setup: RunSetup, pressure: float,
+                    temperature: float | None, plan: FlashPlan, acc: _Tally) -> None:
+    """The realizations' mean of one half-space flash μ(v) into ``out[...][at]`` (NaN at
+    a speed where a realization failed)."""
+    from ..halfspace import solve_sliding
+    from ..hybrid.tasks import halfspace_law
+
+    cfg = setup.config
+    hs = cfg.halfspace
+    material = GeneralizedMaxwell(**task_material(setup.material))   # the series at T_ref
+    law = halfspace_law(hs.law)
+    v = setup.speeds.velocities
+    order = np.argsort(v)
+    rows = np.full((len(setup.realizations), 4, v.size), np.nan)
+    for ir, real in enumerate(setup.realizations):
+        def solve(u: float, real=real):
+            return solve_sliding(real, setup.period, material, u, pressure, law=law,
+                                 n=hs.n, nu=cfg.material.nu, tol=hs.tol)
+
+        sweep = flash_sweep(solve, v, setup.material.shift, plan.thermal, temperature,
+                            plan.search)
+        acc.solves += sweep.solves
+        for speed, message in sweep.failures.items():
+            acc.failed(m, pressure, temperature, f"r={ir}, {speed:g} mm/s: {message}")
+        for k, f in zip(order, sweep.flashes, strict=True):
+            if f is None:
+                continue
+            acc.residual = max(acc.residual, f.residual)
+            rows[ir, :, k] = (f.result.friction, f.result.contact_fraction,
+                              f.contact_temperature - f.background_temperature,
+                              f.heating.mean_heat_flux)
+    mean = rows.mean(axis=0)
+    for i, key in enumerate(("friction_flash", "contact_fraction_flash",
+                             "flash_temperature", "flash_heat_flux")):
+        out[key][at] = mean[i]
 
 
 def _curve(psd: PSD, setup: RunSetup, velocities: np.ndarray, pressure: float,
@@ -175,6 +257,7 @@ def _with_variables(ds: xr.Dataset, out: dict, nodes: np.ndarray, with_temperatu
     ds.attrs.update({"flash_thermal": json.dumps(plan.thermal.as_dict()),
                      "flash_options": json.dumps(options, default=float),
                      "flash_models": json.dumps(list(plan.models)),
+                     "flash_halfspace_search": json.dumps(asdict(plan.search), default=float),
                      "flash_note": "; ".join(notes),
                      "flash_residual_K": residual})
     return ds
