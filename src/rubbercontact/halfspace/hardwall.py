@@ -227,8 +227,13 @@ def hard_wall_projection(prob: Problem, tol: float, max_iter: int,
     return Solution(sigma, ubar + u0, w, ubar, it, diff, ok, info)
 
 
-def hard_wall_viscoelastic(prob: Problem, tol: float, max_iter: int) -> Solution:
+def hard_wall_viscoelastic(prob: Problem, tol: float, max_iter: int,
+                           start: np.ndarray | None = None) -> Solution:
     """Exact viscoelastic hard wall, started from the solution on a 4× coarser grid.
+
+    With ``start`` (a pressure on this grid, e.g. a nearby speed's solution) the same
+    polish is tried from it first (``info["warm_start"]``); if it does not converge, the
+    usual path runs.
 
     The coarse solution (recursively, down to ``options.coarse_min_points``) is interpolated
     to the grid and polished by ``options.coarse_polish_updates`` active-set updates
@@ -238,6 +243,10 @@ def hard_wall_viscoelastic(prob: Problem, tol: float, max_iter: int) -> Solution
     this grid.
     """
     opts = prob.options
+    if start is not None:
+        pol = _polish(prob, tol, start, opts.coarse_polish_updates)
+        if pol.converged:
+            return replace(pol, info={**pol.info, "warm_start": True})
     if prob.can_coarsen(opts.coarse_min_points):
         coarse = prob.coarse()
         out_c = hard_wall_viscoelastic(coarse, tol, max_iter)

@@ -186,7 +186,8 @@ class SlidingResult:
 def solve_sliding(surface, period, material: Material, velocity: float,
                   mean_pressure: float, law: InteractionLaw | None = None, n: int = 4096,
                   nu: float = 0.5, tol: float = 1e-8, max_iter: int = 200,
-                  method: str = "auto", options: SolverOptions | None = None) -> SlidingResult:
+                  method: str = "auto", options: SolverOptions | None = None,
+                  start: np.ndarray | None = None) -> SlidingResult:
     """Steady sliding contact of a rigid periodic surface on a viscoelastic half-space.
 
     Parameters
@@ -225,6 +226,12 @@ def solve_sliding(surface, period, material: Material, velocity: float,
     options
         Algorithm switches (:class:`~rubbercontact.halfspace.options.SolverOptions`);
         ``None``: the defaults.
+    start
+        A pressure field [MPa] on the grid to start from, e.g. the solve of the same
+        surface at a nearby speed: the viscoelastic hard wall (alone, or as a law's
+        initial guess) is first polished from it
+        (:func:`~rubbercontact.halfspace.hardwall.hard_wall_viscoelastic`), then, if that
+        fails, solved as without it. The same solution to the linear tolerance.
 
     Returns
     -------
@@ -265,14 +272,14 @@ def solve_sliding(surface, period, material: Material, velocity: float,
             out = hard_wall_elastic(prob, tol, max_iter)
             name = "active-set"
         else:
-            out = hard_wall_viscoelastic(prob, tol, max_iter)
+            out = hard_wall_viscoelastic(prob, tol, max_iter, _start(start, prob))
             name = "projection+active-set"
         used_law = None
     else:
         if method == "pk":
             raise InputError("method: 'pk' is for the hard wall only (law=None)")
         used_law = law.resolve(hrms, sigma0)
-        out = _solve_law(prob, used_law, tol, max_iter, elastic)
+        out = _solve_law(prob, used_law, tol, max_iter, elastic, _start(start, prob))
         name = "newton"
 
     result = _make_result(prob, grid, out, velocity, used_law, name, time.perf_counter() - t0)
@@ -308,8 +315,18 @@ def _check_inputs(material, velocity, mean_pressure, nu, tol, max_iter, method,
     return velocity, sigma0, tol
 
 
+def _start(start: np.ndarray | None, prob: Problem) -> np.ndarray | None:
+    """``start`` flattened, checked against the grid (None stays None)."""
+    if start is None:
+        return None
+    flat = np.asarray(start, float).ravel()
+    if flat.size != prob.size or not np.all(np.isfinite(flat)):
+        raise InputError(f"start: expected a finite pressure field of {prob.shape} points")
+    return np.maximum(flat, 0.0)
+
+
 def _solve_law(prob: Problem, law: InteractionLaw, tol: float, max_iter: int,
-               elastic: bool) -> Solution:
+               elastic: bool, start: np.ndarray | None = None) -> Solution:
     """A resolved law: wall + soft (:mod:`.walls`) or a single law (:mod:`.newton`).
 
     Both start from the exact hard-wall solution when they need it (computed once, then
@@ -320,7 +337,7 @@ def _solve_law(prob: Problem, law: InteractionLaw, tol: float, max_iter: int,
     def hard_wall() -> Solution:
         hw_tol = max(tol, 1e-8)
         out = (hard_wall_active_set(prob, hw_tol, max_iter) if elastic
-               else hard_wall_viscoelastic(prob, hw_tol, max_iter))
+               else hard_wall_viscoelastic(prob, hw_tol, max_iter, start))
         if not out.converged:
             raise ConvergenceError("hard-wall initial guess did not converge",
                                    diagnostics=out.info)
