@@ -17,6 +17,7 @@ import pytest
 import rubbercontact as rc
 from rubbercontact.errors import InputError
 from rubbercontact.thermal import FlashSearch, FlashStart, flash_contact, flash_sweep
+from rubbercontact.thermal.contact import start_pressure
 from rubbercontact.thermal.sweep import predicted_start
 
 SBR = rc.materials.sbr()
@@ -69,6 +70,24 @@ def test_the_sweep_finds_the_plain_roots(sweeps):
             assert out.result.friction == ref.result.friction
 
 
+def test_warm_started_solves_find_the_plain_roots(sweeps):
+    """Each heated solve polished from the nearest one solved: the same roots to the
+    tolerance, and the cold speeds' isothermal solves bit for bit."""
+    plain, _ = sweeps
+
+    def solve(u, start=None):
+        return rc.halfspace.solve_sliding(SINES, None, SBR, u, 0.1, n=2048,
+                                          start=None if start is None
+                                          else start_pressure(start))
+
+    warm = flash_sweep(solve, SPEEDS, WLF, search=FlashSearch(warm_start=True))
+    assert any(f.result.info.get("warm_start") for f in warm.flashes)
+    for ref, out in zip(plain, warm.flashes, strict=True):
+        assert abs(_rise(out) - _rise(ref)) <= _eps(out) + ref.inputs["tolerance_K"]
+        if _rise(ref) == 0.0:
+            assert out.result.friction == ref.result.friction
+
+
 def test_the_fixed_point_map_falls_with_the_temperature_at_the_root(sweeps):
     """The premise of the bound in the module docstring: F' ≤ 0 at the plain root (the
     slope between its two evaluations closest to it)."""
@@ -103,6 +122,7 @@ class _Done:
         self.evaluations = ((rise, rise * 1.1), (rise * 1.2, rise * 0.9))
 
     log_slope = property(lambda self: -0.5)
+    result = None
 
 
 def test_the_prediction_is_exact_on_power_laws_and_quadratics_in_log_log():

@@ -8,7 +8,8 @@ run's true speeds:
   answer stands for every realization, as the isothermal one does);
 * ``vhs``: per realization one :func:`~rubbercontact.thermal.flash_sweep` — the
   half-space solve (the run's grid, interaction law and tolerance) at the contact's own
-  mean temperature ``T0 + T_c``, each speed started from the lower ones — and the mean
+  mean temperature ``T0 + T_c``, each speed's search started from the lower ones and
+  each heated solve from the nearest one already solved (``warm_start``) — and the mean
   over the realizations (the isothermal columns' phase average). One temperature for the
   whole contact (:mod:`rubbercontact.thermal.contact`): its spots are hotter than their
   mean and each scale sees its own, which the mean-field flash resolves and this does not.
@@ -41,6 +42,7 @@ from ..materials.spec import load_thermal
 from ..meanfield import PSD, MeanFieldOptions
 from ..meanfield.flash import FlashOptions, flash_friction_curve
 from ..thermal import FlashSearch, ThermalProperties, flash_sweep
+from ..thermal.contact import start_pressure
 from .plan import meanfield_surfaces
 from .setup import RunSetup, task_material
 
@@ -90,7 +92,7 @@ class FlashPlan:
     thermal: ThermalProperties
     options: FlashOptions
     mean_field: MeanFieldOptions
-    search: FlashSearch = FlashSearch()
+    search: FlashSearch = FlashSearch(warm_start=True)
 
     @property
     def note(self) -> str:
@@ -211,9 +213,10 @@ def _fill_halfspace(out: dict, at: tuple, m: str, setup: RunSetup, pressure: flo
     order = np.argsort(v)
     rows = np.full((len(setup.realizations), 4, v.size), np.nan)
     for ir, real in enumerate(setup.realizations):
-        def solve(u: float, real=real):
+        def solve(u: float, start=None, real=real):
             return solve_sliding(real, setup.period, material, u, pressure, law=law,
-                                 n=hs.n, nu=cfg.material.nu, tol=hs.tol)
+                                 n=hs.n, nu=cfg.material.nu, tol=hs.tol,
+                                 start=None if start is None else start_pressure(start))
 
         sweep = flash_sweep(solve, v, setup.material.shift, plan.thermal, temperature,
                             plan.search)

@@ -104,6 +104,13 @@ def contact_mask(result) -> np.ndarray:
     return mask.reshape(p.shape)
 
 
+def start_pressure(result) -> np.ndarray:
+    """The pressure of a solved contact on its contact (:func:`contact_mask`), zero
+    elsewhere [MPa]: a start for a nearby solve (``solve_sliding(..., start=...)``; an
+    interaction law's pressure is positive everywhere, a hard wall's start must not be)."""
+    return np.where(contact_mask(result), np.asarray(result.pressure, float), 0.0)
+
+
 def contact_heating(result, velocity: float | None = None,
                     thermal: ThermalProperties | None = None) -> ContactHeating:
     """Heat and temperature of a solved sliding contact (module docstring).
@@ -157,10 +164,14 @@ class FlashStart:
         Guess of ``T_c`` [K] (≥ 0; below the tolerance: start at the isothermal solve).
     log_slope
         Estimate of ``d ln F / d ln T`` at the root [-] (None: a damped first step).
+    result
+        A solve to start the first solve from (:attr:`FlashSearch.warm_start`), e.g. the
+        neighbouring speed's final one.
     """
 
     rise: float
     log_slope: float | None = None
+    result: object | None = None
 
 
 @dataclass(frozen=True)
@@ -181,6 +192,11 @@ class FlashSearch:
         ``"secant"`` (default) or ``"bracket"`` (the plain search).
     start
         A guess for ``"secant"`` (None: from ``F(0)``).
+    warm_start
+        ``solve`` takes a second argument, the solve to start from (None: none): a solve
+        at ``T > 0`` is started from the evaluated one (or ``start.result``) nearest in
+        reduced speed if within a factor 1.25; a solve at ``T = 0`` never is, so it is
+        the isothermal solve bit for bit.
     """
 
     tolerance: float = 1e-2
@@ -188,6 +204,7 @@ class FlashSearch:
     max_solves: int = 30
     method: str = "secant"
     start: FlashStart | None = None
+    warm_start: bool = False
 
     def __post_init__(self) -> None:
         positive_scalar("tolerance", self.tolerance, unit="K")
@@ -270,7 +287,10 @@ def flash_contact(solve: Callable[[float], object], velocity: float, shift: Shif
     solve
         ``solve(reduced_speed) -> SlidingResult``: the contact of the rubber *at the shift
         law's reference temperature* sliding at ``reduced_speed`` [mm/s], e.g.
-        ``lambda u: rc.halfspace.solve_sliding(z, L, material, u, sigma0)``.
+        ``lambda u: rc.halfspace.solve_sliding(z, L, material, u, sigma0)``; with
+        ``search.warm_start`` ``solve(reduced_speed, start)``, ``start`` a previous
+        result or None, e.g. ``lambda u, s: solve_sliding(..., start=s and
+        start_pressure(s))``.
     velocity
         The true sliding speed ``v`` [mm/s], > 0.
     shift
@@ -306,7 +326,8 @@ def flash_contact(solve: Callable[[float], object], velocity: float, shift: Shif
                     f"{search.max_solves} solves at {v:g} mm/s; raise max_solves",
                     diagnostics={"evaluations": [(t, s[2]) for t, s in seen.items()]})
             a_t = float(law.shift(t0 + rise))
-            res = solve(a_t * v)
+            res = (solve(a_t * v, _nearest(seen, rise, a_t * v, search.start))
+                   if search.warm_start else solve(a_t * v))
             heat = contact_heating(res, v, thermal)
             seen[rise] = (res, heat, heat.contact_rise, a_t)
         return seen[rise][2] - rise
@@ -318,10 +339,31 @@ def flash_contact(solve: Callable[[float], object], velocity: float, shift: Shif
     res, heat, f_rise, a_t = seen[rise]
     inputs = {"velocity": v, "thermal": thermal.as_dict(), "shift": law.as_dict(),
               "tolerance_K": tol, "relative_tolerance": search.relative_tolerance,
-              "method": search.method}
+              "method": search.method, "warm_start": search.warm_start}
     iso = seen[0.0][0] if 0.0 in seen else None
     return ContactFlash(res, iso, heat, t0 + rise, t0, a_t, abs(f_rise - rise),
                         tuple((t, s[2]) for t, s in seen.items()), inputs)
+
+
+#: A solve starts from another only if their reduced speeds differ by at most this factor:
+#: the polish from a 1.5–3× slower or faster solve failed half the time on the profile
+#: of benchmarks/bench_flash.py and then cost about one solve more.
+_WARM_RATIO = 1.25
+
+
+def _nearest(seen: dict, rise: float, speed: float, start: FlashStart | None):
+    """The solve to start the one at ``rise`` [K] and reduced ``speed`` [mm/s] from: the
+    evaluated one (or ``start.result``) nearest in reduced speed, within
+    :data:`_WARM_RATIO`; None at 0 K (the isothermal solve, bit for bit) or beyond."""
+    if rise == 0.0:
+        return None
+    known = [s[0] for s in seen.values()]
+    if start is not None and start.result is not None:
+        known.append(start.result)
+    if not known:
+        return None
+    near = min(known, key=lambda r: abs(np.log(speed / r.velocity)))
+    return near if abs(np.log(speed / near.velocity)) <= np.log(_WARM_RATIO) else None
 
 
 def _bracket(evaluate: Callable[[float], float], tol: float) -> float:

@@ -6,7 +6,8 @@ started (:class:`~.contact.FlashStart`) at the contact rise extrapolated from th
 already done — ``ln T_c`` against ``ln v``: quadratic through the last three heated
 speeds, linear through two, ``T_c ∝ v^{1/2}`` (the moving source at high Péclet number)
 from one, the exponent kept in ``[0, 3/2]`` — with the last root's slope
-``d ln F/d ln T``. A speed whose predecessor stayed at the background (``T_c = 0``) starts
+``d ln F/d ln T`` (and, with ``FlashSearch.warm_start``, its first solve started from the
+last speed's final one). A speed whose predecessor stayed at the background (``T_c = 0``) starts
 at the isothermal solve, which is then also its answer if ``F(0)`` is below the
 tolerance; so the cold end of a sweep costs one solve per speed, as the isothermal one.
 """
@@ -75,7 +76,7 @@ def predicted_start(done: list[tuple[float, ContactFlash]], velocity: float,
         xs, ys = np.array(pts).T
         guess = float(np.polyval(np.polyfit(xs, ys, len(pts) - 1), x))
     lo, hi = (np.log(rise) + e * (x - np.log(v_last)) for e in _EXPONENT)
-    return FlashStart(float(np.exp(np.clip(guess, lo, hi))), last.log_slope)
+    return FlashStart(float(np.exp(np.clip(guess, lo, hi))), last.log_slope, last.result)
 
 
 def flash_sweep(solve: Callable[[float], object], velocities, shift: ShiftLaw | dict,
