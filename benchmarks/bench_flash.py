@@ -161,7 +161,7 @@ def main(argv: list[str] | None = None) -> int:
     commit = subprocess.run(["git", "rev-parse", "--short", "HEAD"], capture_output=True,
                             text=True, cwd=ROOT).stdout.strip()
     text = "\n".join([
-        "# Mean-field flash temperature (`benchmarks/bench_flash.py`)", "",
+        "# Flash temperature: mean field and half-space (`benchmarks/bench_flash.py`)", "",
         f"Run {datetime.now(UTC):%Y-%m-%d %H:%M} UTC, commit {commit}, {_cpu()}, "
         f"{os.cpu_count()} cores, one thread (OMP_NUM_THREADS="
         f"{os.environ.get('OMP_NUM_THREADS', 'unset')}), numpy {np.__version__}, Python "
