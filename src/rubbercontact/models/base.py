@@ -11,13 +11,14 @@ from __future__ import annotations
 
 from collections.abc import Mapping, Sequence
 from dataclasses import dataclass, field
-from typing import Any, Protocol, runtime_checkable
+from typing import Any, ClassVar, Protocol, runtime_checkable
 
 import numpy as np
 import xarray as xr
 
 from .._validation import finite_array
 from ..errors import InputError
+from .planning import Planning, RunPoint
 
 __all__ = ["ContactModel", "ContactResult", "TaskModel", "check_pressures"]
 
@@ -106,10 +107,25 @@ class TaskModel:
     """Base of the models that state their work as sweep tasks.
 
     Subclasses set :attr:`name` and implement :meth:`tasks` (the work) and
-    :meth:`collect` (the tasks' datasets to a :class:`ContactResult`).
+    :meth:`collect` (the tasks' datasets to a :class:`ContactResult`); a model a run can
+    plan also sets :attr:`planning` and implements :meth:`run_task` (and, for data its
+    tasks share, :meth:`run_data`).
     """
 
     name: str = ""
+    #: How a run plans it (:class:`~.planning.Planning`); ``None``: scripts only.
+    planning: ClassVar[Planning | None] = None
+
+    @classmethod
+    def run_data(cls, name: str, setup: Any) -> Any:
+        """Data the model's tasks in a run share, built once per run (default: none)."""
+        return None
+
+    @classmethod
+    def run_task(cls, name: str, point: RunPoint) -> tuple[str, dict]:
+        """The task function (``"module:function"``) and its arguments at one place of a
+        run; ``name`` is the registered name (one class may serve several)."""
+        raise NotImplementedError(f"model {name!r} does not say how a run plans it")
 
     def tasks(self, surface: Any, material: Any, velocity: float,
               pressures: np.ndarray) -> list:

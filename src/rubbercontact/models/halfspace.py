@@ -16,6 +16,7 @@ import xarray as xr
 from ..errors import InputError
 from ..roughness import SineSeries
 from .base import ContactResult, TaskModel
+from .planning import PER_REALIZATION, Planning, RunPoint
 
 __all__ = ["HalfspaceOptions", "VHS", "Hybrid"]
 
@@ -101,10 +102,25 @@ def loads_kwargs(surface: SineSeries, period: float, material: Any, velocity: fl
     return kw
 
 
+def run_options(cfg: Any) -> HalfspaceOptions:
+    """A run config's (:class:`rubbercontact.config.RunConfig`) half-space options."""
+    hsc = cfg.halfspace
+    return HalfspaceOptions(n=hsc.n, nu=cfg.material.nu, law=hsc.law, tol=hsc.tol)
+
+
 class VHS(TaskModel):
     """The viscoelastic half-space (BEM) on the whole surface (``"vhs"``)."""
 
     name = "vhs"
+    planning = Planning(PER_REALIZATION)
+
+    @classmethod
+    def run_task(cls, name: str, point: RunPoint) -> tuple[str, dict]:
+        """One realization at every load (its profiles kept for the first)."""
+        s, ir = point.setup, point.realization
+        return LOADS_TASK, loads_kwargs(s.realizations[ir], s.period, point.material,
+                                        point.velocity, point.pressures,
+                                        run_options(s.config), keep_profile=ir == 0)
 
     def __init__(self, options: HalfspaceOptions | None = None) -> None:
         self.options = options or HalfspaceOptions()
@@ -125,6 +141,29 @@ class VHS(TaskModel):
 LawSource = xr.Dataset | Callable[[float], dict] | Mapping[float, dict]
 
 
+def check_law(law: LawSource) -> LawSource:
+    """``law`` if it is a :data:`LawSource` (else one :class:`InputError` line)."""
+    if not isinstance(law, (xr.Dataset, Mapping)) and not callable(law):
+        raise InputError(f"law: a law table (xarray.Dataset), a callable velocity -> "
+                         f"table, or {{velocity: table}}; got {type(law).__name__}")
+    return law
+
+
+def read_law(law: LawSource, velocity: float) -> dict:
+    """The law at ``velocity`` [mm/s] as plain data (separation, pressure, α, Δτ)."""
+    from ..hybrid import law_at_velocity
+
+    if isinstance(law, xr.Dataset):
+        return law_at_velocity(law, velocity)
+    if isinstance(law, Mapping):
+        match = [v for v in law if np.isclose(float(v), velocity, rtol=1e-9)]
+        if not match:
+            raise InputError(f"law: no table at {velocity} mm/s (has "
+                             f"{sorted(map(float, law))} mm/s)")
+        return dict(law[match[0]])
+    return dict(law(velocity))
+
+
 class Hybrid(TaskModel):
     """The hybrid: the low-slope waves by the half-space, the high-slope ones by a law.
 
@@ -142,31 +181,42 @@ class Hybrid(TaskModel):
         The low-slope half-space solve.
     """
 
+    planning = Planning(PER_REALIZATION, reads_law=True, splits=True)
+    #: The registered names and the reading each stands for.
+    READINGS = {"hybrid-windowed": "windowed", "hybrid": "pointwise"}
+
     def __init__(self, law: LawSource, reading: Literal["windowed", "pointwise"] = "windowed",
                  m2_threshold: float = 1.0, options: HalfspaceOptions | None = None) -> None:
         if reading not in ("windowed", "pointwise"):
             raise InputError(f"reading: 'windowed' or 'pointwise', got {reading!r}")
-        if not isinstance(law, (xr.Dataset, Mapping)) and not callable(law):
-            raise InputError(f"law: a law table (xarray.Dataset), a callable velocity -> "
-                             f"table, or {{velocity: table}}; got {type(law).__name__}")
-        self.law, self.reading = law, reading
+        self.law, self.reading = check_law(law), reading
         self.m2_threshold = float(m2_threshold)
         self.options = options or HalfspaceOptions()
-        self.name = "hybrid-windowed" if reading == "windowed" else "hybrid"
+        self.name = next(k for k, r in self.READINGS.items() if r == reading)
+
+    @classmethod
+    def run_task(cls, name: str, point: RunPoint) -> tuple[str, dict]:
+        """The low-slope solve of one realization at every load: on ``halfspace.hybrid_n``
+        points or the grid of :func:`~rubbercontact.hybrid.grid.low_slope_points`; a
+        realization without a high-slope wave is solved whole on ``halfspace.n``."""
+        from ..hybrid.grid import low_slope_points
+
+        s, ir = point.setup, point.realization
+        real, parts, opts = s.realizations[ir], s.parts[ir], run_options(s.config)
+        args = (s.period, point.material, point.velocity, point.pressures, opts)
+        if parts.high.size == 0:
+            return LOADS_TASK, loads_kwargs(real, *args, interface_law=point.table,
+                                            keep_profile=ir == 0)
+        windowed = cls.READINGS[name] == "windowed"
+        return LOADS_TASK, loads_kwargs(
+            parts.low, *args, n=s.config.halfspace.hybrid_n or low_slope_points(opts.n, real,
+                                                                                parts.low),
+            interface_law=point.table, hs_window=float(s.hs0.period) if windowed else None,
+            keep_profile=ir == 0)
 
     def table(self, velocity: float) -> dict:
         """The law at ``velocity`` as plain data (separation, pressure, α, Δτ)."""
-        from ..hybrid import law_at_velocity
-
-        if isinstance(self.law, xr.Dataset):
-            return law_at_velocity(self.law, velocity)
-        if isinstance(self.law, Mapping):
-            match = [v for v in self.law if np.isclose(float(v), velocity, rtol=1e-9)]
-            if not match:
-                raise InputError(f"law: no table at {velocity} mm/s (has "
-                                 f"{sorted(map(float, self.law))} mm/s)")
-            return dict(self.law[match[0]])
-        return dict(self.law(velocity))
+        return read_law(self.law, velocity)
 
     def tasks(self, surface, material, velocity, pressures):
         from ..hybrid.grid import low_slope_points

@@ -20,8 +20,8 @@ from ..hybrid.law import (
 )
 from ..hybrid.steadiness import impaled_tests, under_resolved_message
 from ..materials import GeneralizedMaxwell
+from ..models.registry import splits
 from .plan import Slot
-from .setup import SPLIT_MODELS
 
 #: Status of a solve skipped by design (the FEM beyond ``fem.realizations``): not a failure.
 NOT_RUN = "not run"
@@ -82,7 +82,7 @@ def assemble(models: list[str], velocities: np.ndarray, n_real: int, pressures: 
             status[at] = msg
             continue
         if slot.ip is None:
-            _store_loads(data, status, at, res, split=slot.model in SPLIT_MODELS)
+            _store_loads(data, status, at, res, split=splits(slot.model))
             continue
         if slot.model == "fem":
             for k, arr in fem_diag.items():
@@ -91,7 +91,7 @@ def assemble(models: list[str], velocities: np.ndarray, n_real: int, pressures: 
         for k in names:
             if k in res:
                 data[k][at] = float(res[k])
-        if slot.model not in SPLIT_MODELS:
+        if not splits(slot.model):
             data["friction_ls"][at] = float(res["friction"])
             data["friction_hs"][at] = 0.0
     ds = xr.Dataset(

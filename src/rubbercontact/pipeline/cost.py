@@ -28,7 +28,9 @@ from __future__ import annotations
 import math
 from dataclasses import dataclass
 
-from .setup import HYBRID_MODELS, MEANFIELD_MODELS, RunSetup
+from ..models.planning import PER_LOAD, PER_REALIZATION
+from ..models.registry import planning
+from .setup import RunSetup
 
 #: Measured per-point costs [s] (module docstring).
 FEM_POINT_S = 3.6
@@ -150,13 +152,13 @@ def estimate_cost(setup: RunSetup) -> CostEstimate:
         stages.append(Stage(f"full FEM tests ({mesh[0]} x {mesh[1]})",
                             speeds * setup.n_fem * loads,
                             fem_point_seconds(mesh, cfg.fem.solver)))
-    hs_models = [m for m in setup.models if m == "vhs" or m in HYBRID_MODELS]
+    hs_models = [m for m in setup.models if planning(m).per == PER_REALIZATION]
     if hs_models:
         stages.append(Stage(f"half-space solves ({', '.join(hs_models)}; "
                             f"{cfg.halfspace.n} points)",
                             len(hs_models) * speeds * n_real * loads,
                             halfspace_solve_seconds(cfg.halfspace.n)))
-    mf = [m for m in setup.models if m in MEANFIELD_MODELS]
+    mf = [m for m in setup.models if planning(m).per == PER_LOAD]
     if mf:
         stages.append(Stage(f"mean-field points ({', '.join(mf)})", len(mf) * speeds * loads,
                             MEANFIELD_POINT_S))

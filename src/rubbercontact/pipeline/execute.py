@@ -21,6 +21,7 @@ import xarray as xr
 
 from ..config import RunConfig
 from ..materials import GeneralizedMaxwell
+from ..models.registry import needs_law
 from .adhesion import AdhesionLaw, add_adhesion
 from .assemble import add_law, add_profiles, assemble, model_times
 from .flash import add_flash, plan_flash
@@ -28,7 +29,7 @@ from .lawcover import MAX_ROUNDS, coverage, describe, plan_extension
 from .lawstage import LawStage, add_vhs, build_law, extend_law
 from .loads import at_areas, pressure_grid_for_areas
 from .plan import model_tasks
-from .setup import LAW_MODELS, RunSetup, pressure_array, resolve, task_material
+from .setup import RunSetup, pressure_array, resolve, task_material
 from .statistics import add_errors, add_phase_means, add_realization_statistics
 from .temperature import spread_over_temperatures
 
@@ -195,7 +196,7 @@ def run_models(setup: RunSetup, material: GeneralizedMaxwell, pressures: np.ndar
         stage = extend_law(stage, ext.points, cfg, setup.hs0, material,
                            setup.speeds.computed, runner)
         slots, tasks = model_tasks(setup, material, pressures, stage.tables)
-        redo = [k for k, sl in enumerate(slots) if sl.model in LAW_MODELS]
+        redo = [k for k, sl in enumerate(slots) if needs_law(sl.model)]
         for k, res in zip(redo, runner([tasks[k] for k in redo]), strict=True):
             results[k] = res
         ds = _assemble(setup, material, pressures, slots, results)

@@ -23,7 +23,7 @@ import xarray as xr
 
 from ..fem.result import BULK_SHEAR_LIMIT, BULK_SHEAR_STUDY
 from ..hybrid.lawtable import law_top
-from .setup import LAW_MODELS
+from ..models.registry import needs_law
 
 #: Rungs per decade of the pressure ladder the law is extended on (1, 3.16, 10, … MPa).
 RUNGS_PER_DECADE = 2
@@ -87,7 +87,7 @@ def coverage(ds: xr.Dataset, law: xr.Dataset) -> Coverage:
     """:class:`Coverage` of a run's assembled results ``ds`` (dims ``model, velocity, ...``,
     with ``max_local_pressure``) by the screened law table ``law``."""
     speeds = np.asarray(ds["velocity"].values, float)
-    models = [m for m in ds["model"].values if str(m) in LAW_MODELS]
+    models = [m for m in ds["model"].values if needs_law(str(m))]
     reached = np.full(speeds.size, np.nan)
     if models:
         local = ds["max_local_pressure"].sel(model=models)

@@ -18,18 +18,10 @@ from ..config import RunConfig
 from ..errors import InputError
 from ..inputs import SurfaceInput, build_material, build_surface
 from ..materials import GeneralizedMaxwell
+from ..models.registry import needs_law
 from ..roughness import SineSeries
 from .limits import check_pressures
 from .speeds import SpeedPlan, plan_speeds
-
-#: Models that run the low-slope solve with the high-slope law (the half-space ones).
-HYBRID_MODELS = frozenset({"hybrid", "hybrid-windowed"})
-#: Models that read the high-slope law.
-LAW_MODELS = HYBRID_MODELS | {"meanfield-hybrid"}
-#: Models whose friction is split into a low- and a high-slope part.
-SPLIT_MODELS = LAW_MODELS
-#: Mean-field models: one task per speed and load (the phases do not enter).
-MEANFIELD_MODELS = frozenset({"meanfield", "meanfield-hybrid", "meanfield-strips"})
 
 
 @dataclass(frozen=True)
@@ -88,7 +80,7 @@ class RunSetup:
     @property
     def needs_law(self) -> bool:
         """Whether a model reads the high-slope law and the surface has a high-slope scale."""
-        return bool(LAW_MODELS & set(self.models)) and self.hs0.size > 0
+        return any(map(needs_law, self.models)) and self.hs0.size > 0
 
 
 def resolve(cfg: RunConfig) -> RunSetup:

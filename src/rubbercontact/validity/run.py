@@ -57,9 +57,9 @@ def _law_resolution(model: str, law: xr.Dataset | None) -> list[Note]:
     """One note if ``model`` reads a law whose FEM points were under-resolved (their
     narrowest contact patch below the check's width, :mod:`rubbercontact.fem.resolution`)."""
     from ..fem.resolution import RESOLUTION_STUDY
-    from ..pipeline.setup import LAW_MODELS
+    from ..models.registry import needs_law
 
-    if model not in LAW_MODELS or law is None or "under_resolved" not in law:
+    if not needs_law(model) or law is None or "under_resolved" not in law:
         return []
     law = law.transpose("velocity", "pressure")
     flag = law["under_resolved"].values == 1
