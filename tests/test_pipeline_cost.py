@@ -66,3 +66,16 @@ def test_a_reused_law_costs_no_fem(tmp_path):
                         "law": {"file": str(law)}})
     names = [s.name for s in estimate_cost(resolve(cfg)).stages]
     assert not any("FEM" in n for n in names)
+
+
+def test_each_mean_field_model_has_its_own_price():
+    # Persson's theory takes milliseconds a point, the strip cascade a tenth of a second
+    from rubbercontact.pipeline.cost import MEANFIELD_POINT_S
+
+    cfg = {**CONFIG, "models": ["meanfield", "meanfield-strips", "meanfield-hybrid"]}
+    cfg.pop("fem")
+    stages = {s.name: s for s in estimate_cost(resolve(parse_config(cfg))).stages}
+    for m in ("meanfield", "meanfield-strips", "meanfield-hybrid"):
+        stage = stages[f"mean-field points ({m})"]
+        assert stage.count == 2 * 3 and stage.each_s == MEANFIELD_POINT_S[m]
+    assert MEANFIELD_POINT_S["meanfield"] < 0.01 < MEANFIELD_POINT_S["meanfield-strips"]

@@ -16,7 +16,11 @@ the load average was 3-4, so the figures are on the high side of a quiet machine
   counted as 50×;
 - half-space: 0.05 s per load at 2048 points (96 solves of the default in 5.0 s), scaled
   as ``n log n``;
-- mean-field: 0.17 s per point (the strips; BENCHMARKS, "strip cascade").
+- mean-field, per point and model (CPU time of the tasks of the default's three loads at
+  10 and 50 mm/s on the section 3 and asphalt AC8 presets, 2026-12-03, load 2.5):
+  ``meanfield`` (Persson's theory) about 1 ms, ``meanfield-hybrid`` about 4 ms (the law's
+  compliance in series), ``meanfield-strips`` 0.06-0.27 s (the strip cascade; 0.17 s in
+  BENCHMARKS, "strip cascade"); a model not listed is priced as the strips.
 
 A run's wall time is about the sum over the workers plus some 40 s of set-up (Dask, the
 roughness analysis of the default, the figures): the estimate is good to a factor of 2,
@@ -40,7 +44,8 @@ TRANSIENT_FACTOR = 50.0
 CONTINUATION_FACTOR = 0.25
 HALFSPACE_SOLVE_S = 0.05
 HALFSPACE_POINTS = 2048
-MEANFIELD_POINT_S = 0.17
+#: Per-point cost of each mean-field model [s] (module docstring).
+MEANFIELD_POINT_S = {"meanfield": 0.001, "meanfield-hybrid": 0.004, "meanfield-strips": 0.17}
 #: Set-up outside the solves (Dask's start, the figures) [s].
 OVERHEAD_S = 40.0
 
@@ -158,8 +163,7 @@ def estimate_cost(setup: RunSetup) -> CostEstimate:
                             f"{cfg.halfspace.n} points)",
                             len(hs_models) * speeds * n_real * loads,
                             halfspace_solve_seconds(cfg.halfspace.n)))
-    mf = [m for m in setup.models if planning(m).per == PER_LOAD]
-    if mf:
-        stages.append(Stage(f"mean-field points ({', '.join(mf)})", len(mf) * speeds * loads,
-                            MEANFIELD_POINT_S))
+    for m in (m for m in setup.models if planning(m).per == PER_LOAD):
+        stages.append(Stage(f"mean-field points ({m})", speeds * loads,
+                            MEANFIELD_POINT_S.get(m, MEANFIELD_POINT_S["meanfield-strips"])))
     return CostEstimate(tuple(stages), cfg.execution.workers)
