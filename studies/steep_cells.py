@@ -53,6 +53,10 @@ CONTACT_MESH = {"station 1": {"mesh": (128, 30), "grading": 4.0},
 #: step also at 60 (the log barrier's Newton takes many short steps near the surface).
 CONTACTS = {"penalty": {"contact": "penalty"}, "barrier": {"contact": "barrier"},
             "barrier, 60 Newton": {"contact": "barrier", "newton_per_step": 60}}
+#: Part ``defaults``: the law grid with the library's defaults for a run's law cell — the
+#: mesh the surface sets (``mesh = "auto"``), penalty contact rescued by the barrier — and
+#: no transient fallback, so the table shows how often the fallback would still run.
+DEFAULTS = {"mesh": "auto"}
 
 
 def cells() -> dict[str, rc.roughness.SineSeries]:
@@ -132,7 +136,45 @@ def report(rows: list[dict], surfaces: dict) -> str:
         lines.append("")
     lines.append(render("steep_cells", "footer"))
     lines += ["", *contact_report([r for r in rows if r.get("part") == "contact"])]
+    lines += ["", *defaults_report([r for r in rows if r.get("part") == "defaults"],
+                                   surfaces)]
     return "\n".join(lines) + "\n"
+
+
+def defaults_report(rows: list[dict], surfaces: dict) -> list[str]:
+    """Part ``defaults``: the law grid with the library's defaults, per cell."""
+    if not rows:
+        return []
+    lines = [render("steep_cells", "defaults"), ""]
+    for name in surfaces:
+        mine = [r for r in rows if r["cell"] == name]
+        if not mine:
+            continue
+        rescued = sum(r["solver"] == "steady (barrier rescue)" for r in mine)
+        steady = sum(r["solver"].startswith("steady") and r["solver"] != "steady failed"
+                     for r in mine)
+        lines += [f"**{name}** ({mine[0].get('mesh', '?')}): {len(mine)} of "
+                  f"{len(PRESSURES) * len(VELOCITIES)} points run, {steady} steady "
+                  f"({rescued} by the barrier rescue), "
+                  f"{sum(r['solver'] == 'steady failed' for r in mine)} would fall back to "
+                  f"the transient test.", "",
+                  "| p̄ [MPa] | " + " | ".join(f"{v:g} mm/s" for v in VELOCITIES) + " |",
+                  "|---|" + "---|" * len(VELOCITIES)]
+        for p in PRESSURES:
+            got = [next((r for r in mine if (r["pressure"], r["velocity"]) == (p, v)), None)
+                   for v in VELOCITIES]
+            lines.append(f"| {p:g} | " + " | ".join(_default_outcome(r) for r in got) + " |")
+        lines.append("")
+    return lines
+
+
+def _default_outcome(r: dict | None) -> str:
+    if r is None or r["solver"] == "steady failed":
+        return _outcome(r)
+    how = " (rescue)" if "rescue" in r["solver"] else ""
+    flag = " (impaled)" if r.get("impaled") else ""
+    return (f"μ {r['friction']:.3f}, A {r['contact_fraction']:.3f}{flag}{how}, "
+            f"{r['cpu_s']:.0f} s")
 
 
 def _outcome(r: dict | None) -> str:
@@ -177,6 +219,23 @@ def run_contact(path: Path, surfaces: dict, done: set) -> None:
             append_row(path, {**row, "part": "contact", "contact": contact})
 
 
+def run_defaults(path: Path, surfaces: dict, only: str | None, done: set) -> None:
+    """Part ``defaults`` (resumable): every grid point with the library's defaults, the
+    transient fallback off; the row records the mesh the surface set."""
+    from rubbercontact.fem.options import FemOptions
+
+    for name, surf in surfaces.items():
+        if only is not None and name != only:
+            continue
+        mesh = FemOptions(**DEFAULTS).resolved(surf).mesh
+        for v in VELOCITIES:
+            for p in PRESSURES:
+                if (name, p, v) not in done:
+                    row = run_point(name, surf, p, v, False, **DEFAULTS)
+                    append_row(path, {**row, "part": "defaults",
+                                      "mesh": f"{mesh[0]} x {mesh[1]} (auto)"})
+
+
 def main(argv: list[str] | None = None) -> int:
     ap = argparse.ArgumentParser(description=DESCRIPTION)
     ap.add_argument("--rows", type=Path, default=ROWS)
@@ -184,8 +243,11 @@ def main(argv: list[str] | None = None) -> int:
     ap.add_argument("--report-only", action="store_true")
     ap.add_argument("--no-fallback", dest="fallback", action="store_false",
                     help="record a steady failure without running the transient fallback")
-    ap.add_argument("--part", choices=("grid", "contact"), default="grid",
-                    help="the law grid (default) or penalty against barrier at hard points")
+    ap.add_argument("--part", choices=("grid", "contact", "defaults"), default="grid",
+                    help="the law grid (default), penalty against barrier at hard points, or "
+                         "the law grid with the library's defaults (auto mesh, rescue)")
+    ap.add_argument("--cell", choices=("stations 0+1", "station 1"), default=None,
+                    help="part defaults: one cell only")
     args = ap.parse_args(argv)
     surfaces = cells()
     rows = read_rows(args.rows)
@@ -194,6 +256,10 @@ def main(argv: list[str] | None = None) -> int:
         run_contact(args.rows, surfaces, {(r["cell"], r["pressure"], r["velocity"],
                                            r["contact"]) for r in rows
                                           if r.get("part") == "contact"})
+    elif args.part == "defaults" and not args.report_only:
+        run_defaults(args.rows, surfaces, args.cell, {
+            (r["cell"], r["pressure"], r["velocity"]) for r in rows
+            if r.get("part") == "defaults"})
     elif not args.report_only:
         for name, surf in surfaces.items():
             for v in VELOCITIES:

@@ -2,7 +2,7 @@
 
 Expectations from outside the code: the half-decade ladder (rungs 10^(k/2) MPa), the
 coverage as the plain maximum of the law models' local pressures (the VHS does not read the
-law), the stop rules stated in the module (a failed point, the glassy modulus,
+law), the stop rules stated in the module (a failed point, the relaxed modulus,
 ``law.max_pressure``, a bulk shear growing as a power of the load), and on a small run the
 law's own table: every point the run added lies on the ladder, the law's top is where the
 extension stopped, and the run's note quotes the stored local pressure and that top.
@@ -69,16 +69,16 @@ def test_extension_plans_the_rungs_and_stops_where_stated():
     law["status"].values[1:, 3] = "ok"
     cov = Coverage(np.array([1.0, 10.0, 100.0]), np.array([5.0, 0.9, 40.0]),
                    np.array([1.0, 1.0, 2.0]))
-    ext = plan_extension(cov, law, max_pressure=20.0, glassy_modulus=3000.0)
+    ext = plan_extension(cov, law, max_pressure=20.0, relaxed_modulus=3000.0)
     # 1 mm/s: the tried point above its top failed; 10 mm/s: covered; 100 mm/s: rungs
     # above 2 MPa up to law.max_pressure
     assert "FEM at 2 MPa: failed: line search" in ext.stopped[1.0]
     assert sorted(ext.points) == pytest.approx([S10, 10.0])
     assert all(v == [100.0] for v in ext.points.values())
-    ext = plan_extension(cov, law, max_pressure=1.5, glassy_modulus=3000.0)
+    ext = plan_extension(cov, law, max_pressure=1.5, relaxed_modulus=3000.0)
     assert not ext.points and "law.max_pressure" in ext.stopped[100.0]
-    ext = plan_extension(cov, law, max_pressure=np.inf, glassy_modulus=3.0)
-    assert not ext.points and "glassy modulus" in ext.stopped[100.0]
+    ext = plan_extension(cov, law, max_pressure=np.inf, relaxed_modulus=3.0)
+    assert not ext.points and "relaxed modulus" in ext.stopped[100.0]
 
 
 def test_shear_prediction_is_the_power_law_of_the_two_top_points():

@@ -187,7 +187,7 @@ def run_models(setup: RunSetup, material: GeneralizedMaxwell, pressures: np.ndar
     top = cfg.law.max_pressure or np.inf
     while (cfg.law.extend and stage.raw is not None and cov.uncovered.any()
            and rounds < MAX_ROUNDS):
-        ext = plan_extension(cov, stage.law, top, float(material.glassy_modulus))
+        ext = plan_extension(cov, stage.law, top, float(material.equilibrium_modulus))
         stopped.update(ext.stopped)
         if not ext.points:
             break
