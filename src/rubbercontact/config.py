@@ -15,7 +15,15 @@ from typing import Annotated, Any, Literal
 import numpy as np
 from pydantic import BaseModel, Field, ValidationError, field_validator, model_validator
 
+from ._optionfields import option_default, option_field
 from .errors import InputError
+from .fem.options import (
+    SOLVERS,
+    VISCOUS_MODELS,
+    FemOptions,
+    SteadyOptions,
+    TransientOptions,
+)
 from .inputs import (
     MaterialSpec,
     PositiveFloat,
@@ -23,13 +31,25 @@ from .inputs import (
     SurfaceSpec,
 )
 from .inputs import Strict as _Strict
+from .meanfield.options import (
+    DISSIPATIONS,
+    INTERFACES,
+    WEIGHTINGS,
+    Dissipation,
+    SCorrection,
+    StripOptions,
+    Weighting,
+)
+from .meanfield.psd import NODES_PER_DECADE
+from .models.halfspace import LAWS, HalfspaceOptions
+from .models.registry import plannable
 
 #: The ``[surface]`` and ``[material]`` tables (:mod:`rubbercontact.inputs`, shared with the CLI).
 SurfaceConfig = SurfaceSpec
 MaterialConfig = MaterialSpec
-#: Models a run can compare (:mod:`rubbercontact.pipeline`).
-MODELS = ("vhs", "hybrid", "hybrid-windowed", "fem", "meanfield", "meanfield-hybrid",
-          "meanfield-strips")
+#: Models a run can compare: the registered ones a run can plan
+#: (:func:`rubbercontact.models.registry.plannable`).
+MODELS = plannable()
 #: The models a run without ``models`` runs: the half-space alone, the hybrid as the docs
 #: recommend it (the law read at the λ_hs-averaged pressure) and the mean-field theory, all
 #: seconds once the law exists; ``fem`` is the reference, too costly to run unasked.
@@ -63,14 +83,17 @@ class LoadConfig(_Strict):
 
 
 class HalfSpaceConfig(_Strict):
-    n: int = Field(4096, ge=64, le=2**22, description="grid points per period (the VHS's)")
+    """The half-space solves (:class:`rubbercontact.models.HalfspaceOptions`: defaults and
+    help are its own)."""
+
+    n: int = option_field(HalfspaceOptions, "n", ge=64, le=2**22)
     hybrid_n: int | None = Field(
         None, ge=64, le=2**22,
         description="grid points per period of the hybrid's low-slope solve (default: n "
                     "halved while z_ls's shortest wave keeps the points per wave n gives "
                     "z's shortest; rubbercontact.hybrid.grid)")
-    law: Literal["lennard-jones", "hard-wall"] = "lennard-jones"
-    tol: PositiveFloat = Field(1e-8, lt=1, description="relative residual tolerance")
+    law: Literal[LAWS] = option_field(HalfspaceOptions, "law")
+    tol: PositiveFloat = option_field(HalfspaceOptions, "tol", lt=1)
 
 
 #: Elements (nx, ny) of a FEM mesh; its limits are :class:`rubbercontact.fem.FemOptions`'s
@@ -88,11 +111,22 @@ TRANSIENT_ONLY = ("periods", "steps_per_period", "full_periods", "full_steps_per
                   "min_creep_times")
 
 
-class FemConfig(_Strict):
-    """FEM sliding test (paper §2.4): used for the law and for the full-surface model."""
+#: Sliding periods of the transient test that a steady solve falls back to in a run
+#: (``FemOptions.steady.fallback``). A run's steady FEM tasks have carried 4 since before
+#: ``fem.periods`` took the library's 6 (issue 38): the transient options are part of every
+#: FEM task's arguments, so 4 keeps the keys of every steady run's cached FEM, the reference
+#: cache behind VALIDATION.md among them. No steady run of the validation fell back.
+STEADY_FALLBACK_PERIODS = 4
 
-    solver: Literal["steady", "transient"] = Field(
-        "steady", description="steady: the steady state solved directly (settled by "
+
+class FemConfig(_Strict):
+    """FEM sliding test (paper §2.4): used for the law and for the full-surface model.
+    Defaults (and, where the config has nothing to add, help) are those of
+    :class:`rubbercontact.fem.FemOptions` and :class:`~rubbercontact.fem.TransientOptions`,
+    except ``mesh`` ("auto" here: a run's law cell follows its surface)."""
+
+    solver: Literal[SOLVERS] = option_field(
+        FemOptions, "solver", description="steady: the steady state solved directly (settled by "
                               "construction); transient: time-stepped press/settle/slide")
     mesh: Mesh | Literal["auto"] = Field(
         "auto", description="elements (nx, ny) of the high-slope cell, or 'auto': from the "
@@ -100,33 +134,35 @@ class FemConfig(_Strict):
                             "its height; each law point checks its narrowest contact patch "
                             "and refines once where it is too narrow "
                             "(docs/validation/mesh_resolution.md)")
-    columns_per_wave: int = Field(
-        64, ge=8, le=256, description="mesh = 'auto': columns per shortest wave of the law "
-                                      "cell")
+    columns_per_wave: int = option_field(
+        FemOptions, "columns_per_wave", ge=8, le=256,
+        description="mesh = 'auto': columns per shortest wave of the law cell")
     full_mesh: Mesh | None = Field(
         None, description="elements (nx, ny) of the full-surface FEM model (default: mesh if "
                           "given, else 120 x 90)")
-    height_ratio: PositiveFloat = Field(0.75, description="cell height / width [-]")
-    periods: int = Field(4, ge=1, le=100, description="transient: maximum sliding distance "
-                                                      "in periods")
-    steps_per_period: int | None = Field(None, ge=4, description="transient: time steps per "
-                                                                 "period")
-    contact_points: int = Field(
-        4, ge=1, le=64, description="contact points per face segment (1: node-to-surface)")
-    history_order: Literal[1, 2] = Field(
-        2, description="time interpolation of the viscous history: 2 quadratic (second "
-                       "order in dt), 1 piecewise linear (first order for fast branches)")
-    viscous_model: Literal["simo", "reese-govindjee"] = Field(
-        "simo", description="finite-strain viscoelasticity: simo (stress-like internal "
-                            "variables) or reese-govindjee (the paper's; multiplicative "
-                            "split, first order in dt; transient solver only)")
-    grading: PositiveFloat = Field(
-        1.0, le=100, description="top/bottom element height ratio of the law cell's mesh "
-                                 "(> 1 refines toward the contact face; set by mesh = "
-                                 "'auto')")
-    full_grading: PositiveFloat = Field(
-        1.0, le=100, description="top/bottom element height ratio of the full-surface FEM mesh "
-                                 "(> 1 refines toward the contact face)")
+    height_ratio: PositiveFloat = option_field(FemOptions, "height_ratio")
+    periods: int = option_field(TransientOptions, "periods", ge=1, le=100,
+                                prefix="transient: ")
+    steps_per_period: int | None = option_field(TransientOptions, "steps_per_period", ge=4,
+                                                prefix="transient: ")
+    contact_points: int = option_field(FemOptions, "contact_points", ge=1, le=64)
+    history_order: Literal[1, 2] = option_field(
+        FemOptions, "history_order",
+        description="time interpolation of the viscous history: 2 quadratic (second order in "
+                    "dt), 1 piecewise linear (first order for fast branches)")
+    viscous_model: Literal[VISCOUS_MODELS] = option_field(
+        FemOptions, "viscous_model",
+        description="finite-strain viscoelasticity: simo (stress-like internal variables) or "
+                    "reese-govindjee (the paper's; multiplicative split, first order in dt; "
+                    "transient solver only)")
+    grading: PositiveFloat = option_field(
+        FemOptions, "grading", le=100,
+        description="top/bottom element height ratio of the law cell's mesh (> 1 refines "
+                    "toward the contact face; set by mesh = 'auto')")
+    full_grading: PositiveFloat = option_field(
+        FemOptions, "grading", le=100,
+        description="top/bottom element height ratio of the full-surface FEM mesh (> 1 "
+                    "refines toward the contact face)")
     full_steps_per_period: int | None = Field(
         None, ge=4, description="transient: time steps per period of the full-surface FEM "
                                 "(default: steps_per_period)")
@@ -157,8 +193,6 @@ class FemConfig(_Strict):
     @field_validator("mesh", "full_mesh")
     @classmethod
     def _meshes(cls, mesh: Mesh | None) -> Mesh | None:
-        from .fem.options import FemOptions
-
         if mesh is not None and mesh != "auto":
             try:
                 FemOptions(mesh=mesh)
@@ -181,8 +215,6 @@ class FemConfig(_Strict):
         if self.mesh == "auto" and self.grading != 1.0:
             raise ValueError("grading: mesh = 'auto' sets the law cell's grading; give an "
                              "explicit mesh = [nx, ny] to set it")
-        from .fem.options import SteadyOptions
-
         unknown = set(self.steady) - set(SteadyOptions.__dataclass_fields__)
         if unknown:
             raise ValueError(f"steady: unknown key(s) {sorted(unknown)}; allowed: "
@@ -193,8 +225,6 @@ class FemConfig(_Strict):
 
     def _numerics(self) -> None:
         """``numerics`` holds FemOptions fields that have no key of their own here."""
-        from .fem.options import FemOptions
-
         allowed = set(FemOptions.__dataclass_fields__) - set(type(self).model_fields) - {
             "transient"}
         unknown = set(self.numerics) - allowed
@@ -218,13 +248,12 @@ class FemConfig(_Strict):
         """The :class:`~rubbercontact.fem.FemOptions` of the law cell, or of the full-surface
         model (``full=True``), for ``material`` (whose retardation time sizes
         ``min_creep_times``)."""
-        from .fem.options import FemOptions, SteadyOptions, TransientOptions
-
         times = material.retardation_times()
         min_time = (float(self.min_creep_times * times.max())
                     if self.min_creep_times is not None and times.size else 0.0)
+        periods = (self.full_periods or self.periods) if full else self.periods
         transient = TransientOptions(
-            periods=(self.full_periods or self.periods) if full else self.periods,
+            periods=STEADY_FALLBACK_PERIODS if self.solver == "steady" else periods,
             steps_per_period=((self.full_steps_per_period or self.steps_per_period) if full
                               else self.steps_per_period),
             min_sliding_time=min_time)
@@ -265,31 +294,38 @@ class MeanFieldConfig(_Strict):
     left out is the model's default; a key for a model the run does not include is refused.
     """
 
+    # None is "the model's default": the defaults named in the help are the option
+    # objects' own (meanfield/options.py), so they cannot drift from what runs
     gamma: float | None = Field(
-        None, gt=0, le=1, description="Persson's S = gamma + (1 - gamma) A^2 (meanfield, "
-                                      "meanfield-hybrid; default 0.8, chosen against the "
-                                      "BEM; 1: S = 1, Persson 2001) [-]")
-    weighting: Literal["cell", "after"] | None = Field(
-        None, description="contact fraction weighing a node's friction: the mean over its "
-                          "cell (default, Persson's integral) or after the wave (sine "
-                          "series); meanfield, meanfield-hybrid")
-    dissipation: Literal["mode", "patch", "cascade"] | None = Field(
-        None, description="where a mode in partial contact dissipates: at its own "
-                          "wavenumber (mode, default, Persson's) or at the harmonics of its "
-                          "contact patches (patch, cascade; 1D; use gamma = 1 with them); "
-                          "meanfield, meanfield-hybrid")
-    interface: Literal["law", "rigid"] | None = Field(
+        None, gt=0, le=1, description=f"Persson's S = gamma + (1 - gamma) A^2 (meanfield, "
+                                      f"meanfield-hybrid; default "
+                                      f"{option_default(SCorrection, 'gamma'):g}, chosen "
+                                      f"against the BEM; 1: S = 1, Persson 2001) [-]")
+    weighting: Literal[WEIGHTINGS] | None = Field(
+        None, description=f"contact fraction weighing a node's friction: cell (the mean over "
+                          f"its cell, Persson's integral) or after (after the wave, sine "
+                          f"series); default {option_default(Weighting, 'kind')}; meanfield, "
+                          f"meanfield-hybrid")
+    dissipation: Literal[DISSIPATIONS] | None = Field(
+        None, description=f"where a mode in partial contact dissipates: at its own "
+                          f"wavenumber (mode, Persson's) or at the harmonics of its contact "
+                          f"patches (patch, cascade; 1D; use gamma = 1 with them); default "
+                          f"{option_default(Dissipation, 'kind')}; meanfield, "
+                          f"meanfield-hybrid")
+    interface: Literal[INTERFACES] | None = Field(
         None, description="meanfield-hybrid: the law's compliance in series with the "
-                          "half-space (default), or a rigid low-slope contact")
+                          "half-space (law, default), or a rigid low-slope contact (rigid)")
     outer_crests: bool | None = Field(
-        None, description="meanfield-strips: a wave's crests just outside a longer wave's "
-                          "strip come into contact (default true; false: the nested strips)")
+        None, description=f"meanfield-strips: a wave's crests just outside a longer wave's "
+                          f"strip come into contact (default "
+                          f"{str(option_default(StripOptions, 'outer_crests')).lower()}; "
+                          f"false: the nested strips)")
     spectrum: Literal["sines", "profiles"] | None = Field(
         None, description="meanfield: the spectrum the theory reads, the sine series of the "
                           "surface (default) or the periodogram of the measured profiles")
     nodes_per_decade: int | None = Field(
-        None, ge=2, le=1000, description="spectrum = 'profiles': log cells per decade of the "
-                                         "periodogram (default 32)")
+        None, ge=2, le=1000, description=f"spectrum = 'profiles': log cells per decade of "
+                                         f"the periodogram (default {NODES_PER_DECADE})")
 
     @model_validator(mode="before")
     @classmethod

@@ -21,6 +21,8 @@ from .planning import PER_REALIZATION, Planning, RunPoint
 __all__ = ["HalfspaceOptions", "VHS", "Hybrid"]
 
 LOADS_TASK = "rubbercontact.hybrid.tasks:halfspace_loads_task"
+#: The rubber-road interactions of the half-space solve.
+LAWS = ("lennard-jones", "hard-wall")
 
 
 @dataclass(frozen=True)
@@ -43,14 +45,14 @@ class HalfspaceOptions:
 
     n: int = 4096
     nu: float = 0.5
-    law: Literal["lennard-jones", "hard-wall"] = "lennard-jones"
+    law: Literal[LAWS] = "lennard-jones"
     tol: float = 1e-8
 
     def __post_init__(self) -> None:
         if not (isinstance(self.n, int) and self.n >= 64):
             raise InputError(f"n: grid points per period must be an int >= 64, got {self.n!r}")
-        if self.law not in ("lennard-jones", "hard-wall"):
-            raise InputError(f"law: 'lennard-jones' or 'hard-wall', got {self.law!r}")
+        if self.law not in LAWS:
+            raise InputError(f"law: one of {', '.join(LAWS)}, got {self.law!r}")
         if not 0 < self.tol < 1:
             raise InputError(f"tol: must be in (0, 1), got {self.tol!r}")
 
