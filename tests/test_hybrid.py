@@ -577,6 +577,27 @@ def test_friction_at_area_uses_only_loads_whose_area_grows(tmp_path):
     assert np.all(np.isnan(mu[:, 2]))
 
 
+def test_fem_task_records_what_it_would_warn_and_the_law_says_it_once():
+    # The paper's high-slope wave at 3 MPa on 16 x 8: the friction stress exceeds E∞/3 and
+    # the cell shears as a whole by more than 1 (3μp̄/E∞ with μ ≈ 0.5: about 1.1). The
+    # library's test warns; the pipeline's task records the shear instead, and the law
+    # built from such tests says it once (assemble_law).
+    import warnings
+
+    from rubbercontact.hybrid.law import assemble_law
+    from rubbercontact.hybrid.tasks import fem_task
+
+    surf, mat = rc.roughness.high_slope_wave(), rc.materials.sbr()
+    with pytest.warns(RuntimeWarning, match="sheared as a whole"):
+        rc.fem.steady_sliding(surf, mat, 3.0, 10.0, mesh=(16, 8))
+    with warnings.catch_warnings():
+        warnings.simplefilter("error")           # any warning out of the task fails
+        out = fem_task(surf.as_dict(), mat.as_dict(), 10.0, 3.0, options={"mesh": [16, 8]})
+    assert float(out["bulk_shear"]) > 1.0
+    with pytest.warns(LawWarning, match=r"1 of 1 FEM tests sheared as a whole"):
+        assemble_law([out], [3.0], [10.0], surf, mat, {"mesh": [16, 8]})
+
+
 def test_fem_task_records_its_sliding_time():
     # Transient: 2 periods of the 0.0625 mm cell at 10 mm/s: 12.5 ms (an elastic cell is
     # steady after the minimum of 2 periods). Steady: settled by construction (inf).

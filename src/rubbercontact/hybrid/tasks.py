@@ -7,6 +7,8 @@ so they take only serialisable inputs (dicts of numbers) and rebuild the objects
 from __future__ import annotations
 
 import time
+import warnings
+from contextlib import contextmanager
 from dataclasses import dataclass, field
 
 import numpy as np
@@ -230,6 +232,25 @@ def _flat_interface_solve(interface_law: dict, mean_pressure: float, velocity: f
     return _HalfspacePoint(values, {"model": "halfspace", "law": law, "hybrid": 1, "flat": 1})
 
 
+#: Warnings of a FEM test whose facts its result records (the cell's bulk shear, an impaled
+#: face, the narrowest contact patch, the transient's steadiness): a run's law and its full
+#: FEM say each once for all their tests (:func:`~.law.assemble_law`,
+#: :func:`rubbercontact.pipeline.assemble.assemble`), so the tasks keep them out of the log,
+#: where a speed sweep printed one per point.
+RECORDED_WARNINGS = (r".*sheared as a whole", r".*the face is impaled",
+                     r".*narrowest contact patch .* under-resolved",
+                     r".*period averages still change")
+
+
+@contextmanager
+def recorded_diagnostics():
+    """Silence the FEM warnings of :data:`RECORDED_WARNINGS` inside a task."""
+    with warnings.catch_warnings():
+        for pattern in RECORDED_WARNINGS:
+            warnings.filterwarnings("ignore", message=pattern, category=RuntimeWarning)
+        yield
+
+
 def fem_task(surface: dict, material: dict, velocity: float, mean_pressure: float,
              options: dict | None = None) -> xr.Dataset:
     """One FEM micromechanical sliding test (paper §2.4), reduced to its scalars.
@@ -242,7 +263,9 @@ def fem_task(surface: dict, material: dict, velocity: float, mean_pressure: floa
     t0 = time.perf_counter()
     opts = fem.FemOptions.from_dict(options or {})
     surf = _surface(surface)
-    out = fem.sliding_test(surf, _material(material), mean_pressure, velocity, options=opts)
+    with recorded_diagnostics():
+        out = fem.sliding_test(surf, _material(material), mean_pressure, velocity,
+                               options=opts)
     values = _fem_scalars(out, surf, velocity, mean_pressure, time.perf_counter() - t0)
     ds = _scalars(values, {"model": "fem", "solver": out.stats.solver,
                            "status": out.stats.status})
@@ -289,8 +312,11 @@ def fem_speed_path_task(surface: dict, material: dict, velocities: list, mean_pr
     v = np.asarray(velocities, float)
     rows: list = [None] * v.size
     status = ["not run"] * v.size
-    for pt in sweep_points(surf, mat, np.full(v.size, mean_pressure), v, opts, errors=(
-            ConvergenceError, InputError, FloatingPointError, np.linalg.LinAlgError)):
+    errors = (ConvergenceError, InputError, FloatingPointError, np.linalg.LinAlgError)
+    with recorded_diagnostics():
+        points = list(sweep_points(surf, mat, np.full(v.size, mean_pressure), v, opts,
+                                   errors=errors))
+    for pt in points:
         if pt.result is None:
             status[pt.index] = f"{type(pt.error).__name__}: {pt.error}"
             continue
