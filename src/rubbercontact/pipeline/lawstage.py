@@ -115,8 +115,12 @@ def extend_law(stage: LawStage, points: dict[float, list[float]], cfg: RunConfig
         raise ValueError("extend_law: a given law cannot be extended (no FEM options)")
     t0 = time.perf_counter()
     v = stage.raw["velocity"].values
+    # no transient fallback for an added point: where the steady solve (and its barrier
+    # rescue) stops, the extension stops and says so, instead of minutes of a transient test
+    # at a load past the cell's steady range (impaled on speed_sweep.toml's cell at 3.16 MPa)
     new = fem_points(cfg, hs0, material, points, v, runner,
-                     continuation=uses_continuation(cfg, np.unique(speeds).size))
+                     continuation=uses_continuation(cfg, np.unique(speeds).size),
+                     fallback=False)
     raw = merge_points(stage.raw, new)
     fem_time = (stage.fem_time or 0.0) + time.perf_counter() - t0
     return _stage(raw, fem_time, hs0, material, speeds, cfg, raw=raw)
@@ -145,15 +149,19 @@ def fem_law(cfg: RunConfig, hs0: SineSeries, material: GeneralizedMaxwell,
 
 def fem_points(cfg: RunConfig, hs0: SineSeries, material: GeneralizedMaxwell,
                points: dict[float, list[float]], speeds: np.ndarray, runner,
-               continuation: bool) -> xr.Dataset:
+               continuation: bool, fallback: bool = True) -> xr.Dataset:
     """The raw law table of the FEM points ``{pressure [MPa]: speeds [mm/s]}`` on the
     grid ``speeds × pressures``; the grid points not asked for have the status
     :data:`~.lawcover.NOT_NEEDED`. ``continuation``: one task per pressure following its
-    speeds (steady solver), else one task per point."""
+    speeds (steady solver), else one task per point; ``fallback=False``: no transient test
+    where the steady solve stops (``steady.fallback``)."""
     from ..fem import make_options
     from ..sweep import Task
 
-    opts = make_options(cfg.fem.options(material)).to_dict()   # fails here, not per task
+    options = make_options(cfg.fem.options(material))          # fails here, not per task
+    if not fallback:
+        options = options.with_(steady={"fallback": False})
+    opts = options.to_dict()
     p = np.sort(np.asarray(list(points), float))
     v = np.sort(np.asarray(speeds, float))
     wanted = np.array([[float(vi) in set(points[float(pj)]) for pj in p] for vi in v])
