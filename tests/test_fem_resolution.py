@@ -177,21 +177,15 @@ def test_quasi_static_friction_vanishes_on_the_chosen_mesh():
     assert abs(fine.friction) < 0.005
 
 
-def test_under_resolved_law_points_are_one_line_in_the_law_and_the_notes():
+def test_under_resolved_law_points_are_one_line_in_the_notes():
     import warnings
 
     import xarray as xr
 
-    from rubbercontact.hybrid.steadiness import under_resolved_message
-    from rubbercontact.validity.run import _law_resolution
+    from rubbercontact.validity.run import _fem_resolution, _law_resolution
 
     flag = np.array([[0.0, 1.0, np.nan], [0.0, 1.0, 0.0]])
     cols = np.array([[9.0, 2.5, np.nan], [12.0, 3.1, np.inf]])
-    diag = {"under_resolved": flag, "patch_columns": cols}
-    line = under_resolved_message(diag, lambda i, j: f"v{i} p{j}", "law")
-    assert line.startswith("law: 2 of 5 FEM points under-resolved") and "\n" not in line
-    assert line.index("v0 p1 (2.5)") < line.index("v1 p1 (3.1)")     # narrowest first
-    assert under_resolved_message({"under_resolved": flag * 0}, str, "law") is None
     law = xr.Dataset({"under_resolved": (("pressure", "velocity"), flag.T),
                       "patch_columns": (("pressure", "velocity"), cols.T)},
                      coords={"velocity": [1.0, 10.0], "pressure": [0.1, 0.3, 1.0]})
@@ -201,6 +195,12 @@ def test_under_resolved_law_points_are_one_line_in_the_law_and_the_notes():
     assert "2 of 6 law FEM points under-resolved" in note.text
     assert "2.5 columns (p = 0.3 MPa, v = 1 mm/s)" in note.text
     assert _law_resolution("vhs", law) == []
+    # the full FEM's tests likewise, in the FEM's note
+    ds = xr.Dataset({"fem_under_resolved": (("velocity", "pressure"), flag),
+                     "fem_patch_columns": (("velocity", "pressure"), cols)})
+    (note,) = _fem_resolution("fem", ds)
+    assert "2 of 5 FEM tests under-resolved, narrowest contact patch 2.5 columns" in note.text
+    assert _fem_resolution("vhs", ds) == []
 
 
 def test_a_refined_neighbour_starts_the_next_point_on_its_mesh():

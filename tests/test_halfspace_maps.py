@@ -3,8 +3,9 @@
 On maps the solver starts from coarser grids (every 2nd point per axis), solves the
 contact-set systems with single-precision FFTs refined in double precision, leaves the
 multi-shift preconditioner off and ends a wall + soft law with the mixed Newton.
-``PREVIOUS`` switches all four back: the solver as it was before, the reference here. Both stop at the same tolerance (``tol`` on the Newton residual
-``|r|/|σ|``, 1e-8 relative linear residuals for the hard wall), so two converged answers
+``PREVIOUS`` switches all four back: the solver as it was before, the reference here.
+Both stop at the same tolerance (``tol`` on the Newton residual ``|r|/|σ|``, 1e-8 relative
+linear residuals for the hard wall), so two converged answers
 differ by the tolerance times the conditioning of the contact problem; the bounds below are
 those of the 1D/2D comparisons of ``tests/test_maps_models.py`` (1e-6), measured differences
 in the comments.

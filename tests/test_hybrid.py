@@ -220,8 +220,8 @@ def test_impaled_point_of_a_speed_path_is_dropped_and_its_flag_reaches_the_resul
 def test_elastic_high_slope_law_gives_zero_mu_hs(tmp_path):
     # Elastic rubber: no hysteresis at any scale, so the FEM law carries dtau_hs = 0 (FEM
     # symmetry gives a round-off of ~1e-9 of the load, dtau/p < 1e-8) and
-    # mu_hs = <dtau_hs(u)>/sigma0 must vanish; the elastic half-space gives mu_ls = 0 up to the sampling of the contact edges (~1e-5 at
-    # n = 1024).
+    # mu_hs = <dtau_hs(u)>/sigma0 must vanish; the elastic half-space gives mu_ls = 0 up to
+    # the sampling of the contact edges (~1e-5 at n = 1024).
     cfg = _config(tmp_path, surface={"preset": "section3"},
                   models=["hybrid", "hybrid-windowed"],
                   material={"preset": None, "equilibrium_modulus": 4.17},

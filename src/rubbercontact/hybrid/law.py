@@ -50,7 +50,6 @@ from .steadiness import (
     creep_unsettled_message,
     describe_unsteady,
     sheared_cells_message,
-    under_resolved_message,
 )
 
 __all__ = ["effective_law", "assemble_law", "LawWarning", "IMPALED_STATUS",
@@ -176,10 +175,11 @@ def assemble_law(results, pressures, velocities, hs_surface: SineSeries,
     creep = creep_unsettled_message(diag, material, label, "law")
     if creep:
         warnings.warn(creep, LawWarning, stacklevel=3)
-    for note in (sheared_cells_message(diag, label, "law"),
-                 under_resolved_message(diag, label, "law")):
-        if note:
-            warnings.warn(note, LawWarning, stacklevel=3)
+    # an under-resolved point is said once by the run, in the validity note of each model
+    # that reads the law (rubbercontact.validity.run), not here
+    sheared = sheared_cells_message(diag, label, "law")
+    if sheared:
+        warnings.warn(sheared, LawWarning, stacklevel=3)
     law.attrs.update({
         "title": "effective interface law of the high-slope scale (paper eqs. 1-3)",
         "hs_wavelengths_mm": hs_surface.wavelengths.tolist(),

@@ -97,25 +97,6 @@ def impaled_tests(diag: dict, label) -> tuple[int, str]:
     return len(hit), where
 
 
-def under_resolved_message(diag: dict, label, what: str,
-                           hint: str = "a finer fem.columns_per_wave resolves them"
-                           ) -> str | None:
-    """One line naming the FEM tests of ``diag`` whose narrowest contact patch was below
-    the resolution check's width (narrowest first, at most 6 named), or None; ``hint``
-    says what refines them."""
-    from ..fem.resolution import RESOLUTION_STUDY
-
-    flag = np.asarray(diag.get("under_resolved", np.nan), float)
-    cols = np.asarray(diag.get("patch_columns", np.nan), float)
-    hit = sorted(map(tuple, np.argwhere(flag == 1.0)), key=lambda i: cols[i])
-    if not hit:
-        return None
-    where = ", ".join(f"{label(*idx)} ({cols[idx]:.1f})" for idx in hit[:6])
-    return (f"{what}: {len(hit)} of {int(np.isfinite(flag).sum())} FEM points under-resolved, "
-            f"narrowest contact patch in columns: {where}{', ...' if len(hit) > 6 else ''}; "
-            f"{hint} ({RESOLUTION_STUDY})")
-
-
 def describe_unsteady(diag: dict, label) -> tuple[int, str, bool]:
     """The FEM tests of ``diag`` (arrays of ``STEADINESS_VARIABLES``) that were not steady.
 

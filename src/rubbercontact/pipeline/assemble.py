@@ -18,7 +18,7 @@ from ..hybrid.law import (
     describe_unsteady,
     sheared_cells_message,
 )
-from ..hybrid.steadiness import impaled_tests, under_resolved_message
+from ..hybrid.steadiness import impaled_tests
 from ..materials import GeneralizedMaxwell
 from ..models.registry import splits
 from .plan import Slot
@@ -162,10 +162,8 @@ def add_fem_steadiness(ds: xr.Dataset, diag: dict, material: GeneralizedMaxwell,
     sheared = sheared_cells_message(diag, label, "full FEM")
     if sheared:
         warnings.warn(sheared, RuntimeWarning, stacklevel=stacklevel)
-    coarse = under_resolved_message(diag, label, "full FEM", "a finer fem.full_mesh resolves "
-                                                              "them")
-    if coarse:
-        warnings.warn(coarse, RuntimeWarning, stacklevel=stacklevel)
+    # an under-resolved test is said once by the run's validity note of the FEM
+    # (rubbercontact.validity.run), not here
     n_impaled, where = impaled_tests(diag, label)
     if n_impaled:
         # kept (nothing is lost) and still "ok": the run names them instead

@@ -50,7 +50,24 @@ def assess_run(ds: xr.Dataset, setup) -> tuple[Note, ...]:
             # the surface's notes once per model, not once per temperature
             notes.extend(n for n in found if n.velocity is not None or n not in notes)
         notes.extend(_law_resolution(model, law))
+        notes.extend(_fem_resolution(model, ds))
     return tuple(notes)
+
+
+def _fem_resolution(model: str, ds: xr.Dataset) -> list[Note]:
+    """One note if the full FEM's tests were under-resolved (``fem_under_resolved``)."""
+    from ..fem.resolution import RESOLUTION_STUDY
+
+    if model != "fem" or "fem_under_resolved" not in ds:
+        return []
+    flag = ds["fem_under_resolved"].values == 1
+    if not flag.any():
+        return []
+    cols = float(np.nanmin(np.where(flag, ds["fem_patch_columns"].values, np.inf)))
+    return [Note(model, "fem_resolution",
+                 f"{int(flag.sum())} of {int(np.isfinite(ds['fem_under_resolved'].values).sum())}"
+                 f" FEM tests under-resolved, narrowest contact patch {cols:.1f} columns; a "
+                 f"finer fem.full_mesh resolves them ({RESOLUTION_STUDY})")]
 
 
 def _law_resolution(model: str, law: xr.Dataset | None) -> list[Note]:
