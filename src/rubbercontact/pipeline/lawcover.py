@@ -141,9 +141,8 @@ def plan_extension(cov: Coverage, law: xr.Dataset, max_pressure: float,
     """
     points: dict[float, list[float]] = {}
     stopped: dict[float, str] = {}
-    for v, reached, top in zip(cov.speeds, cov.reached, cov.tops, strict=True):
-        if not reached > top * (1 + COVERED_RTOL):
-            continue
+    bad = cov.uncovered
+    for v, reached, top in zip(cov.speeds[bad], cov.reached[bad], cov.tops[bad], strict=True):
         row = law.sel(velocity=float(v), method="nearest")
         reason = _stop_reason(row, top)
         for p in [] if reason else ladder_above(top, reached):
