@@ -58,7 +58,7 @@ import numpy as np
 
 from .._validation import positive_scalar
 from ..errors import InputError
-from ..materials.maxwell import GeneralizedMaxwell
+from ..materials.protocol import PronyMaterial, check_prony
 
 #: Default bulk modulus [MPa]. Rubbers have K ≈ 1–3 GPa (filled SBR ≈ 2 GPa), far above
 #: their shear moduli, so near-incompressibility is physical. 2000 MPa keeps the plane-strain
@@ -105,7 +105,7 @@ class MaterialParameters:
     viscous_model: str = "simo"
 
     @classmethod
-    def from_material(cls, material: GeneralizedMaxwell, bulk_modulus: float | None = None,
+    def from_material(cls, material: PronyMaterial, bulk_modulus: float | None = None,
                       history_order: int = 1, viscous_model: str = "simo"
                       ) -> MaterialParameters:
         """Build from a Prony series (Young's moduli of an incompressible solid)."""
@@ -115,9 +115,7 @@ class MaterialParameters:
         if history_order not in (1, 2):
             raise InputError(f"history_order: must be 1 (linear) or 2 (quadratic), got "
                              f"{history_order!r}")
-        if not isinstance(material, GeneralizedMaxwell):
-            raise InputError(f"material: expected a GeneralizedMaxwell, got "
-                             f"{type(material).__name__}")
+        check_prony(material)
         kappa = (DEFAULT_BULK_MODULUS if bulk_modulus is None
                  else positive_scalar("bulk_modulus", bulk_modulus, unit="MPa"))
         mu = material.equilibrium_modulus / 3.0

@@ -20,6 +20,7 @@ import numpy as np
 from .._validation import positive_scalar
 from ..errors import ConvergenceError, InputError
 from ..materials.maxwell import GeneralizedMaxwell
+from ..materials.protocol import check_prony
 from ..roughness.sines import SineSeries
 from .constitutive import cauchy_from_pk2
 from .contact import face_contact_fraction, mean_separation, segment_penetration
@@ -77,9 +78,7 @@ def check_test(surface, material, mean_pressure, velocity, options: FemOptions
     if surface.size == 0 or surface.period <= 0:
         raise InputError(f"surface: period must be > 0 mm, got {surface.period} "
                          f"(empty SineSeries)")
-    if not isinstance(material, GeneralizedMaxwell):
-        raise InputError(f"material: expected a GeneralizedMaxwell, got "
-                         f"{type(material).__name__}")
+    check_prony(material)
     p = positive_scalar("mean_pressure", mean_pressure, unit="MPa")
     v = positive_scalar("velocity", velocity, allow_zero=True, unit="mm/s")
     nx = options.resolved(surface).mesh[0]

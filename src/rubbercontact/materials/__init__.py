@@ -11,11 +11,11 @@ from .dmadata import DMAData, DMAWarning, dma_from_material
 from .fit import FitReport, PronyFit, fit_prony
 from .master import MasterCurve, master_curve
 from .maxwell import GeneralizedMaxwell, sbr
-from .protocol import Material, check_material
+from .protocol import Material, PronyMaterial, check_material, check_prony
 from .shift import WLF, Arrhenius, shift_law_from_dict
 from .spec import load_material
 
-__all__ = ["GeneralizedMaxwell", "sbr", "Material", "check_material", "DMAData",
-           "DMAWarning", "read_dma", "dma_from_material", "fit_prony", "FitReport",
-           "PronyFit", "WLF", "Arrhenius", "shift_law_from_dict", "MasterCurve",
-           "master_curve", "load_material"]
+__all__ = ["GeneralizedMaxwell", "sbr", "Material", "check_material", "PronyMaterial",
+           "check_prony", "DMAData", "DMAWarning", "read_dma", "dma_from_material",
+           "fit_prony", "FitReport", "PronyFit", "WLF", "Arrhenius", "shift_law_from_dict",
+           "MasterCurve", "master_curve", "load_material"]

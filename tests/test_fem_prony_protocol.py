@@ -1,0 +1,116 @@
+"""The FEM takes any Prony series (:class:`rubbercontact.materials.PronyMaterial`), not one
+class, and refuses a material without Prony branches in one line.
+
+A plain dataclass carrying ``E_∞``, the branches ``(E_i, τ_i)`` and ``as_dict`` — no
+:class:`GeneralizedMaxwell` — must relax in the FEM's constitutive law as its closed-form
+``E(t) = E_∞ + Σ E_i exp(−t/τ_i)``, and a whole sliding test on it must be the test of the
+same series as a :class:`GeneralizedMaxwell` (the FEM reads nothing else of a material).
+A closed-form Cole–Cole solid has ``E(ω)`` but no branches to integrate in time.
+"""
+
+from __future__ import annotations
+
+from dataclasses import dataclass, field
+
+import numpy as np
+import pytest
+
+import rubbercontact as rc
+from rubbercontact.errors import InputError
+from rubbercontact.fem.constitutive import (
+    MaterialParameters,
+    ViscousState,
+    cauchy_from_pk2,
+    update_stress,
+)
+from rubbercontact.materials import GeneralizedMaxwell, PronyMaterial, check_prony
+from rubbercontact.roughness import SineSeries
+
+
+@dataclass(frozen=True)
+class PlainProny:
+    """A Prony series that is not a :class:`GeneralizedMaxwell`: Young's moduli [MPa],
+    relaxation times [s]."""
+
+    equilibrium_modulus: float = 3.0
+    moduli: np.ndarray = field(default_factory=lambda: np.array([30.0, 300.0]))
+    relaxation_times: np.ndarray = field(default_factory=lambda: np.array([1e-2, 1e-5]))
+
+    def as_dict(self) -> dict:
+        return {"equilibrium_modulus": self.equilibrium_modulus,
+                "moduli": list(self.moduli), "relaxation_times": list(self.relaxation_times)}
+
+    def relaxation_modulus(self, t: np.ndarray) -> np.ndarray:
+        """Closed form ``E(t)`` [MPa] at times ``t`` [s]."""
+        t = np.asarray(t, float)[..., None]
+        return self.equilibrium_modulus + np.sum(
+            self.moduli * np.exp(-t / self.relaxation_times), axis=-1)
+
+
+@dataclass(frozen=True)
+class ColeCole:
+    """``E(ω) = E_r + (E_u − E_r) (iωτ)^a / (1 + (iωτ)^a)`` [MPa]: a closed-form modulus
+    with no finite Prony series for ``a < 1``."""
+
+    relaxed: float = 3.0
+    unrelaxed: float = 300.0
+    tau: float = 1e-4
+    exponent: float = 0.4
+    name: str = "Cole-Cole"
+    is_elastic: bool = False
+
+    def complex_modulus(self, omega) -> np.ndarray:
+        x = (1j * np.asarray(omega, dtype=float) * self.tau) ** self.exponent
+        return self.relaxed + (self.unrelaxed - self.relaxed) * x / (1.0 + x)
+
+
+PLAIN: PronyMaterial = PlainProny()
+
+
+def test_a_prony_series_of_another_class_relaxes_in_the_fem_as_its_closed_form():
+    # finite simple shear γ applied in 1e-15 s and held: the neo-Hookean branches give
+    # σ_xy = γ E(t)/3 exactly, each branch relaxing on its own τ_i
+    par = MaterialParameters.from_material(PLAIN)
+    g = 0.5
+    F = np.array([[[1.0, g], [0.0, 1.0]]])
+    p = np.zeros(1)
+    st = ViscousState.zeros((1,), par.n_branches)
+    S, _, _, _, st = update_stress(par, F, p, st, 1e-15)
+    t, times, sxy = 1e-15, [], []
+    for dt in np.geomspace(1e-8, 0.05, 30):
+        S, _, _, _, st = update_stress(par, F, p, st, dt)
+        t += dt
+        times.append(t)
+        sxy.append(cauchy_from_pk2(F, S)[0, 2])
+    # the 1e-15 s step is glassy to 1e-15/1e-5 relative
+    np.testing.assert_allclose(sxy, g * PLAIN.relaxation_modulus(np.array(times)) / 3.0,
+                               rtol=1e-8)
+
+
+def test_a_sliding_test_on_another_prony_class_is_the_generalized_maxwell_one():
+    gm = GeneralizedMaxwell(PLAIN.equilibrium_modulus, PLAIN.moduli, PLAIN.relaxation_times)
+    surf = SineSeries([0.125], [0.004])
+    a = rc.fem.sliding_test(surf, PLAIN, 0.2, 10.0, (16, 8))
+    b = rc.fem.sliding_test(surf, gm, 0.2, 10.0, (16, 8))
+    assert 0.0 < b.contact_fraction < 1.0 and b.friction > 0.0   # partial, dissipative
+    # the FEM reads E∞, E_i, τ_i only: the same arithmetic, the same numbers
+    assert a.friction == b.friction
+    assert a.contact_fraction == b.contact_fraction
+
+
+def test_the_fem_refuses_a_material_without_prony_branches_in_one_line():
+    surf = SineSeries([0.125], [0.004])
+    with pytest.raises(InputError, match="not a Prony series") as err:
+        rc.fem.sliding_test(surf, ColeCole(), 0.2, 10.0, (16, 8))
+    msg = str(err.value)
+    assert "\n" not in msg
+    assert all(m in msg for m in ("equilibrium_modulus", "moduli", "relaxation_times"))
+    with pytest.raises(InputError, match="not a Prony series"):
+        MaterialParameters.from_material(ColeCole())
+
+
+def test_branch_arrays_of_different_lengths_are_refused():
+    bad = PlainProny(moduli=np.array([30.0, 300.0]), relaxation_times=np.array([1e-2]))
+    with pytest.raises(InputError, match="1-D arrays of one length"):
+        check_prony(bad)
+    assert check_prony(rc.materials.sbr()) is not None
