@@ -6,7 +6,11 @@ import numpy as np
 from scipy.optimize import brentq
 
 from rubbercontact import meanfield as mf
-from rubbercontact.roughness import SineSeries
+from rubbercontact.roughness import (  # noqa: F401 - the studies read them from here
+    SineSeries,
+    random_ladder,
+    self_affine_profile,
+)
 
 SPEEDS = (1.0, 10.0, 50.0, 500.0)      # mm/s: the paper's two and a decade either side
 AREAS = (0.02, 0.06, 0.2, 0.45)        # the theory's contact fraction at the chosen loads
@@ -81,14 +85,6 @@ def westergaard_p_star(surface: SineSeries, material, velocity: float, nu: float
     return q * d * abs(complex(material.complex_modulus(q * abs(velocity)))) / (1 - nu**2) / 2
 
 
-def random_ladder(waves: int, seed: int, longest: float = 8.0) -> SineSeries:
-    """Octave ladder from ``longest`` down, each wave's m2 drawn from U(0.1, 0.6)."""
-    rng = np.random.default_rng(seed)
-    lam = longest / 2.0 ** np.arange(waves)
-    m2 = rng.uniform(0.1, 0.6, waves)
-    return SineSeries(lam, m2 * np.sqrt(2) * lam / (2 * np.pi))
-
-
 def separated_hybrid() -> SineSeries:
     """Three low-slope waves (4, 2, 1 mm; m2 = 0.3, 0.4, 0.4) and a high-slope wave 16 times
     shorter than the shortest (m2 = 1.2): the hybrid's scale separation holds."""
@@ -105,30 +101,6 @@ def load_for_area(psd, material, velocity: float, area: float) -> float:
                         options=DIFFUSION).contact_fraction - area
 
     return float(f"{np.exp(brentq(gap, np.log(1e-6), np.log(1e5), xtol=1e-6)):.4g}")
-
-
-def self_affine_profile(*, n: int, length: float, lam_min: float, hurst: float,
-                        rolloff: int, slope: float, seed: int):
-    """A random-phase periodic profile with a self-affine spectrum, and its exact spectrum.
-
-    Harmonics ``k = 1 … length/lam_min`` of the period; variance ∝ 1 up to the roll-off
-    harmonic, ∝ ``(k/rolloff)^-(1+2H)`` above (the 1D ``C1`` of :mod:`rubbercontact.
-    meanfield.psd`), scaled to the rms slope; uniform random phases. The spectrum is the
-    same for every seed; the profile is sampled on ``n`` points (``n`` ≥ 4 per shortest
-    wavelength).
-    """
-    kmax = int(round(length / lam_min))
-    if n < 4 * kmax:
-        raise ValueError(f"n = {n}: fewer than 4 points per shortest wavelength")
-    k = np.arange(1, kmax + 1)
-    q = 2 * np.pi * k / length
-    c = np.where(k < rolloff, 1.0, (k / rolloff) ** (-(1 + 2 * hurst)))
-    var = c * slope**2 / np.sum(q**2 * c)
-    phases = np.random.default_rng(seed).uniform(0.0, 2 * np.pi, kmax)
-    spec = np.zeros(n // 2 + 1, complex)
-    spec[1:kmax + 1] = np.sqrt(var / 2) * np.exp(1j * phases) * n
-    z = np.fft.irfft(spec, n)
-    return z, mf.PSD(q, var, 1, source=f"self-affine profile H={hurst:g}, {kmax} harmonics")
 
 
 def make_map(*, n: int, length: float, hurst: float, rolloff: int, kmax: int, slope: float,

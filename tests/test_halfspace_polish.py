@@ -8,17 +8,12 @@ glassy edge) and needs 23 updates, more than ``options.coarse_polish_updates``.
 
 from __future__ import annotations
 
-import sys
-from pathlib import Path
-
 import numpy as np
 import pytest
 
 import rubbercontact as rc
 from rubbercontact.halfspace import SolverOptions, solve_sliding
-
-sys.path.insert(0, str(Path(__file__).resolve().parents[1]))
-from studies._meanfield_cases import self_affine_profile  # noqa: E402
+from rubbercontact.roughness import self_affine_profile
 
 SBR = rc.materials.sbr()
 

@@ -6,9 +6,6 @@ ladder's three longest waves and on the whole 8-wave ladder (seed 3), where the 
 friction was 14 % and 37 % high while the contact stayed inside the longer waves' strips.
 """
 
-import sys
-from pathlib import Path
-
 import numpy as np
 import pytest
 
@@ -20,10 +17,7 @@ from rubbercontact.meanfield.outer import (
     penetration,
     westergaard_separation,
 )
-from rubbercontact.roughness import SineSeries
-
-sys.path.insert(0, str(Path(__file__).resolve().parents[1]))
-from studies._meanfield_cases import random_ladder  # noqa: E402
+from rubbercontact.roughness import SineSeries, random_ladder
 
 SBR = rc.materials.sbr()
 
