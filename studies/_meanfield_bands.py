@@ -9,15 +9,18 @@ diffusion's 2 %, at 1 and 500 mm/s, 8 realizations (the study's 1D rows' BEM).
 
 from __future__ import annotations
 
-from contextlib import contextmanager
-from dataclasses import replace
 from pathlib import Path
 
 import numpy as np
 
 import rubbercontact as rc
 from rubbercontact import meanfield as mf
-from rubbercontact.meanfield import patches, strips
+from rubbercontact.meanfield.bands import (
+    band_power,
+    contact_patches,
+    pressure_power,
+    strip_bands,
+)
 from rubbercontact.meanfield.strips import strip_contact
 
 from ._meanfield_cases import load_for_area, random_ladder
@@ -60,29 +63,6 @@ def _loss(k: np.ndarray, v: float) -> np.ndarray:
     """``−2 Im[1/E_r(kv)]`` [1/MPa] (ν = 0.5), 0 at ``k = 0``."""
     out = -2.0 * np.imag(1.0 / (SBR.complex_modulus(k * v) / 0.75))
     return np.where(k > 0, out, 0.0)
-
-
-def pressure_power(pressure: np.ndarray, period: float) -> tuple[np.ndarray, np.ndarray]:
-    """Wavenumbers [rad/mm] and the pressure variance [MPa²] of each (one-sided) Fourier
-    mode of a periodic 1D pressure; the mean (``k = 0``) carries none."""
-    n = pressure.size
-    sk = np.fft.rfft(pressure) / n
-    k = 2 * np.pi * np.arange(sk.size) / period
-    power = np.where(k > 0, 2 * np.abs(sk) ** 2, 0.0)
-    if n % 2 == 0:
-        power[-1] /= 2                                       # Nyquist has no twin
-    return k, power
-
-
-def band_power(solves, period: float, edges: np.ndarray, weight=None) -> np.ndarray:
-    """The pressure variance [MPa²] of each band of ``edges`` [rad/mm], averaged over the
-    solves (each mode weighted by ``weight(k)`` if given, e.g. the loss)."""
-    out = np.zeros(edges.size - 1)
-    for res in solves:
-        k, power = pressure_power(res.pressure, period)
-        w = power if weight is None else power * weight(k)
-        out += np.bincount(np.digitize(k, edges) - 1, w, edges.size - 1) / len(solves)
-    return out
 
 
 def _bem_solves(surf, row: dict) -> tuple[float, list]:
@@ -151,16 +131,6 @@ def run_layer(rows_path: Path, done: set, key) -> None:
             append_row(rows_path, row)
 
 
-def contact_patches(pressure: np.ndarray, period: float) -> np.ndarray:
-    """Widths [mm] of the contact intervals of a periodic 1D pressure (``> 0``)."""
-    c = np.asarray(pressure) > 0
-    if c.all() or not c.any():
-        return np.array([period]) if c.all() else np.array([])
-    c = np.roll(c, -int(np.argmin(c)))                  # start in a gap: no wrapped patch
-    edges = np.flatnonzero(np.diff(np.append(c, False).astype(int)))
-    return (edges[1::2] - edges[::2]) * period / c.size
-
-
 def run_patches(rows_path: Path, done: set, key) -> None:
     """The BEM's contact patches on the worst ladder at the diffusion's 2 % load: how many
     per period and how wide, against the strips' final strips."""
@@ -210,7 +180,7 @@ def layer_table(rows) -> tuple[str, dict]:
         surf = rc.roughness.SineSeries(r["surface"]["wavelengths"], r["surface"]["amplitudes"])
         p, var = r["p"], np.asarray(r["bem_var_long"]) / r["p"] ** 2
         edges = np.array([0.0, _below(surf), np.inf])
-        strips = strip_bands(surf, r["v"], p, edges, unit=True)[0] / p**2
+        strips = strip_bands(surf, SBR, r["v"], p, edges, unit=True)[0] / p**2
         area = strip_contact(surf.wavenumbers, surf.amplitudes, SBR, r["v"], p)
         errs.append(strips / var.mean() - 1)
         lines.append(f"| {r['case']} | {r['v']:g} | {p:.4g} | {np.mean(r['bem_A']):.4f} | "
@@ -239,7 +209,7 @@ def truncated_table(rows) -> tuple[str, dict]:
     for r in sel:
         p = r["p"]
         surf = rc.roughness.SineSeries(r["surface"]["wavelengths"], r["surface"]["amplitudes"])
-        strip = strip_bands(surf, r["v"], p, edges, unit=True) / p**2
+        strip = strip_bands(surf, SBR, r["v"], p, edges, unit=True) / p**2
         area = strip_contact(surf.wavenumbers, surf.amplitudes, SBR, r["v"], p)
         bem = np.asarray(r["band_var"]) / p**2
         cells = [f"{r['seed']}", f"{np.mean(r['bem_A']):.4f}",
@@ -253,41 +223,6 @@ def truncated_table(rows) -> tuple[str, dict]:
                                "trunc_strips_first": f"{first[1]:.2f}",
                                "trunc_bem_last": f"{last[0]:.2f}",
                                "trunc_strips_last": f"{last[1]:.2f}"}
-
-
-@contextmanager
-def _band_loss(v: float, lo: float, hi: float, unit: bool):
-    """Within the block the strip cascade's loss is zero outside the wavenumbers ``[lo, hi)``
-    (and 1 inside with ``unit``: the pressure variance instead of the friction). The
-    geometry reads ``|E_r|`` only, so it is unchanged; the friction is linear in the loss, so
-    the bands add up to the cascade's friction."""
-    original_loss, original_tables = patches._loss_interpolant, strips.wave_tables
-
-    def loss(material, nu, omega):
-        inside = (omega >= lo * abs(v)) & (omega < hi * abs(v))
-        return (1.0 if unit else original_loss(material, nu, omega)) * inside
-
-    def tables(q, amplitude, material, velocity, nu):
-        t = original_tables(q, amplitude, material, velocity, nu)
-        return replace(t, own_loss=(1.0 if unit else t.own_loss) * float(lo <= q < hi))
-
-    patches._loss_interpolant, strips.wave_tables = loss, tables
-    try:
-        yield
-    finally:
-        patches._loss_interpolant, strips.wave_tables = original_loss, original_tables
-
-
-def strip_bands(surf, v: float, p: float, edges: np.ndarray, unit: bool = False
-                ) -> np.ndarray:
-    """The strip cascade's friction (or, with ``unit``, pressure variance [MPa²]) in each
-    band of ``edges`` [rad/mm]."""
-    out = []
-    for lo, hi in zip(edges[:-1], edges[1:], strict=True):
-        with _band_loss(v, lo, hi, unit):
-            out.append(float(strip_contact(surf.wavenumbers, surf.amplitudes, SBR, v,
-                                           p).friction_stress.sum()) / (1.0 if unit else p))
-    return np.array(out)
 
 
 def bands_table(rows) -> tuple[str, dict]:
@@ -310,8 +245,8 @@ def bands_table(rows) -> tuple[str, dict]:
     centres = np.sqrt(edges[1:-2] * edges[2:-1])
     for r in sel:
         v, p = r["v"], r["p"]
-        c = {"mu": strip_bands(surf, v, p, edges), "var": strip_bands(surf, v, p, edges,
-                                                                     unit=True) / p**2,
+        c = {"mu": strip_bands(surf, SBR, v, p, edges),
+             "var": strip_bands(surf, SBR, v, p, edges, unit=True) / p**2,
              "bem_mu": np.asarray(r["band_diss"]), "bem_var": np.asarray(r["band_var"]) / p**2,
              "loss": _loss(np.concatenate([q, centres[q.size:]]), v)}
         cols.append(c)
@@ -399,7 +334,7 @@ def triplets_table(rows) -> tuple[str, dict]:
         nested_errs[three].append(err_nested)
         cells = ["–"] * 4
         if three:
-            strips = strip_bands(surf, r["v"], r["p"], edges, unit=True) / r["p"] ** 2
+            strips = strip_bands(surf, SBR, r["v"], r["p"], edges, unit=True) / r["p"] ** 2
             bem_var = np.asarray(r["band_var"]) / r["p"] ** 2
             cells = [f"{bem_var[3]:.2f}", f"{strips[3]:.2f}", f"{bem_var[4]:.2f}",
                      f"{strips[4]:.2f}"]

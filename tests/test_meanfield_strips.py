@@ -7,9 +7,6 @@ elastic strip is twice too wide at 500 mm/s; a two-wave octave profile, where Pe
 the scale-separated cascade's area are half the BEM's).
 """
 
-import sys
-from pathlib import Path
-
 import numpy as np
 import pytest
 from scipy.integrate import quad
@@ -17,13 +14,11 @@ from scipy.integrate import quad
 import rubbercontact as rc
 from rubbercontact import meanfield as mf
 from rubbercontact.errors import InputError
+from rubbercontact.meanfield.bands import band_power, pressure_power, strip_bands
 from rubbercontact.meanfield.patches import westergaard_fraction, westergaard_pressure
 from rubbercontact.meanfield.sine import sliding_fraction, westergaard_variance
 from rubbercontact.meanfield.strips import bending_share, layer_compliance, strip_contact
 from rubbercontact.roughness import SineSeries
-
-sys.path.insert(0, str(Path(__file__).resolve().parents[1]))   # the repository's studies/
-from studies._meanfield_bands import band_power, pressure_power, strip_bands  # noqa: E402
 
 SBR = rc.materials.sbr()
 ELASTIC = rc.materials.GeneralizedMaxwell.elastic(4.17)
@@ -149,7 +144,7 @@ def test_bent_strip_books_its_variance_at_its_own_harmonics():
     edges = np.concatenate([[0.0], q * 2**-0.5, [q[-1] * 2**0.5, np.inf]])
     bem = band_power([rc.halfspace.solve_sliding(r, 8.0, SBR, v, p0, n=8192)
                       for r in surf.realizations(8, 1)], 8.0, edges)
-    strips = strip_bands(surf, v, p0, edges, unit=True)
+    strips = strip_bands(surf, SBR, v, p0, edges, unit=True)
     np.testing.assert_allclose(strips[1:5], bem[1:5], rtol=0.2)
 
 
@@ -186,7 +181,7 @@ def test_long_strip_on_the_short_strips_layer_against_the_bem(v, p):
         k, power = pressure_power(rc.halfspace.solve_sliding(r, 4.0, SBR, v, p,
                                                              n=16384).pressure, 4.0)
         var.append(np.sum(power[k < kc]))
-    strips = strip_bands(surf, v, p, np.array([0.0, kc, np.inf]), unit=True)[0]
+    strips = strip_bands(surf, SBR, v, p, np.array([0.0, kc, np.inf]), unit=True)[0]
     assert strips == pytest.approx(np.mean(var), rel=0.05)
 
 

@@ -50,6 +50,7 @@ function of ``n r`` alone, so the table's last row is reused with ``n`` scaled b
 
 from __future__ import annotations
 
+from collections.abc import Callable
 from functools import lru_cache
 
 import numpy as np
@@ -142,28 +143,39 @@ def _rows(fraction: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
     return n, h / h.sum(axis=-1, keepdims=True)
 
 
+#: A filter of the loss: ``(ω [rad/s], −2 Im[1/E_r(ω)] [1/MPa]) -> loss [1/MPa]`` read in
+#: its place (:func:`rubbercontact.meanfield.bands.strip_bands`: the friction is linear in
+#: the loss, so a band's indicator splits it by frequency band); None is the loss itself.
+LossFilter = Callable[[np.ndarray, np.ndarray], np.ndarray]
+
+
 def patch_loss(fraction, wavenumbers, material: Material, velocity,
-               nu: float) -> np.ndarray:
+               nu: float, loss_filter: LossFilter | None = None) -> np.ndarray:
     """``Σ_n h_n(r) (−2 Im[1/E_r(n q v)])`` [1/MPa] for each node (shape of ``fraction``,
     ``(..., n_q)``; ``velocity`` broadcast over the leading axes). At ``r = 1`` it is the
-    mode's own loss ``−2 Im[1/E_r(qv)]``, so ``f_i = s_i ·`` this in full contact."""
+    mode's own loss ``−2 Im[1/E_r(qv)]``, so ``f_i = s_i ·`` this in full contact.
+    ``loss_filter`` (:data:`LossFilter`) replaces the loss by its filtered value."""
     fraction = np.asarray(fraction, float)
     if fraction.ndim > 1:       # one speed at a time: (speeds, nodes, bins) would not fit
         v = np.broadcast_to(np.asarray(velocity, float), fraction.shape[:-1])
-        return np.stack([patch_loss(f, wavenumbers, material, vi, nu)
+        return np.stack([patch_loss(f, wavenumbers, material, vi, nu, loss_filter)
                          for f, vi in zip(fraction, v, strict=True)])
     n, h = _rows(fraction)
     v = np.asarray(velocity, float)[..., None, None]
     omega = n * np.asarray(wavenumbers, float)[:, None] * np.abs(v)
-    loss = _loss_interpolant(material, nu, omega) * np.sign(v)     # E(−ω) = conj E(ω)
+    loss = (_loss_interpolant(material, nu, omega, loss_filter)
+            * np.sign(v))                                          # E(−ω) = conj E(ω)
     return np.sum(h * loss, axis=-1)
 
 
-def _loss_interpolant(material: Material, nu: float, omega: np.ndarray
-                      ) -> np.ndarray:
+def _loss_interpolant(material: Material, nu: float, omega: np.ndarray,
+                      loss_filter: LossFilter | None = None) -> np.ndarray:
     """``−2 Im[1/E_r(ω)]`` [1/MPa] at ``omega`` [rad/s], read off a log grid of
     :data:`LOSS_PER_DECADE` points per decade (the loss is smooth in ``log ω``, and a speed
-    sweep would otherwise evaluate the modulus at every harmonic of every node and speed)."""
+    sweep would otherwise evaluate the modulus at every harmonic of every node and speed),
+    then through ``loss_filter`` if given."""
+    if loss_filter is not None:
+        return loss_filter(omega, _loss_interpolant(material, nu, omega))
     pos = omega[omega > 0]
     if pos.size == 0:
         return np.zeros_like(omega)
@@ -200,11 +212,12 @@ class WidthLoss:
 
     (docs/validation/meanfield.md compares it with booking it at the harmonics of the wave
     that bends the strip.) Tabulated once per cascade on a grid of ``qa`` and ``q``; the
-    harmonic sum is log-binned above :data:`COMB_EXACT`.
+    harmonic sum is log-binned above :data:`COMB_EXACT`. ``loss_filter``
+    (:data:`LossFilter`) replaces the loss by its filtered value.
     """
 
     def __init__(self, material: Material, velocity: float, nu: float,
-                 q_min: float, q_max: float):
+                 q_min: float, q_max: float, loss_filter: LossFilter | None = None):
         v = float(velocity)
         n = np.concatenate([np.arange(1.0, COMB_EXACT + 1),
                             np.geomspace(COMB_EXACT + 1, COMB_LAST, int(
@@ -217,7 +230,7 @@ class WidthLoss:
                                  int((np.log10(np.pi / SMALLEST_QA)) * WIDTH_PER_DECADE) + 2)
         f = hertz_spectrum(10.0 ** self.log_z[:, None] * n[None, :]) * dn     # (Z, N)
         omega = n[None, :] * 10.0 ** self.log_q[:, None] * abs(v)               # (Q, N)
-        loss = _loss_interpolant(material, nu, omega)                           # ≥ 0
+        loss = _loss_interpolant(material, nu, omega, loss_filter)              # ≥ 0
         self.sign = float(np.sign(v))                        # E(−ω) = conj E(ω)
         self.power = np.log(f.sum(axis=1))                                      # (Z,)
         # both sums are smooth in log qa and log q: interpolated as logs

@@ -28,7 +28,7 @@ import numpy as np
 
 from ..materials.protocol import Material
 from .crests import SMALLEST_FRACTION
-from .patches import patch_loss
+from .patches import LossFilter, patch_loss
 
 #: Log grids on which a wave's strip fraction (in ``p̄/p*``) and loss (in ``r``) are read.
 TABLE_POINTS = 300
@@ -124,13 +124,19 @@ class WaveTables:
 
 
 def wave_tables(wavenumber: float, amplitude: float, material: Material,
-                velocity: float, nu: float) -> WaveTables:
-    """Tabulate :func:`sliding_fraction` and :func:`~.patches.patch_loss` for one wave."""
+                velocity: float, nu: float, loss_filter: LossFilter | None = None
+                ) -> WaveTables:
+    """Tabulate :func:`sliding_fraction` and :func:`~.patches.patch_loss` for one wave
+    (the losses through ``loss_filter`` if given, :data:`~.patches.LossFilter`)."""
     modulus = complex(material.complex_modulus(wavenumber * abs(velocity))) / (1.0 - nu**2)
     ratios = np.geomspace(SMALLEST_RATIO, 1.0, TABLE_POINTS)
     fractions = np.geomspace(SMALLEST_FRACTION, 1.0, TABLE_POINTS)
-    loss = patch_loss(fractions, np.full(fractions.size, wavenumber), material, velocity, nu)
-    own = -2.0 * (1.0 / modulus).imag * np.sign(velocity)      # E(−ω) = conj E(ω)
+    loss = patch_loss(fractions, np.full(fractions.size, wavenumber), material, velocity, nu,
+                      loss_filter)
+    own = -2.0 * (1.0 / modulus).imag
+    if loss_filter is not None:
+        own = float(loss_filter(np.array(wavenumber * abs(velocity)), np.array(own)))
+    own *= np.sign(velocity)                                   # E(−ω) = conj E(ω)
     return WaveTables(wavenumber, amplitude, wavenumber * amplitude * abs(modulus) / 2,
                       ratios, sliding_fraction(ratios, wavenumber, material, velocity, nu),
                       fractions, loss, float(own))

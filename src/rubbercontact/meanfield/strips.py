@@ -94,7 +94,7 @@ from .crests import (
     neighbour_share,
 )
 from .outer import outer_load
-from .patches import WidthLoss
+from .patches import LossFilter, WidthLoss
 from .sine import WaveTables, wave_tables, westergaard_variance
 
 #: Samples across a strip (midpoint rule in the strip's angle).
@@ -410,8 +410,8 @@ class StripContact:
 
 
 def strip_contact(wavenumbers, amplitudes, material: Material, velocity: float,
-                  mean_pressure: float, nu: float = 0.5, outer_crests: bool = True
-                  ) -> StripContact:
+                  mean_pressure: float, nu: float = 0.5, outer_crests: bool = True,
+                  loss_filter: LossFilter | None = None) -> StripContact:
     """The strip cascade (module docstring) of the waves ``Δ_i cos(q_i x + φ_i)``.
 
     Parameters
@@ -424,16 +424,20 @@ def strip_contact(wavenumbers, amplitudes, material: Material, velocity: float,
         Whether a wave's crests just outside a strip take their share of its load
         (:func:`_outer_crests`); without, every wave's contact stays inside the longer
         waves' strips (the previous cascade, kept for comparison).
+    loss_filter
+        Read in place of the loss ``−2 Im[1/E_r(ω)]`` wherever the cascade dissipates
+        (:data:`~.patches.LossFilter`; the geometry reads ``|E_r|`` only and is unchanged);
+        None: the loss itself.
     """
     q, amp = np.asarray(wavenumbers, float), np.asarray(amplitudes, float)
     order = np.argsort(q)
     s = Samples(np.array([float(mean_pressure)]), np.ones(1), np.full(1, NO_STRIP), np.ones(1),
                 np.ones(1), np.zeros(1))
     modulus = StripModulus(material, velocity, nu, q.min(), q.max())
-    width_loss = WidthLoss(material, velocity, nu, q.min(), q.max())
+    width_loss = WidthLoss(material, velocity, nu, q.min(), q.max(), loss_filter)
     area, fstress = [], []
     for i in order:
-        wave = wave_tables(q[i], amp[i], material, velocity, nu)
+        wave = wave_tables(q[i], amp[i], material, velocity, nu, loss_filter)
         stripped = s.half_width < NO_STRIP
         bend = _bend(s.subset(stripped), wave, modulus, width_loss)
         bent = _rebin(bend.bent) if bend.bent.weight.size else bend.bent
