@@ -1,16 +1,16 @@
-"""The studies runner finds every study by the convention of studies/README.md."""
+"""The studies runner finds every study by the convention of studies/README.md, and every
+template block is rendered by a study (the studies' own tests: tests/ tests the package)."""
 
 import ast
 import subprocess
 import sys
 from pathlib import Path
 
-import numpy as np
 import pytest
 
-ROOT = Path(__file__).resolve().parents[1]
-sys.path.insert(0, str(ROOT))
-from studies.__main__ import discover, main  # noqa: E402
+from studies.__main__ import discover, main
+
+ROOT = Path(__file__).resolve().parents[2]
 
 STUDY_FILES = sorted(p for p in (ROOT / "studies").glob("*.py") if not p.stem.startswith("_"))
 
@@ -78,40 +78,3 @@ def test_every_template_block_is_used_by_a_study():
         assert path.stem in literals, f"{path.name} is not rendered by any study"
         unused = sorted(set(blocks(path.stem)) - literals)
         assert not unused, f"{path.name}: blocks {unused} are not rendered by any study"
-
-
-def test_contact_patches_counts_intervals_across_the_period_edge():
-    # studies/_meanfield_bands.contact_patches: intervals of p > 0 on a periodic grid; one
-    # that wraps around the period's edge is one patch, full and no contact are limits.
-    from studies._meanfield_bands import contact_patches
-
-    p = np.zeros(100)
-    p[10:20] = 1.0          # 10 cells
-    p[50:53] = 2.0          # 3 cells
-    p[95:] = p[:2] = 1.0    # 5 + 2 cells across the edge
-    widths = np.sort(contact_patches(p, 10.0))
-    np.testing.assert_allclose(widths, [0.3, 0.7, 1.0])
-    np.testing.assert_allclose(contact_patches(np.ones(8), 2.0), [2.0])
-    assert contact_patches(np.zeros(8), 2.0).size == 0
-
-
-def test_band_power_splits_the_pressure_variance_by_wavenumber():
-    # studies/_meanfield_bands.band_power: Parseval — the bands add up to the variance of
-    # the pressure (mean over the solves), and a pure harmonic lands in its own band whole
-    from types import SimpleNamespace
-
-    from studies._meanfield_bands import band_power
-
-    period, n = 8.0, 1024
-    x = np.arange(n) * period / n
-    k3 = 2 * np.pi * 3 / period
-    solves = [SimpleNamespace(pressure=1.0 + 0.5 * np.cos(k3 * x + ph) + 0.2 * np.sin(
-        2 * np.pi * 40 * x / period)) for ph in (0.0, 1.0)]
-    edges = np.array([0.0, 0.5 * k3, 2 * k3, np.inf])
-    bands = band_power(solves, period, edges)
-    assert bands.sum() == pytest.approx(np.mean([np.var(s.pressure) for s in solves]),
-                                        rel=1e-12)
-    np.testing.assert_allclose(bands, [0.0, 0.125, 0.02], atol=1e-12)
-    # a weight per wavenumber multiplies each mode's power
-    assert band_power(solves, period, edges, lambda k: 2.0 * (k > 0))[1] == \
-        pytest.approx(0.25, rel=1e-12)
