@@ -267,6 +267,36 @@ def test_a_failed_penalty_solve_is_rescued_by_the_barrier_before_the_transient()
                               rescue="none", fallback=False)
 
 
+def test_a_penalty_solve_with_an_impaled_face_is_solved_again_with_the_barrier():
+    # One contact point per face segment lets the section 3 asperities (0.0625 mm waves,
+    # 8 columns each) pass between two nodes: the penalty converges with the face impaled
+    # (μ and A meaningless), so the steady solve tries the barrier rescue, afresh — the
+    # very solve of the barrier asked for directly, to the last bit. With one point per
+    # segment the barrier cannot keep the crest out between the nodes either: the result
+    # stays flagged and the warning says so, once.
+    import warnings
+
+    from rubbercontact.fem.options import RESCUE_NEWTON
+
+    surf = rc.roughness.section3().realizations(1, seed=2021)[0]
+    args = (surf, rc.materials.sbr(), 0.35, 10.0)
+    with warnings.catch_warnings(record=True) as seen:
+        warnings.simplefilter("always")
+        out = rc.fem.steady_sliding(*args, mesh=(32, 24), contact_points=1, fallback=False)
+        plain = rc.fem.steady_sliding(*args, mesh=(32, 24), contact_points=1, rescue="none",
+                                      fallback=False)
+    assert plain.stats.impaled and plain.stats.solver == "steady"
+    assert out.stats.solver == "steady (barrier rescue)"
+    assert out.stats.tried[0].startswith("penalty contact impaled the face")
+    with pytest.warns(RuntimeWarning, match="impaled"):
+        direct = rc.fem.steady_sliding(*args, mesh=(32, 24), contact_points=1,
+                                       contact="barrier", newton_per_step=RESCUE_NEWTON,
+                                       fallback=False)
+    assert (out.friction, out.contact_fraction) == (direct.friction, direct.contact_fraction)
+    assert out.stats.impaled and direct.stats.impaled
+    assert sum("impaled" in str(w.message) for w in seen) == 2   # out's, and plain's
+
+
 @pytest.mark.parametrize("kw, field", [
     ({"viscous_model": "reese-govindjee"}, "viscous_model"),
     ({"periods": 4}, "periods"),

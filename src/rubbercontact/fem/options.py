@@ -49,7 +49,7 @@ def _integer(name: str, value: Any, low: int) -> int:
     return int(value)
 
 
-#: Rescues of a failed penalty-contact steady solve (:attr:`SteadyOptions.rescue`).
+#: Rescues of a failed (or impaled) penalty-contact steady solve (:attr:`SteadyOptions.rescue`).
 RESCUES = ("barrier", "none")
 
 #: Newton iterations per continuation step of the barrier rescue: a log barrier's Newton
@@ -86,9 +86,11 @@ class SteadyOptions:
         columns (a contact patch must stay several columns wide for its solution to
         start the finer mesh); ``coarse_elements = 0`` switches nested iteration off.
     rescue
-        If the steady solve with penalty contact fails: ``"barrier"`` solves it again with
-        the barrier contact (:mod:`.barrier`, at least :data:`RESCUE_NEWTON` Newton
-        iterations per continuation step) before any transient fallback; ``"none"``.
+        If the steady solve with penalty contact fails, or converges with the face
+        impaled on a crest: ``"barrier"`` solves it again with the barrier contact
+        (:mod:`.barrier`, at least :data:`RESCUE_NEWTON` Newton iterations per
+        continuation step) before any transient fallback (an impaled penalty solution
+        stays, flagged, if the rescue fails); ``"none"``.
     fallback
         If the steady solve (and its rescue) fails, run the transient test and say so in
         the status.

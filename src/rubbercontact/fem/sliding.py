@@ -226,27 +226,45 @@ def steady_sliding(surface: SineSeries, material: GeneralizedMaxwell, mean_press
 
 def _steady(surface, material, p, v, opts: FemOptions, start) -> SlidingTestResult:
     wall0 = time.perf_counter()
+    rescue = _rescue_options(opts)
     try:
         sol = solve_steady(surface, material, p, v, opts, start)
     except SteadyFailure as fail:
         failures = [fail]
-        rescue = _rescue_options(opts)
         if rescue is not None:
-            wall0 = time.perf_counter()
             try:
-                # afresh: a penalty state penetrates the surface, where the barrier is
-                # infinite
-                sol = solve_steady(surface, material, p, v, rescue, None)
+                return _barrier_rescue(surface, material, p, v, rescue,
+                                       f"penalty contact failed: {fail.reason}")
             except SteadyFailure as again:
                 failures.append(again)
-            else:
-                res = steady_result(sol, surface, material, p, v, rescue,
-                                    time.perf_counter() - wall0)
-                note = f"penalty contact failed: {fail.reason}; barrier rescue"
-                return replace(res, stats=replace(res.stats, solver="steady (barrier rescue)",
-                                                  tried=(note,) + tuple(res.stats.tried)))
         return _after_failure(surface, material, p, v, opts, failures)
-    return steady_result(sol, surface, material, p, v, opts, time.perf_counter() - wall0)
+    res = steady_result(sol, surface, material, p, v, opts, time.perf_counter() - wall0,
+                        warn_impaled=rescue is None)
+    if not (res.stats.impaled and rescue is not None):
+        return res
+    # The penalty converged with a crest through the face between two nodes: μ and A
+    # are meaningless there, and the barrier cannot impale by construction.
+    why = f"penalty contact impaled the face ({res.stats.max_segment_penetration:.3g} mm)"
+    try:
+        return _barrier_rescue(surface, material, p, v, rescue, why)
+    except SteadyFailure as again:
+        warnings.warn(impaled_message(res.stats.max_segment_penetration,
+                                      res.width / res.mesh[0], p, v),
+                      RuntimeWarning, stacklevel=3)
+        note = f"{why}; barrier rescue: {again.reason}"
+        return replace(res, stats=replace(res.stats, tried=tuple(res.stats.tried) + (note,)))
+
+
+def _barrier_rescue(surface, material, p, v, rescue: FemOptions, why: str
+                    ) -> SlidingTestResult:
+    """The steady solve again with the barrier contact (raises :class:`SteadyFailure`)."""
+    wall0 = time.perf_counter()
+    # afresh: a penalty state penetrates the surface, where the barrier is infinite
+    sol = solve_steady(surface, material, p, v, rescue, None)
+    res = steady_result(sol, surface, material, p, v, rescue, time.perf_counter() - wall0)
+    return replace(res, stats=replace(res.stats, solver="steady (barrier rescue)",
+                                      tried=(f"{why}; barrier rescue",)
+                                      + tuple(res.stats.tried)))
 
 
 def _rescue_options(opts: FemOptions) -> FemOptions | None:
@@ -277,8 +295,13 @@ def _after_failure(surface, material, p, v, opts: FemOptions,
 
 
 def steady_result(sol: SteadySolution, surface, material, p: float, v: float,
-                  opts: FemOptions, wall: float) -> SlidingTestResult:
-    """The :class:`~.result.SlidingTestResult` of a converged steady solution."""
+                  opts: FemOptions, wall: float, *, warn_impaled: bool = True
+                  ) -> SlidingTestResult:
+    """The :class:`~.result.SlidingTestResult` of a converged steady solution.
+
+    ``warn_impaled=False``: an impaled face is flagged but not warned about (the caller
+    tries the barrier rescue first, and warns if that fails).
+    """
     setup, ev = sol.setup, sol.ev
     model, L0, H = setup.model, surface.period, setup.cell.height
     cs = ev.contact
@@ -290,7 +313,7 @@ def steady_result(sol: SteadySolution, surface, material, p: float, v: float,
                       stacklevel=4)
     seg_pen = segment_penetration(surface, sol.shift, pos, L0)
     impaled = seg_pen > SEGMENT_PENETRATION_LIMIT * setup.cell.hx
-    if impaled:
+    if impaled and warn_impaled:
         warnings.warn(impaled_message(seg_pen, setup.cell.hx, p, v), RuntimeWarning,
                       stacklevel=4)
     patch = narrowest_patch(surface, sol.shift, cs, L0, setup.cell.hx)
