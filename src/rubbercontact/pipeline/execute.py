@@ -131,7 +131,7 @@ def run(config: RunConfig | dict | str | Path, *, runner: Runner | None = None,
         ds = add_phase_means(ds, setup.n_fem)
     ds = add_errors(ds)
     ds = spread_over_temperatures(ds, setup.speeds)
-    ds, flash_time = add_flash(ds, setup, flash)
+    ds, flash_time = add_flash(ds, setup, flash, stage.tables if stage is not None else None)
     if flash is not None:
         timings["flash"] = flash_time
     if stage is not None and not setup.speeds.isothermal:

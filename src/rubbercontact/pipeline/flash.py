@@ -12,25 +12,29 @@ run's true speeds:
   each heated solve from the nearest one already solved (``warm_start``) — and the mean
   over the realizations (the isothermal columns' phase average). One temperature for the
   whole contact (:mod:`rubbercontact.thermal.contact`): its spots are hotter than their
-  mean and each scale sees its own, which the mean-field flash resolves and this does not.
+  mean and each scale sees its own, which the mean-field flash resolves and this does not;
+* ``hybrid``, ``hybrid-windowed``: the same per realization with the hybrid's low-slope
+  solve, both scales at the contact's mean temperature — the half-space at ``T0 + T_c``,
+  the high-slope law read at ``a_T(T0 + T_c) v``, interpolated in ``ln v`` between its
+  tabulated speeds and clamped (and said) below the slowest (:mod:`.flash_hybrid`).
 
-The hybrids (the high-slope law is an isothermal FEM table at the run's speeds),
-``meanfield-hybrid`` and ``fem`` are not computed with the flash yet: the run says so in
-``attrs["flash_note"]``, one line.
+``meanfield-hybrid``, ``meanfield-strips`` and ``fem`` are not computed with the flash yet:
+the run says so in ``attrs["flash_note"]``, one line.
 
 Variables added (``model, [temperature,] velocity, pressure``; NaN for the models without
 the flash): ``friction_flash``, ``contact_fraction_flash``, ``flash_temperature`` [K] (the
-rise of the finest contact spots above the run's temperature; ``vhs``: of the contact's
-mean), ``flash_heat_flux`` [mW/mm²] (the frictional heat into the rubber per nominal area,
-``μ σ0 v``; ``vhs``: of the solved pressure); per scale, ``flash_scale_temperature`` [K]
-on ``flash_wavenumber`` [rad/mm] (the ``meanfield`` spectrum's nodes), the rise of the
-contact spots seen at each magnification.
+rise of the finest contact spots above the run's temperature; ``vhs`` and the hybrids: of
+the contact's mean), ``flash_heat_flux`` [mW/mm²] (the frictional heat into the rubber
+per nominal area, ``μ σ0 v``; the half-space models: of the solved pressure); per
+scale, ``flash_scale_temperature`` [K] on ``flash_wavenumber`` [rad/mm] (the
+``meanfield`` spectrum's nodes), the rise of the contact spots seen at each magnification.
 """
 
 from __future__ import annotations
 
 import json
 import time
+from collections.abc import Callable
 from dataclasses import asdict, dataclass, replace
 
 import numpy as np
@@ -43,13 +47,14 @@ from ..meanfield import PSD, MeanFieldOptions
 from ..meanfield.flash import FlashOptions, flash_friction_curve
 from ..thermal import FlashSearch, ThermalProperties, flash_sweep
 from ..thermal.contact import start_pressure
+from .flash_hybrid import HYBRID_FLASH_MODELS, LawReads, hybrid_solver, law_speeds
 from .plan import meanfield_surfaces
 from .setup import RunSetup, task_material
 
 #: Models the run computes with the flash temperature.
-FLASH_MODELS = ("meanfield", "vhs")
+FLASH_MODELS = ("meanfield", "vhs", *HYBRID_FLASH_MODELS)
 #: The half-space models among them.
-HALFSPACE_FLASH_MODELS = ("vhs",)
+HALFSPACE_FLASH_MODELS = ("vhs", *HYBRID_FLASH_MODELS)
 #: Prefix of every message about the flash (the config table).
 KEY = "friction.flash_temperature"
 #: The variables added, with their units and long names.
@@ -57,7 +62,7 @@ VARIABLES = {
     "friction_flash": ("1", "friction coefficient with the flash temperature"),
     "contact_fraction_flash": ("1", "real contact fraction with the flash temperature"),
     "flash_temperature": ("K", "rise of the finest contact spots above the run's "
-                               "temperature (vhs: of the contact's mean)"),
+                               "temperature (vhs, hybrids: of the contact's mean)"),
     "flash_heat_flux": ("mW/mm^2", "frictional heat into the rubber per nominal area"),
 }
 #: The per-scale variable, on ``flash_wavenumber`` besides the dims above.
@@ -135,12 +140,13 @@ def plan_flash(setup: RunSetup) -> FlashPlan | None:
                      thermal=thermal, options=options, mean_field=opts)
 
 
-def add_flash(ds: xr.Dataset, setup: RunSetup, plan: FlashPlan | None
-              ) -> tuple[xr.Dataset, float]:
+def add_flash(ds: xr.Dataset, setup: RunSetup, plan: FlashPlan | None,
+              tables: dict | None = None) -> tuple[xr.Dataset, float]:
     """``ds`` with the flash variables (module docstring) and their provenance in
     ``attrs`` (``flash_thermal``, ``flash_options``, ``flash_note``, ``flash_residual_K``,
     ``flash_halfspace_solves``), and the wall time [s]; ``ds`` unchanged (and 0 s) when
-    ``plan`` is None."""
+    ``plan`` is None. ``tables``: the law at each computed speed
+    (:attr:`~.lawstage.LawStage.tables`; None without a law), for the hybrids."""
     if plan is None:
         return ds, 0.0
     t0 = time.perf_counter()
@@ -153,12 +159,22 @@ def add_flash(ds: xr.Dataset, setup: RunSetup, plan: FlashPlan | None
              if "meanfield" in plan.models else np.empty(0))
     out["flash_scale_temperature"] = np.full((*shape, nodes.size), np.nan)
     acc = _Tally([plan.note] if plan.note else [])
+    laws, reads = law_speeds(tables), LawReads()
     for m in plan.models:
         im = list(ds["model"].values).index(m)
-        fill = _fill_halfspace if m in HALFSPACE_FLASH_MODELS else _fill_meanfield
         for it, temp in enumerate(per_t):
             for ip, p in enumerate(pressures):
-                fill(out, (im, it, slice(None), ip), m, setup, float(p), temp, plan, acc)
+                at = (im, it, slice(None), ip)
+                if m not in HALFSPACE_FLASH_MODELS:
+                    _fill_meanfield(out, at, m, setup, float(p), temp, plan, acc)
+                    continue
+                solver = (_vhs_solver(setup, float(p)) if m == "vhs" else
+                          lambda ir, m=m, p=float(p): hybrid_solver(setup, m, ir, p, laws,
+                                                                    reads))
+                _fill_halfspace(out, at, m, setup, float(p), temp, plan, acc, solver)
+    hybrids = tuple(m for m in plan.models if m in HYBRID_FLASH_MODELS)
+    if reads.note(hybrids):
+        acc.notes.append(reads.note(hybrids))
     ds = _with_variables(ds, out, nodes, temps is not None, plan, acc.notes, acc.residual)
     ds.attrs["flash_halfspace_solves"] = acc.solves
     return ds, time.perf_counter() - t0
@@ -198,10 +214,9 @@ def _fill_meanfield(out: dict, at: tuple, m: str, setup: RunSetup, pressure: flo
                                           - curve.background_temperature)
 
 
-def _fill_halfspace(out: dict, at: tuple, m: str, setup: RunSetup, pressure: float,
-                    temperature: float | None, plan: FlashPlan, acc: _Tally) -> None:
-    """The realizations' mean of one half-space flash μ(v) into ``out[...][at]`` (NaN at
-    a speed where a realization failed)."""
+def _vhs_solver(setup: RunSetup, pressure: float) -> Callable[[int], Callable]:
+    """``solver(realization)``: that realization's ``vhs`` solve at ``pressure`` [MPa] as a
+    function of the reduced speed [mm/s] and the solve to start from."""
     from ..halfspace import solve_sliding
     from ..hybrid.tasks import halfspace_law
 
@@ -209,15 +224,34 @@ def _fill_halfspace(out: dict, at: tuple, m: str, setup: RunSetup, pressure: flo
     hs = cfg.halfspace
     material = GeneralizedMaxwell(**task_material(setup.material))   # the series at T_ref
     law = halfspace_law(hs.law)
-    v = setup.speeds.velocities
-    order = np.argsort(v)
-    rows = np.full((len(setup.realizations), 4, v.size), np.nan)
-    for ir, real in enumerate(setup.realizations):
-        def solve(u: float, start=None, real=real):
+
+    def solver(ir: int) -> Callable:
+        real = setup.realizations[ir]
+
+        def solve(u: float, start=None):
             return solve_sliding(real, setup.period, material, u, pressure, law=law,
                                  n=hs.n, nu=cfg.material.nu, tol=hs.tol,
                                  start=None if start is None else start_pressure(start))
+        return solve
 
+    return solver
+
+
+def _fill_halfspace(out: dict, at: tuple, m: str, setup: RunSetup, pressure: float,
+                    temperature: float | None, plan: FlashPlan, acc: _Tally,
+                    solver: Callable[[int], Callable | None]) -> None:
+    """The realizations' mean of one half-space flash μ(v) into ``out[...][at]`` (NaN at
+    a speed where a realization failed); ``solver(realization)`` gives the realization's
+    solve of the reduced speed (None: nothing to solve, said in a note)."""
+    v = setup.speeds.velocities
+    order = np.argsort(v)
+    rows = np.full((len(setup.realizations), 4, v.size), np.nan)
+    for ir in range(len(setup.realizations)):
+        solve = solver(ir)
+        if solve is None:
+            acc.failed(m, pressure, temperature, f"r={ir}: flat low-slope surface, no "
+                                                 f"half-space contact to heat")
+            continue
         sweep = flash_sweep(solve, v, setup.material.shift, plan.thermal, temperature,
                             plan.search)
         acc.solves += sweep.solves

@@ -89,11 +89,22 @@ def _lengths(result) -> tuple[float, ...]:
     return (period(result.x),) if result.y is None else (period(result.y), period(result.x))
 
 
+#: Key of ``SlidingResult.info`` giving the separation [mm] below which the rubber is in
+#: contact (a hybrid's low-slope solve: where its high-slope law carries load).
+CONTACT_SEPARATION = "contact_separation"
+
+
 def contact_mask(result) -> np.ndarray:
     """The contact of a solved sliding contact on its grid: ``p > 0`` for the hard wall;
     with an interaction law (``result.method == "newton"``), whose pressure is positive
     everywhere, the points of smallest separation, as many as its contact fraction (the
-    law's contact range, e.g. ``u < 2ℓ`` for the Lennard-Jones wall, ties aside)."""
+    law's contact range, e.g. ``u < 2ℓ`` for the Lennard-Jones wall, ties aside); where
+    ``result.info`` has :data:`CONTACT_SEPARATION` (a hybrid's low-slope solve, whose
+    contact fraction is the high-slope scale's real contact, a part of the loaded zone),
+    the points below that separation."""
+    info = getattr(result, "info", None)
+    if isinstance(info, dict) and info.get(CONTACT_SEPARATION) is not None:
+        return np.asarray(result.separation, float) < float(info[CONTACT_SEPARATION])
     p = np.asarray(result.pressure, float)
     if result.method != "newton":
         return p > 0

@@ -1,0 +1,223 @@
+r"""The high-slope law read at any speed between the speeds it was tabulated at.
+
+The law is an FEM table on ``velocity × pressure`` (:func:`~.law.effective_law`), read per
+tabulated speed as plain data (:func:`~.lawtable.law_at_velocity`: ``separation``
+ascending, ``pressure``, ``contact_fraction``, ``shear_stress``). A run evaluates it at its
+own speeds; the flash temperature (:mod:`rubbercontact.pipeline.flash_hybrid`) needs it at
+the reduced speed ``a_T(T) v`` of a heated contact, which falls between them.
+
+Interpolation
+-------------
+Between the two tabulated speeds ``v_a < v < v_b`` around ``v``, at fixed mean pressure
+``σ``, the logarithms linearly in ``ln v``: with ``w = ln(v/v_a)/ln(v_b/v_a)``,
+
+.. math:: \ln u(σ, v) = (1 − w) \ln u_a(σ) + w \ln u_b(σ),
+
+a local power law in the speed, and the same for ``α_hs`` and ``Δτ_hs``; a quantity with
+a value ≤ 0 at a node (an FEM mean separation below the surface's mean plane, an elastic
+law's ``Δτ = 0``) is blended linearly instead. Logarithms, because near full contact of
+the high-slope cell ``u`` falls by decades over a small rise in ``σ`` (the linear law
+reaches ``u ~ 1e-20`` mm): a linear blend there jumps by decades as soon as ``w < 1``, and
+the interpolant ``σ(u)`` and the low-slope solve jump with it.
+
+The nodes are the union of the two tables' pressures, each table read at the other's
+pressures off its own interpolant (:class:`~rubbercontact.halfspace.TabulatedLaw`; beyond
+its highest pressure by that interpolant's continuation, stiff in ``σ`` with ``α`` and
+``Δτ`` held, as a solve at its speed reads it), so that the blend tends to each table as
+``w`` tends to 0 or 1; the zero-load anchor ``σ = 0`` is at the higher of their
+anchors' separations (the same high-slope peak). Both tables have ``u`` strictly
+decreasing in ``σ``, so the blend has too (either way): it is a law. At a tabulated speed
+(relative ``1e-9``) the table is returned as it is, so a solve there is the run's own.
+
+The error is that of a power-law interpolant between the table's speeds (half-decade
+apart in the examples): the law's quantities vary smoothly with the speed (the modulus
+does), but near the loss peak ``Δτ_hs`` curves over half a decade, and the interpolant
+lies below a concave curve there.
+
+Outside the tabulated speeds nothing is extrapolated: a speed below the slowest (above
+the fastest) is read at the slowest (fastest) table and :attr:`LawAtSpeed.clamped` says so,
+for the caller to report.
+"""
+
+from __future__ import annotations
+
+from collections.abc import Mapping
+from dataclasses import dataclass
+
+import numpy as np
+
+from ..errors import InputError
+
+#: A speed within this relative distance of a tabulated one is that one [-].
+SPEED_RTOL = 1e-9
+
+
+@dataclass(frozen=True)
+class LawAtSpeed:
+    """The law at one speed.
+
+    Attributes
+    ----------
+    table
+        The law as plain data (the keys of :func:`~.lawtable.law_at_velocity`).
+    speed
+        The speed asked for [mm/s].
+    read_at
+        The speed the law was read at [mm/s]: ``speed``, or the tabulated end it was
+        clamped to.
+    lower, upper
+        The tabulated speeds it was interpolated between [mm/s] (equal at a tabulated
+        speed or when clamped).
+    weight
+        ``w`` of the module docstring [-] (0 at ``lower``).
+    """
+
+    table: dict
+    speed: float
+    read_at: float
+    lower: float
+    upper: float
+    weight: float
+
+    @property
+    def clamped(self) -> bool:
+        """Whether ``speed`` lies outside the tabulated speeds (read at the nearest end)."""
+        return not np.isclose(self.read_at, self.speed, rtol=SPEED_RTOL, atol=0.0)
+
+
+class LawSpeeds:
+    """A law tabulated at several speeds, read at any speed (module docstring).
+
+    Parameters
+    ----------
+    tables
+        ``{speed [mm/s]: table}``, each table as :func:`~.lawtable.law_at_velocity` gives
+        it (e.g. a run's :attr:`~rubbercontact.pipeline.lawstage.LawStage.tables`); at
+        least one speed > 0.
+    """
+
+    def __init__(self, tables: Mapping[float, dict]) -> None:
+        speeds = np.array(sorted(float(v) for v in tables), float)
+        if speeds.size == 0 or not np.all(np.isfinite(speeds)) or speeds[0] <= 0:
+            raise InputError(f"law tables: expected speeds > 0 mm/s, got {speeds.tolist()}")
+        self.speeds = speeds
+        self._tables = {float(v): tables[v] for v in tables}
+        self._laws: dict[float, object] = {}
+
+    def _law(self, speed: float):
+        """The interpolant of the table at a tabulated ``speed``, built once."""
+        from .lawtable import tabulated_law_from_dict
+
+        if speed not in self._laws:
+            self._laws[speed] = tabulated_law_from_dict(self.table(speed))
+        return self._laws[speed]
+
+    def table(self, speed: float) -> dict:
+        """The table at a tabulated ``speed`` [mm/s]."""
+        return self._tables[float(speed)]
+
+    def at(self, speed: float) -> LawAtSpeed:
+        """The law at ``speed`` [mm/s] > 0: a tabulated table, the interpolation between
+        the two around it, or the nearest end's table (``clamped``)."""
+        v = float(speed)
+        if not (np.isfinite(v) and v > 0):
+            raise InputError(f"speed: expected a finite speed > 0 mm/s, got {speed!r}")
+        s = self.speeds
+        near = np.flatnonzero(np.isclose(s, v, rtol=SPEED_RTOL, atol=0.0))
+        if near.size:
+            at = float(s[near[0]])
+            return LawAtSpeed(self.table(at), v, v, at, at, 0.0)
+        if v < s[0] or v > s[-1]:
+            end = float(s[0] if v < s[0] else s[-1])
+            return LawAtSpeed(self.table(end), v, end, end, end, 0.0)
+        k = int(np.searchsorted(s, v))
+        lo, hi = float(s[k - 1]), float(s[k])
+        w = float(np.log(v / lo) / np.log(hi / lo))
+        table = blend_tables(self.table(lo), self.table(hi), w, (self._law(lo), self._law(hi)))
+        return LawAtSpeed(table, v, v, lo, hi, w)
+
+
+def _in_pressure(table: dict, nodes: np.ndarray, law=None) -> dict:
+    """``u``, ``α``, ``Δτ`` of ``table`` at the pressures ``nodes`` [MPa] (> 0), read off
+    the law's own interpolant (:class:`~rubbercontact.halfspace.TabulatedLaw`: ``u`` by
+    bisection on its ``σ(u)``, ``α`` and ``Δτ`` its companions at that ``u``); at the
+    table's own pressures its own rows; beyond its highest pressure, the interpolant's
+    continuation."""
+    from .lawtable import tabulated_law_from_dict
+
+    law = law if law is not None else tabulated_law_from_dict(table)
+    u_tab = np.asarray(table["separation"], float)
+    sig_tab = np.asarray(table["pressure"], float)
+    span = u_tab[-1] - u_tab[0]
+    lo = np.full(nodes.shape, u_tab[0])          # σ(lo) ≥ node: below the table's first
+    for _ in range(_BISECTIONS):                 # row for a node beyond its pressures
+        short = law.pressure(lo) <= nodes
+        if not short.any():
+            break
+        lo = np.where(short, lo - span, lo)
+        span *= 2.0
+    hi = np.full(nodes.shape, u_tab[-1])         # σ(hi) = the lowest ≤ node
+    for _ in range(_BISECTIONS):
+        mid = 0.5 * (lo + hi)
+        above = law.pressure(mid) > nodes
+        lo, hi = np.where(above, mid, lo), np.where(above, hi, mid)
+    u = 0.5 * (lo + hi)
+    own = {float(sv): float(uv) for sv, uv in zip(sig_tab, u_tab, strict=True)}
+    u = np.array([own.get(float(n), float(x)) for n, x in zip(nodes, u, strict=True)])
+    return {"separation": u, "contact_fraction": np.asarray(law.contact_fraction(u), float),
+            "shear_stress": np.asarray(law.shear_stress(u), float)}
+
+
+#: Bisection steps of :func:`_in_pressure`: the bracket shrinks to 2^-60 of the table's
+#: range of separations, below the float resolution.
+_BISECTIONS = 60
+
+
+def blend_tables(a: dict, b: dict, weight: float, laws: tuple | None = None) -> dict:
+    """The law ``(1 − w) a + w b`` at fixed pressure (module docstring), as plain data.
+
+    Parameters
+    ----------
+    a, b
+        Law tables (:func:`~.lawtable.law_at_velocity`'s keys), ``separation`` ascending.
+    weight
+        ``w`` in [0, 1].
+    laws
+        Their :class:`~rubbercontact.halfspace.TabulatedLaw` if already built.
+    """
+    w = float(weight)
+    if not 0.0 <= w <= 1.0:
+        raise InputError(f"weight: expected a number in [0, 1], got {weight!r}")
+    nodes = np.unique(np.concatenate([np.asarray(t["pressure"], float) for t in (a, b)]))
+    nodes = nodes[nodes > 0]
+    la, lb = laws if laws is not None else (None, None)
+    ra, rb = _in_pressure(a, nodes, la), _in_pressure(b, nodes, lb)
+    mixed = {k: _mix(ra[k], rb[k], w) for k in ra}
+    order = np.argsort(-nodes)                               # separation ascending
+    out = {"separation": mixed["separation"][order].tolist(),
+           "pressure": nodes[order].tolist(),
+           "contact_fraction": mixed["contact_fraction"][order].tolist(),
+           "shear_stress": mixed["shear_stress"][order].tolist()}
+    anchors = [_anchor(t) for t in (a, b)]
+    if all(u is not None for u in anchors):
+        u0 = max(anchors)
+        if u0 > out["separation"][-1]:
+            for k, val in (("separation", u0), ("pressure", 0.0), ("contact_fraction", 0.0),
+                           ("shear_stress", 0.0)):
+                out[k].append(val)
+    return out
+
+
+def _mix(a: np.ndarray, b: np.ndarray, w: float) -> np.ndarray:
+    """``a^(1−w) b^w`` where every value of both is > 0, else ``(1 − w) a + w b``."""
+    if np.all(a > 0) and np.all(b > 0):
+        return np.exp((1.0 - w) * np.log(a) + w * np.log(b))
+    return (1.0 - w) * a + w * b
+
+
+def _anchor(table: dict) -> float | None:
+    """The separation [mm] of the table's first zero-pressure row (its zero-load
+    anchor), None without one."""
+    sig = np.asarray(table["pressure"], float)
+    zero = np.flatnonzero(sig <= 0)
+    return float(np.asarray(table["separation"], float)[zero[0]]) if zero.size else None

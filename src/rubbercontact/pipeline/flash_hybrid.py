@@ -1,0 +1,162 @@
+r"""The hybrids' friction with the flash temperature (``hybrid``, ``hybrid-windowed``).
+
+What is computed
+----------------
+Per realization, load and run temperature ``T0``, the hybrid's low-slope half-space solve
+at the contact's own mean temperature, as for ``vhs`` (:mod:`rubbercontact.thermal.contact`,
+searched over the run's speeds by :func:`~rubbercontact.thermal.flash_sweep`): the heat
+``Q = μ p v`` of the hybrid's friction ``μ = μ_ls + μ_hs`` (pointwise or windowed, as the
+model reads the law) and its low-slope pressure ``p`` diffuses into the rubber moving at
+the true speed ``v``; ``T_c`` is its mean rise over the low-slope contact, the points where
+the high-slope law carries load (separation below the law's zero-load anchor, the
+high-slope peak); and the solve is repeated at the reduced speed ``a_T(T0 + T_c) v`` —
+*both* scales: the low-slope solve with the rubber at ``T0 + T_c`` (the reference rubber
+at ``a_T v``) and the high-slope law read at ``a_T(T0 + T_c) v`` — until ``T_c`` is the rise
+its own friction gives.
+
+The law is an FEM table at the run's (reduced) speeds; at ``a_T(T0 + T_c) v``, between
+them, it is interpolated linearly in ``ln v`` at fixed pressure
+(:mod:`rubbercontact.hybrid.lawspeed`). A heated contact is slower than a cold one, so
+the speed read is below the run's: below the law's slowest speed the law is read at its
+slowest one (clamped, not extrapolated) and ``attrs["flash_note"]`` says so, one line
+with the lowest speed reached.
+
+The approximation
+-----------------
+One temperature per contact — its mean over the low-slope contact — for both scales, not
+one per scale: the high-slope asperities inside a low-slope contact patch are hotter than
+the patch's mean by their own flash, which this leaves out (the law is an isothermal FEM
+table; the mean-field flash, :mod:`rubbercontact.meanfield.flash`, resolves the rise per
+magnification). The heat is released at the surface where the low-slope pressure is. It
+holds where the low-slope contact dominates the heating (the high-slope spots' own flash,
+``~ μ σ_hs v √(a/(D v))/K`` over spots of half-width ``a``, small against the patch's);
+the ``meanfield`` model's per-scale rise (``flash_scale_temperature``) beside it shows how
+far the finest spots are above the mean. Between the law's speeds the interpolation
+error adds (:mod:`rubbercontact.hybrid.lawspeed`).
+"""
+
+from __future__ import annotations
+
+from collections.abc import Callable
+from dataclasses import dataclass, replace
+
+import numpy as np
+
+from ..hybrid.lawspeed import LawSpeeds
+from ..materials import GeneralizedMaxwell
+from ..models import registry
+from ..models.planning import RunPoint
+from ..roughness import SineSeries
+from ..thermal.contact import CONTACT_SEPARATION, start_pressure
+from .setup import RunSetup, task_material
+
+#: The hybrids computed with the flash temperature.
+HYBRID_FLASH_MODELS = ("hybrid", "hybrid-windowed")
+
+
+@dataclass
+class LawReads:
+    """Where the hybrids' flash solves read the law outside its tabulated speeds.
+
+    Attributes
+    ----------
+    slowest
+        The law's slowest tabulated speed [mm/s] (None: no law).
+    lowest
+        The lowest speed a solve asked the law for below ``slowest`` [mm/s] (inf: none).
+    clamped
+        Solves that read the law at ``slowest`` instead of their own speed.
+    reads
+        Solves that read the law.
+    """
+
+    slowest: float | None = None
+    lowest: float = np.inf
+    clamped: int = 0
+    reads: int = 0
+
+    def note(self, models: tuple[str, ...]) -> str:
+        """One line on the clamped reads ("" when none)."""
+        if not self.clamped:
+            return ""
+        return (f"{', '.join(models)}: the high-slope law is tabulated from "
+                f"{self.slowest:g} mm/s; {self.clamped} of {self.reads} heated solves asked "
+                f"for it below (down to {self.lowest:.4g} mm/s, a factor "
+                f"{self.slowest / self.lowest:.3g}) and read it at {self.slowest:g} mm/s "
+                f"(clamped, not extrapolated): add slower speeds for the law")
+
+
+def law_speeds(tables: dict | None) -> LawSpeeds | None:
+    """The run's law tables (:attr:`~.lawstage.LawStage.tables`) read at any speed, or
+    None without a law (no high-slope scale: the hybrid is its plain half-space solve)."""
+    return LawSpeeds(tables) if tables else None
+
+
+def hybrid_solver(setup: RunSetup, model: str, realization: int, pressure: float,
+                  laws: LawSpeeds | None, reads: LawReads
+                  ) -> Callable[[float, object], object] | None:
+    """``solve(reduced_speed, start=None)`` of one realization's hybrid low-slope solve at
+    ``pressure`` [MPa], as the run's task solves it (the same surface, grid, rubber,
+    interaction and tolerance, :meth:`~rubbercontact.models.halfspace.Hybrid.run_task`)
+    with the law at ``reduced_speed`` [mm/s] (module docstring); None when the low-slope
+    surface is flat (no half-space solve to heat). Solves at a speed already solved are
+    returned again (a temperature-independent rubber asks for the same speed at every
+    temperature)."""
+    from ..halfspace import solve_sliding
+    from ..hybrid.tasks import halfspace_law
+    from ..hybrid.windowing import windowed_hs_terms
+
+    material = GeneralizedMaxwell(**task_material(setup.material))
+    speed0 = float(setup.speeds.computed[0])
+    table0 = None if laws is None else laws.table(laws.speeds[0])
+    cls = registry.model_class(model)
+    _, kw = cls.run_task(model, RunPoint(setup, material, speed0, np.array([pressure]),
+                                         table0, realization, cls.run_data(model, setup)))
+    surface = SineSeries(kw["surface"]["wavelengths"], kw["surface"]["amplitudes"],
+                         kw["surface"].get("phases"))
+    if surface.size == 0:
+        return None
+    mat = GeneralizedMaxwell(**kw["material"])
+    window = kw.get("hs_window")
+    if laws is not None and reads.slowest is None:
+        reads.slowest = float(laws.speeds[0])
+    solved: dict[float, object] = {}
+
+    def solve(speed: float, start=None):
+        key = float(speed)
+        if key in solved:
+            return solved[key]
+        table = None
+        if laws is not None:
+            read = laws.at(key)
+            table = read.table
+            reads.reads += 1
+            if read.clamped:
+                reads.clamped += 1
+                reads.lowest = min(reads.lowest, key)
+        res = solve_sliding(surface, kw["period"], mat, key, pressure,
+                            law=halfspace_law(kw["law"], table, key), n=kw["n"], nu=kw["nu"],
+                            tol=kw["tol"],
+                            start=None if start is None else start_pressure(start))
+        if table is not None:
+            res = _with_law_terms(res, table, kw["period"], window, pressure,
+                                  windowed_hs_terms)
+        solved[key] = res
+        return res
+
+    return solve
+
+
+def _with_law_terms(res, table: dict, period: float, window: float | None, pressure: float,
+                    windowed: Callable):
+    """``res`` with its contact (where the law carries load) for the heat's mean, and the
+    windowed reading's ``μ_hs`` and area when ``window`` [mm] is given."""
+    sig = np.asarray(table["pressure"], float)
+    zero = np.flatnonzero(sig <= 0)
+    limit = float(np.asarray(table["separation"], float)[zero[0]]) if zero.size else np.inf
+    info = {**res.info, CONTACT_SEPARATION: limit}
+    if window is None:
+        return replace(res, info=info)
+    mu_hs, area = windowed(res.pressure, period, float(window), table, pressure)
+    return replace(res, friction=res.friction_ls + mu_hs, friction_hs=mu_hs,
+                   contact_fraction=area, info=info)
