@@ -2,8 +2,11 @@
 
 On maps the solver starts from coarser grids (every 2nd point per axis), solves the
 contact-set systems with single-precision FFTs refined in double precision, leaves the
-multi-shift preconditioner off and ends a wall + soft law with the mixed Newton.
-``PREVIOUS`` switches all four back: the solver as it was before, the reference here.
+multi-shift preconditioner off, ends a wall + soft law with the mixed Newton,
+preconditions the systems of a soft law by the variable-coefficient stiffness
+``1/(M(q) + c(x))`` and does not solve a Newton step's system further than ``tol`` asks.
+``PREVIOUS`` switches all six back: the solver as it was before, the reference here
+(``ROUND_BEFORE`` only the last two).
 Both stop at the same tolerance (``tol`` on the Newton residual ``|r|/|σ|``, 1e-8 relative
 linear residuals for the hard wall), so two converged answers
 differ by the tolerance times the conditioning of the contact problem; the bounds below are
@@ -20,17 +23,23 @@ from rubbercontact.halfspace import (
     LennardJonesRepulsion,
     SolverOptions,
     TabulatedLaw,
+    contact_set,
     solve_sliding,
 )
 from rubbercontact.halfspace import kernels as kn
 from rubbercontact.halfspace.contact_set import contact_solve
+from rubbercontact.halfspace.laws import InteractionLaw
+from rubbercontact.halfspace.newton import _newton_rtol
 from rubbercontact.halfspace.problem import Problem
 from rubbercontact.materials import GeneralizedMaxwell, sbr
 from rubbercontact.roughness import SineSeries
 from rubbercontact.roughness.mapsynth import self_affine_map
 
 PREVIOUS = SolverOptions(coarse_min_side_2d=None, single_precision_2d=False, multi_shift_2d=True,
-                          wall_soft_mixed_newton_2d=False)
+                          wall_soft_mixed_newton_2d=False, soft_law_preconditioner_2d=False,
+                          newton_forcing_target_2d=False)
+#: the defaults before the soft-law preconditioner and the Newton forcing floor on maps
+ROUND_BEFORE = SolverOptions(soft_law_preconditioner_2d=False, newton_forcing_target_2d=False)
 MAT = sbr()
 #: relative agreement of μ, contact fraction and ū with the previous path
 RTOL = 1e-6
@@ -163,3 +172,78 @@ def test_map_uniform_in_y_on_the_fast_path_is_the_1d_solve(law):
     # (the previous 2D path 1.9e-7), round-off for the laws; bound PTOL as above
     np.testing.assert_allclose(two.pressure, np.tile(one.pressure, (256, 1)), rtol=0,
                                atol=PTOL * one.pressure.max())
+
+
+class _LinearLaw(InteractionLaw):
+    """``σ = a − k u``: a soft law, linear wherever it is evaluated (no clipping)."""
+
+    def __init__(self, a: float, k: float) -> None:
+        self.a, self.k = a, k
+
+    def pressure(self, u):
+        return self.a - self.k * np.asarray(u)
+
+    def stiffness(self, u):
+        return np.full(np.shape(u), self.k)
+
+
+@pytest.fixture
+def soft_preconditioner_calls(monkeypatch):
+    """Counts the contact-set solves that used the soft-law preconditioner."""
+    calls = []
+    original = contact_set._soft_law_shifts
+
+    def counted(*args):
+        out = original(*args)
+        calls.append(out is not None)
+        return out
+
+    monkeypatch.setattr(contact_set, "_soft_law_shifts", counted)
+    return calls
+
+
+@pytest.mark.parametrize("material", ["sbr", "elastic"])
+def test_soft_law_on_an_oblique_sine_is_the_closed_form(material, soft_preconditioner_calls):
+    # σ = a − k u everywhere in contact: σ(q) = k z(q)/(1 + k M(q)) for the one mode, so
+    # μ = Δ² q_x Im G/(2σ0), G = k/(1 + k M), M = 2/(|q| E_r(q_x v)); k → ∞ gives the hard
+    # wall's |q| q_x Δ² Im E_r/(4σ0). 256²: coarse start and single precision both run
+    mat = MAT if material == "sbr" else GeneralizedMaxwell.elastic(10.0)
+    n, length, amp, v, sigma0 = 256, 1.0, 2e-4, 10.0, 0.3
+    mx, my = 3, 2
+    y, x = np.meshgrid(np.arange(n) / n * length, np.arange(n) / n * length, indexing="ij")
+    qx, qy = 2 * np.pi * mx / length, 2 * np.pi * my / length
+    z = amp * np.sin(qx * x + qy * y)
+    m_d = Problem((n, n), (length, length), z.ravel(), np.zeros(z.size),
+                  kn.response_kernel(mat, (n, n), (length, length), v), sigma0,
+                  SolverOptions()).compliance_diagonal
+    k = 0.2 / m_d                                    # c = 1/k = 5 m_d on every row
+    assert k * amp < 0.5 * sigma0                    # σ > 0 everywhere
+    out = solve_sliding(z, length, mat, v, sigma0, law=_LinearLaw(sigma0, k))
+    er = complex(np.asarray(mat.complex_modulus(np.array([qx * v])))[0]) / 0.75
+    g = k / (1.0 + k * 2.0 / (np.hypot(qx, qy) * er))
+    expected = amp**2 * qx * g.imag / (2 * sigma0)
+    # tol (1e-8) bounds |σ − f(u)|/|σ| with σ ≈ σ0, while μ is carried by the fluctuation
+    # k Δ|1/(1 + kM)| (a few % of σ0): measured 3.8e-8 (single precision), 3e-16 (double)
+    assert out.friction == pytest.approx(expected, rel=3e-7, abs=1e-12)
+    assert any(soft_preconditioner_calls)
+    if material == "elastic":
+        assert abs(out.friction) < 1e-12
+
+
+def test_soft_law_preconditioner_keeps_the_answer(rough, soft_preconditioner_calls):
+    # a wall + soft law whose soft rows have c > m_d: the new defaults against the defaults
+    # before (ROUND_BEFORE) and the previous path; measured at 256²: μ, A, ū within 1e-12
+    law = LennardJonesRepulsion() + _cell_like()
+    args = (rough.heights, rough.lengths, MAT, 10.0, 0.3)
+    new = solve_sliding(*args, law=law)
+    assert any(soft_preconditioner_calls)
+    _assert_same(new, solve_sliding(*args, law=law, options=ROUND_BEFORE))
+    _assert_same(new, solve_sliding(*args, law=law, options=PREVIOUS))
+
+
+def test_newton_forcing_floor_is_relative_to_the_tolerance():
+    # maps: a step from res near tol solves its system to 0.01 tol/res, not to tol
+    assert _newton_rtol(1e-8, 3e-8, mixed=True, target=True) == pytest.approx(1e-2 / 3)
+    assert _newton_rtol(1e-8, 3e-8, mixed=True) == pytest.approx(1e-8)
+    assert _newton_rtol(1e-8, 1e-2, mixed=True, target=True) == pytest.approx(3e-3)
+    assert _newton_rtol(1e-8, 1e-4, loose=True, target=True) == pytest.approx(1e-3)

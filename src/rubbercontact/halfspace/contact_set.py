@@ -22,7 +22,10 @@ where ``c > m_d`` (the diagonal of ``M``) the point is preconditioned by ``1/(c 
 at least ``options.multi_shift_min_points`` points have ``c > 10 c̄`` (resolved edges) the kernel
 becomes the variable-coefficient ``1/(M(q) + c(x))``, interpolated in ``log c`` between the
 shifts ``c̄, √(c̄ m_d), m_d`` (one forward and three inverse FFTs per application); the Newton
-iteration counts then stay flat in N. In 1D, a contact set of at most
+iteration counts then stay flat in N. On maps of at least 256² points a soft law (at least
+a tenth of the rows with ``c > m_d``) is preconditioned by that variable-coefficient stiffness
+over all rows, its shifts spanning the set's ``c`` (:func:`_soft_law_shifts`), instead of
+leaving those rows to the diagonal. In 1D, a contact set of at most
 ``options.dense_max_set`` points (or any set on a grid of at most ``options.dense_max_points``
 points) is solved directly: the set's block of the circulant ``M`` is gathered from one column
 and the bordered system factorised (in single precision, refined to double:
@@ -224,6 +227,9 @@ def contact_solve(prob: Problem, idx: np.ndarray, rhs: np.ndarray, total: float,
     m_diag = prob.compliance_diagonal
     op = _restricted_operator(prob, idx, c, buf, single=False)
 
+    soft = _soft_law_shifts(prob, c, np.iscomplexobj(precond))
+    if soft is not None:
+        extra_diag = None   # every row on the variable-coefficient kernel
     if extra_diag is not None and extra_diag.any():
         cont = ~extra_diag
         dinv = 1.0 / (c[extra_diag] + m_diag)
@@ -233,7 +239,9 @@ def contact_solve(prob: Problem, idx: np.ndarray, rhs: np.ndarray, total: float,
         idc = idx
     kernels = [precond]
     weights = None
-    if multi_shift and c is not None:
+    if soft is not None:
+        kernels, weights = soft
+    elif multi_shift and c is not None:
         cc = c if cont is None else c[cont]
         cbar = float(np.median(cc)) if cc.size else m_diag
         if cbar < 0.01 * m_diag and \
@@ -294,6 +302,53 @@ def contact_solve(prob: Problem, idx: np.ndarray, rhs: np.ndarray, total: float,
     x = base + sol.x
     res = _set_residual(prob, idx, rhs, c, x, buf)
     return LinearSolve(x, float(res.mean()), its, sol.residual)
+
+
+#: Maps: the soft-law preconditioner is used when at least this fraction of the set's rows
+#: has a local compliance ``c`` above the diagonal ``m_d`` of ``M`` (a soft law's rows).
+_SOFT_MIN_FRACTION = 0.1
+#: Its shifts span ``c`` from this quantile of the positive ``c`` (at least
+#: ``_SOFT_LOWEST × m_d``) to the largest ``c``.
+_SOFT_LOW_QUANTILE = 0.02
+_SOFT_LOWEST = 1e-3
+_SOFT_SHIFTS = 3
+
+
+def _soft_law_shifts(prob: Problem, c: np.ndarray | None, complex_kernel: bool
+                     ) -> tuple[list[np.ndarray], np.ndarray | None] | None:
+    """Kernels and weights of the soft-law preconditioner on a map, or ``None``.
+
+    A soft law (``c = 1/k`` above ``m_d`` on many rows, e.g. the hybrid's linear law applied
+    to a whole map) leaves those rows to the diagonal ``1/(c + m_d)`` in the default
+    preconditioner, which misses their long-range elastic coupling: at low ``q`` the
+    restricted ``M`` dominates ``c``, at high ``q`` ``c`` does. The variable-coefficient
+    stiffness ``1/(M(q) + c(x))``, interpolated in ``log c`` between ``_SOFT_SHIFTS``
+    kernels spanning the set's ``c`` (rows below the lowest shift, e.g. hard-wall rows with
+    ``c = 0``, on the lowest), treats both: on the 1024² linear-law case of
+    ``benchmarks/maps.md`` 25–30 instead of 45–55 GMRES iterations per active-set step and
+    half the iterations of the final Newton steps, at 1.5× the FFTs per iteration
+    (measured; more shifts saved no iterations, two cost more in the Newton steps).
+    ``options.soft_law_preconditioner_2d``; maps of at least 256² points: the iterations
+    of the default grow with the grid (13–14 per active-set step at 128², 21 at 256², 30 at
+    512², 47 at 1024² on that case), and at 128² the extra FFTs cost more than they save
+    (0.34 against 0.28 s). 1D grids never use it.
+    """
+    opts = prob.options
+    if c is None or len(prob.shape) != 2 or not opts.soft_law_preconditioner_2d \
+            or prob.size < _SINGLE_MIN_POINTS:
+        return None
+    m_diag = prob.compliance_diagonal
+    if np.count_nonzero(c > m_diag) < _SOFT_MIN_FRACTION * c.size:
+        return None
+    positive = c[c > 0]
+    lo = max(float(np.quantile(positive, _SOFT_LOW_QUANTILE)), _SOFT_LOWEST * m_diag)
+    hi = float(c.max())
+    if hi <= 1.01 * lo:   # one local compliance: its kernel alone (no interpolation)
+        return [kn.stiffness_kernel(prob.compliance, hi, hermitian=not complex_kernel)], None
+    shifts = np.geomspace(lo, hi, _SOFT_SHIFTS)
+    kernels = [kn.stiffness_kernel(prob.compliance, float(sh),
+                                   hermitian=not complex_kernel) for sh in shifts]
+    return kernels, _shift_weights(c, shifts)
 
 
 def _restricted_operator(prob: Problem, idx: np.ndarray, c: np.ndarray | None,

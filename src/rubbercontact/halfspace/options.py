@@ -74,6 +74,16 @@ class SolverOptions:
     multi_shift_2d : bool, default False
         Maps: ``multi_shift`` also on maps. Off by default: on the self-affine maps of
         ``benchmarks/maps.md`` it saved no GMRES iterations and doubled their FFTs.
+    soft_law_preconditioner_2d : bool, default True
+        Maps of at least 256² points: contact-set systems of which at least a tenth of the
+        rows carry a local compliance ``c`` above the diagonal of ``M`` (a soft law) are
+        preconditioned by the variable-coefficient stiffness ``1/(M(q) + c(x))`` over all
+        rows (:mod:`~rubbercontact.halfspace.contact_set`); ``False``: ``1/(M + c̄)`` on the
+        rows with ``c`` below the diagonal and the diagonal ``1/(c + m_d)`` on the others.
+    newton_forcing_target_2d : bool, default True
+        Maps: the GMRES tolerance of a Newton step is at least ``0.01 tol/res`` (a step need
+        not solve its linear system further than the tolerance asks); ``False``: at least
+        ``tol`` (:func:`~rubbercontact.halfspace.newton._newton_rtol`).
     single_precision_2d : bool, default True
         Maps of at least 256² points: the GMRES iterations of the contact-set systems apply
         the operator and the
@@ -98,6 +108,8 @@ class SolverOptions:
     wall_soft_mixed_newton_2d: bool = True
     multi_shift_2d: bool = False
     single_precision_2d: bool = True
+    soft_law_preconditioner_2d: bool = True
+    newton_forcing_target_2d: bool = True
 
     def __post_init__(self) -> None:
         for f in fields(self):
