@@ -88,6 +88,24 @@ def test_warm_started_solves_find_the_plain_roots(sweeps):
             assert out.result.friction == ref.result.friction
 
 
+def test_a_sweep_guided_by_another_realization_finds_the_plain_roots(sweeps):
+    """Started at the roots of another realization (the same waves in other phases):
+    the same roots to the tolerance, the cold speeds' isothermal solves bit for bit; a
+    guide over other speeds is refused."""
+    plain, _ = sweeps
+    other = rc.roughness.SineSeries(SINES.wavelengths, SINES.amplitudes, [1.0, 2.0, 3.0])
+    guide = flash_sweep(lambda u: rc.halfspace.solve_sliding(other, None, SBR, u, 0.1,
+                                                             n=2048), SPEEDS, WLF)
+    guided = flash_sweep(_solve(), SPEEDS, WLF, guide=guide)
+    assert not guided.failures
+    for ref, out in zip(plain, guided.flashes, strict=True):
+        assert abs(_rise(out) - _rise(ref)) <= _eps(out) + ref.inputs["tolerance_K"]
+        if _rise(ref) == 0.0:
+            assert out.result.friction == ref.result.friction
+    with pytest.raises(InputError, match="guide"):
+        flash_sweep(_solve(), SPEEDS[:3], WLF, guide=guide)
+
+
 def test_the_fixed_point_map_falls_with_the_temperature_at_the_root(sweeps):
     """The premise of the bound in the module docstring: F' ≤ 0 at the plain root (the
     slope between its two evaluations closest to it)."""

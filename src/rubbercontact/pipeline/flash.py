@@ -45,7 +45,7 @@ from ..materials import GeneralizedMaxwell
 from ..materials.spec import load_thermal
 from ..meanfield import PSD, MeanFieldOptions
 from ..meanfield.flash import FlashOptions, flash_friction_curve
-from ..thermal import FlashSearch, ThermalProperties, flash_sweep
+from ..thermal import FlashSearch, FlashSweep, ThermalProperties, flash_sweep
 from ..thermal.contact import start_pressure
 from .flash_hybrid import HYBRID_FLASH_MODELS, LawReads, hybrid_solver, law_speeds
 from .plan import meanfield_surfaces
@@ -90,6 +90,11 @@ class FlashPlan:
         The mean-field options of the run's ``[meanfield]`` table.
     search
         The half-space models' search of the contact temperature.
+    guided
+        Each realization's search starts at the previous realization's roots (and the
+        first of ``hybrid-windowed`` at ``hybrid``'s): the same roots to the search's
+        tolerance in fewer solves (:func:`~rubbercontact.thermal.flash_sweep`'s
+        ``guide``; ``benchmarks/flash_run.md``); False: each from its own lower speeds.
     """
 
     models: tuple[str, ...]
@@ -98,6 +103,7 @@ class FlashPlan:
     options: FlashOptions
     mean_field: MeanFieldOptions
     search: FlashSearch = FlashSearch(warm_start=True)
+    guided: bool = True
 
     @property
     def note(self) -> str:
@@ -160,6 +166,7 @@ def add_flash(ds: xr.Dataset, setup: RunSetup, plan: FlashPlan | None,
     out["flash_scale_temperature"] = np.full((*shape, nodes.size), np.nan)
     acc = _Tally([plan.note] if plan.note else [])
     laws, reads = law_speeds(tables), LawReads()
+    guides: dict = {}          # (model group, temperature, load): a sweep to start from
     for m in plan.models:
         im = list(ds["model"].values).index(m)
         for it, temp in enumerate(per_t):
@@ -171,7 +178,9 @@ def add_flash(ds: xr.Dataset, setup: RunSetup, plan: FlashPlan | None,
                 solver = (_vhs_solver(setup, float(p)) if m == "vhs" else
                           lambda ir, m=m, p=float(p): hybrid_solver(setup, m, ir, p, laws,
                                                                     reads))
-                _fill_halfspace(out, at, m, setup, float(p), temp, plan, acc, solver)
+                key = ("hybrid" if m in HYBRID_FLASH_MODELS else m, it, ip)
+                guides[key] = _fill_halfspace(out, at, m, setup, float(p), temp, plan, acc,
+                                              solver, guides.get(key) if plan.guided else None)
     hybrids = tuple(m for m in plan.models if m in HYBRID_FLASH_MODELS)
     if reads.note(hybrids):
         acc.notes.append(reads.note(hybrids))
@@ -239,10 +248,14 @@ def _vhs_solver(setup: RunSetup, pressure: float) -> Callable[[int], Callable]:
 
 def _fill_halfspace(out: dict, at: tuple, m: str, setup: RunSetup, pressure: float,
                     temperature: float | None, plan: FlashPlan, acc: _Tally,
-                    solver: Callable[[int], Callable | None]) -> None:
+                    solver: Callable[[int], Callable | None],
+                    guide: FlashSweep | None = None) -> FlashSweep | None:
     """The realizations' mean of one half-space flash μ(v) into ``out[...][at]`` (NaN at
     a speed where a realization failed); ``solver(realization)`` gives the realization's
-    solve of the reduced speed (None: nothing to solve, said in a note)."""
+    solve of the reduced speed (None: nothing to solve, said in a note). Each
+    realization's search starts from the previous realization's roots (``guide`` for the
+    first: e.g. the other hybrid's; :func:`~rubbercontact.thermal.flash_sweep`); returns
+    the last sweep, to guide the next."""
     v = setup.speeds.velocities
     order = np.argsort(v)
     rows = np.full((len(setup.realizations), 4, v.size), np.nan)
@@ -253,7 +266,8 @@ def _fill_halfspace(out: dict, at: tuple, m: str, setup: RunSetup, pressure: flo
                                                  f"half-space contact to heat")
             continue
         sweep = flash_sweep(solve, v, setup.material.shift, plan.thermal, temperature,
-                            plan.search)
+                            plan.search, guide=guide)
+        guide = sweep if plan.guided else None
         acc.solves += sweep.solves
         for speed, message in sweep.failures.items():
             acc.failed(m, pressure, temperature, f"r={ir}, {speed:g} mm/s: {message}")
@@ -268,6 +282,7 @@ def _fill_halfspace(out: dict, at: tuple, m: str, setup: RunSetup, pressure: flo
     for i, key in enumerate(("friction_flash", "contact_fraction_flash",
                              "flash_temperature", "flash_heat_flux")):
         out[key][at] = mean[i]
+    return guide
 
 
 def _curve(psd: PSD, setup: RunSetup, velocities: np.ndarray, pressure: float,
