@@ -16,6 +16,7 @@ PARTS = [("halfspace.md", "Half-space (BEM) solver"),
          ("meanfield.md", "Mean-field model"),
          ("strips.md", "Mean-field strip cascade, against a baseline"),
          ("flash.md", "Mean-field flash temperature"),
+         ("flash_run.md", "Flash temperature in a run, against the isothermal run"),
          ("maps.md", "Areal maps: the 2D models")]
 
 

@@ -105,6 +105,20 @@ def test_hybrids_of_an_infinitely_conducting_rubber_are_their_isothermal_run(tmp
     assert "not yet" not in ds.attrs["flash_note"]
 
 
+def test_with_temperatures_the_hybrids_read_the_law_at_their_reduced_speeds(tmp_path):
+    """At each run temperature T the flash reads the law at a_T(T + T_c) v: with no rise,
+    at the run's own reduced speed, the table the run's task read; so each temperature
+    is its isothermal hybrid (to the rounding of a_T v computed twice)."""
+    mat = {"preset": "sbr", "reference_temperature": 20.0, "shift": WLF,
+           "thermal": {"conductivity": INFINITE_K}}
+    ds = _run(_config(tmp_path, speeds=(1.0, 1e3), material=mat, temperatures=[0.0, 40.0]))
+    assert ds["friction_flash"].dims == ("model", "temperature", "velocity", "pressure")
+    for m in HYBRIDS:
+        np.testing.assert_allclose(ds["friction_flash"].sel(model=m),
+                                   ds["friction_mean"].sel(model=m), rtol=1e-12)
+    assert ds.attrs["flash_note"] == ""
+
+
 def test_hybrids_of_a_temperature_independent_rubber_heat_but_keep_their_friction(tmp_path):
     """WLF with C1 = 1e-300: a_T = 1 exactly, so every solve is at the run's own speed,
     with the run's own law table, whatever the rise; the rise is the heat's (growing with
