@@ -88,11 +88,16 @@ def _run(cfg: dict) -> xr.Dataset:
     return rc.pipeline.run(cfg, law=_linear_law(cfg), progress=False)
 
 
-def test_hybrids_of_an_infinitely_conducting_rubber_are_their_isothermal_run(tmp_path):
-    """No rise: every speed's search ends at its isothermal solve, the run's own task's
-    solve with the run's own law table, bit for bit."""
+@pytest.mark.parametrize("conductivity, searched", [(INFINITE_K, False), (1e5, True)])
+def test_hybrids_of_an_infinitely_conducting_rubber_are_their_isothermal_run(
+        tmp_path, conductivity, searched):
+    """No rise. At 1e12 W/(m·K) no speed is searched (the heat's bound is below the
+    tolerance: the run's own answer is taken); at 1e5 W/(m·K) (a rise below the search's
+    tolerance, a bound above it) the fastest speed is searched, and its search ends at
+    its isothermal solve, the run's own task's solve with the run's own law table, bit for
+    bit."""
     mat = {"preset": "sbr", "reference_temperature": 20.0, "shift": WLF,
-           "thermal": {"conductivity": INFINITE_K}}
+           "thermal": {"conductivity": conductivity}}
     ds = _run(_config(tmp_path, material=mat))
     for m in HYBRIDS:
         np.testing.assert_array_equal(ds["friction_flash"].sel(model=m),
@@ -100,7 +105,7 @@ def test_hybrids_of_an_infinitely_conducting_rubber_are_their_isothermal_run(tmp
         np.testing.assert_array_equal(ds["contact_fraction_flash"].sel(model=m),
                                       ds["contact_fraction_mean"].sel(model=m))
     assert np.all(ds["flash_temperature"].values == 0.0)
-    assert ds.attrs["flash_halfspace_solves"] == 2 * 3
+    assert (ds.attrs["flash_halfspace_solves"] > 0) == searched
     assert json.loads(ds.attrs["flash_models"]) == list(HYBRIDS)
     assert "not yet" not in ds.attrs["flash_note"]
 

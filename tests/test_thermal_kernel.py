@@ -238,3 +238,23 @@ def test_the_field_solves_the_heat_equation_with_the_given_flux(shape):
     np.testing.assert_allclose(-K * dtdz, flux - flux.mean(), atol=1e-6 * np.abs(flux).max())
     np.testing.assert_allclose(s[0], surface_temperature(flux, lens, v, TH), rtol=1e-14,
                                atol=1e-14 * np.abs(s[0]).max())
+
+
+def test_the_rise_bound_holds_for_any_non_negative_flux_at_any_speed():
+    """rise_bound: |T| ≤ <Q>(L/πK)(ln(N/2) + 1) for Q ≥ 0 on N ≤ points (every mode's
+    admittance |λ| ≥ |k|, |Q̂_k| ≤ <Q>); tight within a factor of a few for a comb of
+    narrow spikes, whose modes all have |Q̂_k| = <Q>, at rest."""
+    from rubbercontact.thermal import FILLED_SBR, surface_temperature
+    from rubbercontact.thermal.kernel import rise_bound
+
+    rng = np.random.default_rng(3)
+    n, length = 1024, 2.0
+    for flux in (rng.random(n) ** 8, (rng.random(n) > 0.97).astype(float),
+                 np.eye(1, n).ravel()):
+        bound = rise_bound(flux.mean(), length, FILLED_SBR, points=n)
+        for v in (0.0, 1e-2, 1.0, 1e2, 1e4):
+            peak = np.abs(surface_temperature(flux, length, v, FILLED_SBR)).max()
+            assert peak <= bound
+    spike = np.eye(1, n).ravel()
+    at_rest = np.abs(surface_temperature(spike, length, 0.0, FILLED_SBR)).max()
+    assert at_rest > rise_bound(spike.mean(), length, FILLED_SBR, points=n) / 3

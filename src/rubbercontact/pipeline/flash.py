@@ -47,6 +47,7 @@ from ..meanfield import PSD, MeanFieldOptions
 from ..meanfield.flash import FlashOptions, flash_friction_curve
 from ..thermal import FlashSearch, FlashSweep, ThermalProperties, flash_sweep
 from ..thermal.contact import start_pressure
+from ..thermal.kernel import rise_bound
 from .flash_hybrid import HYBRID_FLASH_MODELS, LawReads, hybrid_solver, law_speeds
 from .plan import meanfield_surfaces
 from .setup import RunSetup, task_material
@@ -179,8 +180,10 @@ def add_flash(ds: xr.Dataset, setup: RunSetup, plan: FlashPlan | None,
                           lambda ir, m=m, p=float(p): hybrid_solver(setup, m, ir, p, laws,
                                                                     reads))
                 key = ("hybrid" if m in HYBRID_FLASH_MODELS else m, it, ip)
+                iso = _isothermal(ds, m, it if temps is not None else None, ip)
                 guides[key] = _fill_halfspace(out, at, m, setup, float(p), temp, plan, acc,
-                                              solver, guides.get(key) if plan.guided else None)
+                                              solver, guides.get(key) if plan.guided else None,
+                                              iso)
     hybrids = tuple(m for m in plan.models if m in HYBRID_FLASH_MODELS)
     if reads.note(hybrids):
         acc.notes.append(reads.note(hybrids))
@@ -246,26 +249,63 @@ def _vhs_solver(setup: RunSetup, pressure: float) -> Callable[[int], Callable]:
     return solver
 
 
+def _isothermal(ds: xr.Dataset, model: str, it: int | None, ip: int) -> np.ndarray:
+    """The run's isothermal friction and contact fraction of ``model`` at one temperature
+    (index ``it``, None without temperatures) and load (index ``ip``), shape
+    ``(2, velocity, realization)``."""
+    def at(name: str) -> np.ndarray:
+        da = ds[name].sel(model=model).isel(pressure=ip)
+        if it is not None:
+            da = da.isel(temperature=it)
+        return da.transpose("velocity", "realization").values
+
+    return np.stack([at("friction"), at("contact_fraction")])
+
+
 def _fill_halfspace(out: dict, at: tuple, m: str, setup: RunSetup, pressure: float,
                     temperature: float | None, plan: FlashPlan, acc: _Tally,
                     solver: Callable[[int], Callable | None],
-                    guide: FlashSweep | None = None) -> FlashSweep | None:
+                    guide: FlashSweep | None = None,
+                    isothermal: np.ndarray | None = None) -> FlashSweep | None:
     """The realizations' mean of one half-space flash μ(v) into ``out[...][at]`` (NaN at
     a speed where a realization failed); ``solver(realization)`` gives the realization's
     solve of the reduced speed (None: nothing to solve, said in a note). Each
     realization's search starts from the previous realization's roots (``guide`` for the
     first: e.g. the other hybrid's; :func:`~rubbercontact.thermal.flash_sweep`); returns
-    the last sweep, to guide the next."""
+    the last sweep, to guide the next.
+
+    A speed where the heat of the run's own isothermal friction (``isothermal``, of
+    :func:`_isothermal`) cannot raise the surface by the search's tolerance anywhere, in
+    any realization (:func:`~rubbercontact.thermal.rise_bound`), is not searched: its
+    search would end at its first solve, the isothermal one, with no rise, and that is
+    the run's own task's solve; so it is taken from the run (μ, contact fraction; heat
+    ``μ σ0 v``; the bound counts as its residual)."""
     v = setup.speeds.velocities
-    order = np.argsort(v)
+    cold = np.zeros(v.size, bool)
+    if isothermal is not None:
+        bound = np.array([max(rise_bound(abs(mu) * pressure * speed, setup.period,
+                                         plan.thermal) for mu in row)
+                          for speed, row in zip(v, isothermal[0], strict=True)])
+        cold = bound <= plan.search.tolerance            # NaN (a failed task): searched
+        if cold.any():
+            acc.residual = max(acc.residual, float(bound[cold].max()))
+    hot = np.flatnonzero(~cold)
+    order = hot[np.argsort(v[hot])]
+    if guide is not None and not np.array_equal(guide.velocities, np.sort(v[hot])):
+        guide = None
     rows = np.full((len(setup.realizations), 4, v.size), np.nan)
     for ir in range(len(setup.realizations)):
-        solve = solver(ir)
+        if cold.any():
+            mu = isothermal[0][cold, ir]
+            rows[ir, :, cold] = np.stack([mu, isothermal[1][cold, ir], np.zeros(mu.size),
+                                          mu * pressure * v[cold]], axis=-1)
+        solve = solver(ir) if hot.size else None
         if solve is None:
-            acc.failed(m, pressure, temperature, f"r={ir}: flat low-slope surface, no "
-                                                 f"half-space contact to heat")
+            if hot.size:
+                acc.failed(m, pressure, temperature, f"r={ir}: flat low-slope surface, no "
+                                                     f"half-space contact to heat")
             continue
-        sweep = flash_sweep(solve, v, setup.material.shift, plan.thermal, temperature,
+        sweep = flash_sweep(solve, v[hot], setup.material.shift, plan.thermal, temperature,
                             plan.search, guide=guide)
         guide = sweep if plan.guided else None
         acc.solves += sweep.solves

@@ -28,7 +28,7 @@ from ..halfspace.kernels import forward, inverse, wavevectors
 from .properties import ThermalProperties
 
 __all__ = ["thermal_admittance", "temperature_kernel", "surface_temperature",
-           "subsurface_temperature"]
+           "subsurface_temperature", "rise_bound"]
 
 
 def thermal_admittance(k, k_x, velocity: float, diffusivity: float) -> np.ndarray:
@@ -108,3 +108,21 @@ def surface_temperature(flux, lengths, velocity: float,
     """
     q, lens, v, thermal = _inputs(flux, lengths, velocity, thermal)
     return inverse(temperature_kernel(q.shape, lens, v, thermal) * forward(q), q.shape)
+
+
+def rise_bound(mean_flux: float, period: float, thermal: ThermalProperties | None = None,
+               points: int = 2**24) -> float:
+    """Upper bound [K] on the surface temperature rise, anywhere and at any speed, of a
+    non-negative heat flux of mean ``mean_flux`` [mW/mm²] on a 1D periodic grid of
+    ``period`` [mm] and at most ``points`` points.
+
+    Each mode is ``Q̂_k/(K λ_k)`` with ``|λ_k| ≥ |k|`` (:func:`thermal_admittance`) and,
+    for ``Q ≥ 0``, ``|Q̂_k| ≤ <Q>``; so ``|T| ≤ Σ_{k≠0} <Q>/(K|k|) = <Q> (L/πK) H_{N/2}
+    ≤ <Q> (L/πK)(ln(N/2) + 1)`` (``H`` the harmonic number). A flash search whose bound is
+    below its tolerance has its answer without a solve: no rise, the isothermal contact.
+    """
+    thermal = thermal or ThermalProperties()
+    q = abs(float(mean_flux))
+    length = positive_scalar("period", period, unit="mm")
+    harmonic = np.log(max(int(points), 2) / 2.0) + 1.0
+    return q * length / (np.pi * thermal.conductivity_package) * harmonic
