@@ -419,9 +419,21 @@ def main(argv=None) -> int:
     md = to_markdown(elastic, visco, args.target, info, wall_soft)
     print(md)
     if args.output:
-        with open(args.output, "w") as fh:
-            fh.write(md)
+        write_keeping_notes(args.output, md)
     return 0
+
+
+#: Everything after this line of the output file is written by hand and kept.
+NOTES_MARKER = "<!-- written by hand below: kept when the tables above are regenerated -->"
+
+
+def write_keeping_notes(path: str, md: str) -> None:
+    """Write the generated tables to ``path``, keeping the hand-written part after
+    :data:`NOTES_MARKER` (the before/after tables, observations and moved facts)."""
+    old = open(path).read() if os.path.exists(path) else ""
+    notes = old[old.index(NOTES_MARKER):] if NOTES_MARKER in old else NOTES_MARKER + "\n"
+    with open(path, "w") as fh:
+        fh.write(md + "\n" + notes)
 
 
 if __name__ == "__main__":
