@@ -12,7 +12,8 @@ time on one core; the machine's load is printed with the figures. ``--speeds``: 
 speeds (1e-4 … 1e3 mm/s) on the 512² map, each model in turn, with the total wall time
 (issue 42's target: ≤ 10 min for the three models on the 2-core machine). ``--bem``: the 2D
 half-space solver against its previous path (``PREVIOUS`` options, bitwise the code before
-the 2D speed-ups) in one run, interleaved: viscoelastic solves with tabulated laws on 1024²,
+the 2D speed-ups) and against the defaults before the soft-law preconditioner
+(``ROUND_BEFORE``) in one run, interleaved: viscoelastic solves with tabulated laws on 1024²,
 the hard wall and the Lennard-Jones wall on 512², and the elastic hard wall on 512² against
 Tamaas at equal accuracy (√10 tolerance ladders, then medians of 7 interleaved solves); it
 replaces that section of ``--output`` and leaves the rest of the file.
@@ -42,14 +43,15 @@ from rubbercontact.roughness.mapsynth import self_affine_map
 SIDE, HURST, GRADIENT, VELOCITY, PRESSURE = 2.0, 0.8, 0.5, 10.0, 0.3
 
 
-def timed(fn, repeat: int) -> tuple[float, object]:
-    """Median wall time [s] of ``repeat`` calls and the last result."""
+def timed(fn, repeat: int) -> tuple[tuple[float, float], object]:
+    """Median wall and CPU time [s] of ``repeat`` calls, and the last result."""
     times, out = [], None
     for _ in range(repeat):
-        t0 = time.perf_counter()
+        t0, c0 = time.perf_counter(), time.process_time()
         out = fn()
-        times.append(time.perf_counter() - t0)
-    return float(np.median(times)), out
+        times.append((time.perf_counter() - t0, time.process_time() - c0))
+    return (float(np.median([t[0] for t in times])),
+            float(np.median([t[1] for t in times]))), out
 
 
 def bench(n: int, repeat: int) -> dict:
@@ -81,21 +83,19 @@ def _steepest(hm) -> float:
 
 
 def speed_curve(n: int = 512, speeds: int = 15) -> tuple[str, dict]:
-    """μ(v) on the ``n²`` map by each model; a Markdown table and the wall time per model."""
+    """μ(v) on the ``n²`` map by each model; a Markdown table and the (wall, CPU) time [s]
+    per model."""
     mat = sbr()
     hm = self_affine_map((n, n), SIDE, HURST, rms_gradient=GRADIENT, seed=1)
     v = np.geomspace(1e-4, 1e3, speeds)
-    t0 = time.perf_counter()
-    split = split_map(hm, 0.9 * _steepest(hm), cell_points=32)
-    vhs = [solve_map(hm, mat, vi, PRESSURE).friction for vi in v]
-    t_vhs = time.perf_counter() - t0
-    t0 = time.perf_counter()
-    hyb = [solve_map_hybrid(split, linear_law_map(split.cell, mat, vi, points=40), mat, vi,
-                            PRESSURE).friction for vi in v]
-    t_hyb = time.perf_counter() - t0
-    t0 = time.perf_counter()
-    mf = meanfield.friction_curve(map_psd(hm), mat, v, PRESSURE).friction
-    t_mf = time.perf_counter() - t0
+    t_vhs, (split, vhs) = timed(lambda: (split_map(hm, 0.9 * _steepest(hm), cell_points=32),
+                                         [solve_map(hm, mat, vi, PRESSURE).friction
+                                          for vi in v]), 1)
+    t_hyb, hyb = timed(lambda: [solve_map_hybrid(
+        split, linear_law_map(split.cell, mat, vi, points=40), mat, vi, PRESSURE).friction
+        for vi in v], 1)
+    t_mf, mf = timed(lambda: meanfield.friction_curve(map_psd(hm), mat, v,
+                                                      PRESSURE).friction, 1)
     lines = ["| v [mm/s] | VHS μ | hybrid μ | mean-field μ |", "|---|---|---|---|"]
     lines += [f"| {a:.3g} | {b:.3f} | {c:.3f} | {d:.3f} |" for a, b, c, d in zip(v, vhs, hyb, mf,
                                                                                 strict=True)]
@@ -103,13 +103,14 @@ def speed_curve(n: int = 512, speeds: int = 15) -> tuple[str, dict]:
 
 
 def table(rows: list[dict]) -> str:
+    """Wall time with the CPU time in brackets, per model and grid size."""
+    keys = ("vhs_hard", "vhs_lj", "lj_table", "split", "law", "hybrid", "meanfield")
     head = ("| grid | VHS hard wall | VHS LJ | LJ + table | split | law of the cell (40 "
             "loads) | hybrid (low-slope solve) | mean-field |")
     lines = [head, "|" + "---|" * 8]
     for r in rows:
-        lines.append(f"| {r['n']}² | {r['vhs_hard']:.3g} s | {r['vhs_lj']:.3g} s | "
-                     f"{r['lj_table']:.3g} s | {r['split']:.3g} s | {r['law']:.3g} s | "
-                     f"{r['hybrid']:.3g} s | {r['meanfield']:.3g} s |")
+        cells = " | ".join(f"{r[k][0]:.3g} s ({r[k][1]:.3g})" for k in keys)
+        lines.append(f"| {r['n']}² | {cells} |")
     return "\n".join(lines)
 
 
@@ -118,8 +119,15 @@ def table(rows: list[dict]) -> str:
 #: GMRES, the multi-shift preconditioner on maps, the plain Newton at the end of a wall +
 #: soft law): bitwise the results of the code before commit 9a375d4.
 PREVIOUS = SolverOptions(coarse_min_side_2d=None, single_precision_2d=False, multi_shift_2d=True,
-                          wall_soft_mixed_newton_2d=False)
+                          wall_soft_mixed_newton_2d=False, soft_law_preconditioner_2d=False,
+                          newton_forcing_target_2d=False)
+#: The defaults of commit 1891782 (19:01 UTC): without the soft-law preconditioner and the
+#: Newton forcing floor ``0.01 tol/res`` on maps (bitwise its results).
+ROUND_BEFORE = SolverOptions(soft_law_preconditioner_2d=False, newton_forcing_target_2d=False)
+#: The three solvers of ``--bem``, interleaved in one run.
+BEM_VARIANTS = {"previous": PREVIOUS, "before": ROUND_BEFORE, "current": None}
 BEM_HEADING = "## 2D BEM: the previous solver against the current one"
+SPEEDS_HEADING = "## μ(v) at 15 speeds on the 512² map"
 
 
 def _solve_timed(fn) -> tuple[float, float, object]:
@@ -162,21 +170,25 @@ def bem_viscoelastic(repeat: int, quick: bool) -> list[dict]:
         for name, law in cases:
             reps = 1 if (n == big and law is cell_law and not quick) else repeat
             got = _interleaved({o: (lambda o=o, law=law, hm=hm: solve_map(
-                hm, mat, VELOCITY, PRESSURE, law=law, options=None if o == "new" else PREVIOUS))
-                for o in ("old", "new")}, reps)
+                hm, mat, VELOCITY, PRESSURE, law=law, options=BEM_VARIANTS[o]))
+                for o in BEM_VARIANTS}, reps)
             rows.append(_bem_row(n, name, reps, got))
             print(rows[-1], flush=True)
     return rows
 
 
 def _bem_row(n: int, name: str, reps: int, got: dict) -> dict:
-    (ow, oc, old), (nw, nc, new) = got["old"], got["new"]
-    dp = float(np.linalg.norm(new.pressure - old.pressure) / np.linalg.norm(old.pressure))
-    return {"n": n, "case": name, "repeat": reps, "old_wall": ow, "old_cpu": oc,
-            "new_wall": nw, "new_cpu": nc, "old_fft": old.matvecs, "new_fft": new.matvecs,
-            "mu": new.friction, "dmu": _rel(new.friction, old.friction),
-            "darea": _rel(new.contact_fraction, old.contact_fraction),
-            "dubar": _rel(new.mean_separation, old.mean_separation), "dp": dp}
+    """One table row: times, FFT pairs and answers of each variant, differences to current."""
+    new = got["current"][2]
+    row = {"n": n, "case": name, "repeat": reps, "mu": new.friction}
+    for key, (wall, cpu, out) in got.items():
+        row[key] = {"wall": wall, "cpu": cpu, "fft": out.matvecs,
+                    "dmu": _rel(new.friction, out.friction),
+                    "darea": _rel(new.contact_fraction, out.contact_fraction),
+                    "dubar": _rel(new.mean_separation, out.mean_separation),
+                    "dp": float(np.linalg.norm(new.pressure - out.pressure)
+                                / np.linalg.norm(out.pressure))}
+    return row
 
 
 def bem_elastic(n: int, repeat: int = 7, target: float = 1e-6) -> dict:
@@ -226,22 +238,29 @@ def _commit() -> str:
 
 def bem_markdown(visco: list[dict], elastic: dict | None, info: str) -> str:
     lines = [BEM_HEADING, "", info, "",
-             "Viscoelastic (SBR, 10 mm/s, 0.3 MPa, the map of the table above): `previous` "
-             "the solver before the 2D speed-ups (`PREVIOUS` options: bitwise its results), "
-             "`current` the defaults; old and new interleaved, medians of `runs`; wall and "
-             "CPU time of the process (the machine is shared: CPU time is the steadier "
-             "figure); FFT pairs of any precision on all grids; Δ relative differences "
-             "current − previous (σ: L2 over the map).", "",
-             "| grid | law | runs | previous wall [s] | previous CPU [s] | current wall [s] | "
-             "current CPU [s] | CPU speed-up | FFT pairs (prev → cur) | μ | Δμ | ΔA | Δū | Δσ |",
-             "|---|---|---|---|---|---|---|---|---|---|---|---|---|---|"]
+             "Viscoelastic (SBR, 10 mm/s, 0.3 MPa, the map of the table above), three solvers "
+             "interleaved in one process, medians of `runs`: `previous` the solver before the "
+             "2D speed-ups (`PREVIOUS` options: bitwise its results), `before` the defaults "
+             "of commit 1891782 (`ROUND_BEFORE`: without the soft-law preconditioner and the "
+             "Newton forcing floor), `current` the defaults. CPU time of the process (the "
+             "machine is shared: the steadier figure), wall time in brackets; FFT pairs of "
+             "any precision on all grids (a multi-shift preconditioner application counts "
+             "as its number of shifts); Δ the largest relative difference of μ, A, ū "
+             "between current and either other, Δσ the largest relative L2 difference of "
+             "the pressure maps.", "",
+             "| grid | law | runs | previous CPU [s] | before CPU [s] | current CPU [s] | "
+             "speed-up prev/cur | speed-up before/cur | FFT pairs (prev, before, cur) | μ | "
+             "Δ(μ, A, ū) | Δσ |",
+             "|---|---|---|---|---|---|---|---|---|---|---|---|"]
     for r in visco:
+        p, b, c = r["previous"], r["before"], r["current"]
+        dscal = max(max(x["dmu"], x["darea"], x["dubar"]) for x in (p, b))
         lines.append(
-            f"| {r['n']}² | {r['case']} | {r['repeat']} | {r['old_wall']:.2f} | "
-            f"{r['old_cpu']:.2f} | {r['new_wall']:.2f} | {r['new_cpu']:.2f} | "
-            f"{r['old_cpu'] / r['new_cpu']:.1f}× | {r['old_fft']} → {r['new_fft']} | "
-            f"{r['mu']:.5f} | {r['dmu']:.1e} | {r['darea']:.1e} | {r['dubar']:.1e} | "
-            f"{r['dp']:.1e} |")
+            f"| {r['n']}² | {r['case']} | {r['repeat']} | {p['cpu']:.2f} ({p['wall']:.1f}) | "
+            f"{b['cpu']:.2f} ({b['wall']:.1f}) | {c['cpu']:.2f} ({c['wall']:.1f}) | "
+            f"{p['cpu'] / c['cpu']:.1f}× | {b['cpu'] / c['cpu']:.2f}× | "
+            f"{p['fft']}, {b['fft']}, {c['fft']} | {r['mu']:.5f} | {dscal:.1e} | "
+            f"{max(p['dp'], b['dp']):.1e} |")
     if elastic:
         e = elastic
         lines += ["", f"Elastic hard wall, {e['n']}² self-affine map (H = 0.8) at "
@@ -301,7 +320,8 @@ def main(argv: list[str] | None = None) -> int:
     ap.add_argument("--quick", action="store_true", help="128² and 256² only, one run each")
     ap.add_argument("--repeat", type=int, default=3)
     ap.add_argument("--speeds", action="store_true", help="add mu(v) at 15 speeds on 512²")
-    ap.add_argument("--output", default=None, help="write the Markdown table here")
+    ap.add_argument("--output", default=None,
+                    help="write the tables into this Markdown file (its other sections kept)")
     ap.add_argument("--bem", action="store_true",
                     help="only the 2D BEM section: previous solver against the current one")
     args = ap.parse_args(argv)
@@ -309,29 +329,52 @@ def main(argv: list[str] | None = None) -> int:
         return run_bem(args)
     sizes = (128, 256) if args.quick else (128, 256, 512)
     repeat = 1 if args.quick else args.repeat
-    rows = [bench(n, repeat) for n in sizes]
     load = os.getloadavg()[0] if hasattr(os, "getloadavg") else float("nan")
     stamp = datetime.datetime.now(datetime.UTC).strftime("%Y-%m-%d %H:%M")
+    rows = [bench(n, repeat) for n in sizes]
     text = "\n\n".join([
         "# Height maps: cost of each model by grid size",
-        f"Generated by `benchmarks/bench_maps.py` ({stamp} UTC, "
-        f"{platform.processor() or platform.machine()}, load {load:.1f}, "
+        f"Generated by `benchmarks/bench_maps.py` ({stamp} UTC, commit {_commit()}, "
+        f"{platform.processor() or platform.machine()}, {os.cpu_count()} cores shared with "
+        f"other jobs, load {load:.1f} at the start, "
         f"OMP_NUM_THREADS={os.environ.get('OMP_NUM_THREADS', 'unset')}). Self-affine map "
         f"H = {HURST}, rms gradient {GRADIENT}, side {SIDE} mm; SBR, {VELOCITY:g} mm/s, "
-        f"{PRESSURE} MPa; medians of {repeat} runs; the law's cell 32², 40 loads.",
+        f"{PRESSURE} MPa; medians of {repeat} runs, wall time with the process's CPU time in "
+        "brackets (the machine is shared: CPU time is the steadier figure); the law's cell "
+        "32², 40 loads.",
         table(rows)])
     if args.speeds:
         curve, t = speed_curve()
-        text += ("\n\n## μ(v) at 15 speeds on the 512² map\n\n"
-                 f"Wall time: VHS {t['vhs']:.0f} s, hybrid (the cell's law at every speed and "
-                 f"the low-slope solve) {t['hybrid']:.0f} s, mean-field {t['meanfield']:.2g} s; "
-                 f"total {sum(t.values()) / 60:.1f} min.\n\n" + curve)
+        end = datetime.datetime.now(datetime.UTC).strftime("%H:%M")
+        wall = sum(x[0] for x in t.values())
+        cpu = sum(x[1] for x in t.values())
+        text += (f"\n\n{SPEEDS_HEADING}\n\n"
+                 f"Run by `bench_maps.py --speeds` after the table above (ended {end} UTC), "
+                 "one process on one core; the split's threshold 0.9 × the steepest octave's "
+                 "rms slope along x, the cell one period (32²), 40 loads per law. Wall time "
+                 f"(CPU): VHS {t['vhs'][0]:.0f} s ({t['vhs'][1]:.0f}), hybrid (the cell's law "
+                 f"at every speed and the low-slope solve) {t['hybrid'][0]:.0f} s "
+                 f"({t['hybrid'][1]:.0f}), mean-field {t['meanfield'][0]:.2g} s; total "
+                 f"{wall / 60:.1f} min ({cpu / 60:.1f} min CPU).\n\n" + curve)
     text += "\n"
     print(text)
     if args.output:
-        with open(args.output, "w") as fh:
-            fh.write(text)
+        _write_tables(args.output, text, args.speeds)
     return 0
+
+
+def _write_tables(path: str, text: str, speeds: bool) -> None:
+    """Write the grid-size table (and the μ(v) section with ``--speeds``) into ``path``,
+    keeping its other sections (the ``--bem`` section and the notes by hand)."""
+    old = Path(path).read_text() if Path(path).exists() else ""
+    keep = old.find("\n## ")
+    rest = old[keep + 1:] if keep >= 0 else ""
+    if speeds and SPEEDS_HEADING in rest:
+        # the new μ(v) section replaces the old one
+        head, tail = rest.split(SPEEDS_HEADING, 1)
+        nxt = tail.find("\n## ")
+        rest = head + (tail[nxt + 1:] if nxt >= 0 else "")
+    Path(path).write_text(text + ("\n" + rest if rest else ""))
 
 
 if __name__ == "__main__":
