@@ -121,7 +121,7 @@ def wall_soft_active_set(prob: Problem, soft: InteractionLaw, tol: float, max_it
         rhs = np.where(on_a, -u[idx], c * (f[idx] - sigma[idx])) - w_free[idx]
         contact = c < m_diag
         lin = contact_solve(prob, idx, rhs, total, shifted_preconditioner(prob, c, contact),
-                            c=c, rtol=prob.options.wall_soft_linear_rtol, extra_diag=~contact)
+                            c=c, rtol=_linear_rtol(prob), extra_diag=~contact)
         lin_its += lin.iterations
         dsig[idx] = lin.x
         dw = prob.displacement(dsig)
@@ -152,6 +152,13 @@ def wall_soft_active_set(prob: Problem, soft: InteractionLaw, tol: float, max_it
         f, k = f_t, k_t       # the law at the accepted u, for the next step
     return Solution(sigma, u, w, ubar, max_iter, res, False,
                     {"linear_iterations": lin_its, "history": history, "active": active})
+
+
+def _linear_rtol(prob: Problem) -> float:
+    """GMRES tolerance of a hard wall + soft law step: ``options.wall_soft_linear_rtol``, on
+    maps ``options.wall_soft_linear_rtol_2d``."""
+    opts = prob.options
+    return opts.wall_soft_linear_rtol_2d if len(prob.shape) == 2 else opts.wall_soft_linear_rtol
 
 
 def _with_soft_start(act: Solution, soft_newton_iterations: int, linear_iterations: int,
