@@ -1,0 +1,113 @@
+"""Benchmark: the shipped examples from an empty cache, beside what ``--check`` estimated.
+
+Issue 39 ("runs say what they cost"): for each example, ``rubbercontact run EXAMPLE
+--check`` prints its plan and an estimate ("cost: about … on N worker(s)", per-point costs
+measured on one core, stated to a factor of 2); the example is then run for real with the
+same workers and a new, empty result cache (``--cache``), and the wall time and the CPU
+time of the run and its workers (``RUSAGE_CHILDREN``: the processes it waited for) are
+written beside the estimate::
+
+    .venv/bin/python benchmarks/bench_examples.py asphalt dma_compound --workers 2 \\
+        --output benchmarks/examples.md
+
+``examples/section3.toml`` (about 70 core-hours of full FEM, docs/scaling.md) is not run
+unless named.
+"""
+
+from __future__ import annotations
+
+import argparse
+import os
+import platform
+import re
+import resource
+import subprocess
+import sys
+import tempfile
+import time
+from dataclasses import dataclass
+from pathlib import Path
+
+ROOT = Path(__file__).resolve().parents[1]
+CLI = [sys.executable, "-m", "rubbercontact.cli"]
+DEFAULT = ("captif_road", "asphalt", "dma_compound", "speed_sweep")
+
+
+@dataclass(frozen=True)
+class Timing:
+    """One example: the estimate ``--check`` printed and the run's measured cost."""
+
+    example: str
+    estimate: str       # as printed, e.g. "about 5 min on 2 worker(s)"
+    wall: float         # [s]
+    cpu: float          # [s], the run and the worker processes it waited for
+    warnings: int       # lines of the run's output that say "warning"
+
+
+def estimate(example: Path, workers: int) -> str:
+    """The ``cost: about …`` line of ``--check``."""
+    out = subprocess.run(CLI + ["run", str(example), "--check", "--workers", str(workers)],
+                         cwd=ROOT, capture_output=True, text=True, check=True).stdout
+    found = re.search(r"cost: (about [^(]+)", out)
+    return found[1].strip() if found else "(no estimate printed)"
+
+
+def run(example: Path, workers: int) -> Timing:
+    """Run ``example`` from an empty cache into a temporary directory."""
+    guess = estimate(example, workers)
+    with tempfile.TemporaryDirectory() as tmp:
+        cpu0 = resource.getrusage(resource.RUSAGE_CHILDREN)
+        t0 = time.perf_counter()
+        proc = subprocess.run(CLI + ["run", str(example), "--workers", str(workers),
+                                     "--output", str(Path(tmp) / "out"), "--cache",
+                                     str(Path(tmp) / "cache"), "--quiet"],
+                              cwd=ROOT, capture_output=True, text=True)
+        wall = time.perf_counter() - t0
+        cpu1 = resource.getrusage(resource.RUSAGE_CHILDREN)
+    if proc.returncode != 0:
+        raise SystemExit(f"{example.name}: run failed ({proc.returncode}): "
+                         f"{proc.stderr.strip().splitlines()[-1:]}")
+    cpu = (cpu1.ru_utime - cpu0.ru_utime) + (cpu1.ru_stime - cpu0.ru_stime)
+    said = sum("warning" in line.lower() for line in (proc.stdout + proc.stderr).splitlines())
+    return Timing(example.stem, guess, wall, cpu, said)
+
+
+def _minutes(seconds: float) -> str:
+    return f"{seconds / 60:.1f} min"
+
+
+def main() -> None:
+    ap = argparse.ArgumentParser(description=__doc__.splitlines()[0])
+    ap.add_argument("examples", nargs="*", default=list(DEFAULT),
+                    help="example names (files in examples/, without .toml)")
+    ap.add_argument("--workers", type=int, default=2)
+    ap.add_argument("--output", type=Path)
+    args = ap.parse_args()
+    commit = subprocess.run(["git", "rev-parse", "--short", "HEAD"], cwd=ROOT,
+                            capture_output=True, text=True, check=True).stdout.strip()
+    load0, start = os.getloadavg()[0], time.strftime("%Y-%m-%d %H:%M UTC", time.gmtime())
+    rows = []
+    for name in args.examples:
+        t = run(ROOT / "examples" / f"{name}.toml", args.workers)
+        print(f"{t.example}: estimate {t.estimate}; wall {t.wall:.0f} s, CPU {t.cpu:.0f} s",
+              flush=True)
+        rows.append(f"| `{t.example}` | {t.estimate} | {_minutes(t.wall)} | "
+                    f"{_minutes(t.cpu)} | {t.warnings} |")
+    text = "\n".join([
+        "# The examples from an empty cache against their estimate "
+        "(`benchmarks/bench_examples.py`)", "",
+        f"{start}, commit {commit}, {platform.processor() or platform.machine()}, "
+        f"{os.cpu_count()} cores, `--workers {args.workers}`; load average {load0:.1f} at the "
+        f"start, {os.getloadavg()[0]:.1f} at the end (other jobs share the machine when it is "
+        "above the workers: wall times are then high, CPU times less so). The estimate is "
+        "`rubbercontact run EXAMPLE --check` (to a factor of 2); CPU is the run's and its "
+        "workers'.", "",
+        "| example | `--check` estimate | wall | CPU | warning lines |",
+        "|---|---|---:|---:|---:|", *rows, ""])
+    print(text)
+    if args.output:
+        args.output.write_text(text)
+
+
+if __name__ == "__main__":
+    main()
