@@ -57,6 +57,12 @@ CONTACTS = {"penalty": {"contact": "penalty"}, "barrier": {"contact": "barrier"}
 #: mesh the surface sets (``mesh = "auto"``), penalty contact rescued by the barrier — and
 #: no transient fallback, so the table shows how often the fallback would still run.
 DEFAULTS = {"mesh": "auto"}
+#: Part ``settle``: steady = settled transient at the issue's two steep points, on the
+#: defaults' mesh; the transient slides SETTLE_TIMES of the SBR's longest retardation time
+#: from the steady solution's surface offset.
+SETTLE_POINTS = (("stations 0+1", 3.0, 10.0), ("stations 0+1", 10.0, 1.0))
+SETTLE_TIMES = 6
+SETTLED = ("friction", "contact_fraction", "mean_separation")
 
 
 def cells() -> dict[str, rc.roughness.SineSeries]:
@@ -79,7 +85,8 @@ def run_point(cell: str, surface, p: float, v: float, fallback: bool = True,
     """One point; with ``fallback=False`` a steady failure is recorded as ``steady failed``
     (the library would then run the transient test, minutes per point on these cells).
     ``options`` change the FEM options (default: the grid's mesh)."""
-    options = {"mesh": MESH, **options}
+    if "options" not in options:       # a FemOptions given whole keeps its own mesh
+        options = {"mesh": MESH, **options}
     t0 = time.process_time()
     with warnings.catch_warnings(record=True) as caught:
         warnings.simplefilter("always")
@@ -97,6 +104,7 @@ def run_point(cell: str, surface, p: float, v: float, fallback: bool = True,
     return {"cell": cell, "pressure": p, "velocity": v, "solver": s.solver,
             "status": s.status, "cpu_s": time.process_time() - t0, "impaled": s.impaled,
             "friction": res.friction, "contact_fraction": res.contact_fraction,
+            "mean_separation": res.mean_separation, "surface_offset": s.surface_offset,
             "bulk_shear": s.bulk_shear, "newton": s.newton_iterations,
             "continuation_steps": s.continuation_steps, "tried": "; ".join(s.tried),
             "warnings": sorted({str(w.message)[:120] for w in caught})}
@@ -138,6 +146,7 @@ def report(rows: list[dict], surfaces: dict) -> str:
     lines += ["", *contact_report([r for r in rows if r.get("part") == "contact"])]
     lines += ["", *defaults_report([r for r in rows if r.get("part") == "defaults"],
                                    surfaces)]
+    lines += ["", *settle_report([r for r in rows if r.get("part") == "settle"])]
     return "\n".join(lines) + "\n"
 
 
@@ -236,6 +245,67 @@ def run_defaults(path: Path, surfaces: dict, only: str | None, done: set) -> Non
                                       "mesh": f"{mesh[0]} x {mesh[1]} (auto)"})
 
 
+def run_settle(path: Path, surfaces: dict, done: set) -> None:
+    """Part ``settle`` (resumable): the steady solve with the defaults, then — where it is
+    steady and not impaled — the transient test on the same mesh from its offset."""
+    from rubbercontact.fem.options import FemOptions
+
+    mat = rc.materials.sbr()
+    for name, p, v in SETTLE_POINTS:
+        if (name, p, v) in done:
+            continue
+        opts = FemOptions(**DEFAULTS).resolved(surfaces[name])
+        row = {**run_point(name, surfaces[name], p, v, False, options=opts), "part": "settle",
+               "mesh": f"{opts.mesh[0]} x {opts.mesh[1]} (auto)"}
+        if row["solver"] == "steady" and not row["impaled"]:
+            row.update(_settled(surfaces[name], mat, p, v, opts, row["surface_offset"]))
+        append_row(path, row)
+
+
+def _settled(surface, mat, p: float, v: float, opts, offset: float) -> dict:
+    """The transient's last-period means and their drift over the last period."""
+    t0 = time.process_time()
+    with warnings.catch_warnings():
+        warnings.simplefilter("ignore", RuntimeWarning)
+        tr = rc.fem.sliding_test(surface, mat, p, v, options=opts, solver="transient",
+                                 min_sliding_time=SETTLE_TIMES * float(
+                                     mat.retardation_times().max()),
+                                 periods=500, steady_tol=1e-12, surface_offset=offset)
+    n, h = opts.mesh[0], tr.history
+    slide = h["phase"] == 2
+    out = {"transient_cpu_s": time.process_time() - t0, "transient_periods": tr.stats.periods}
+    for key in SETTLED:
+        series = h[key][slide]
+        last, before = series[-n:].mean(), series[-2 * n:-n].mean()
+        out[f"transient_{key}"] = float(last)
+        out[f"drift_{key}"] = float(max(abs(last - before), np.ptp(series[-n:])) / abs(last))
+    return out
+
+
+def settle_report(rows: list[dict]) -> list[str]:
+    """Part ``settle``: the steady answer beside the settled transient's."""
+    if not rows:
+        return []
+    lines = [render("steep_cells", "settle"), "",
+             "| cell, mesh | p̄ [MPa] | v [mm/s] | steady μ / A / u [mm] | transient μ / A / u "
+             "| rel. difference | transient drift | CPU steady / transient |",
+             "|---|---|---|---|---|---|---|---|"]
+    for r in rows:
+        head = f"| {r['cell']}, {r['mesh']} | {r['pressure']:g} | {r['velocity']:g} | "
+        if "transient_friction" not in r:
+            lines.append(head + f"{_default_outcome(r)} (no transient: not a steady, "
+                                f"unimpaled solution) | – | – | – | {r['cpu_s']:.0f} s / – |")
+            continue
+        st = " / ".join(f"{r[k]:.5g}" for k in SETTLED)
+        tr = " / ".join(f"{r['transient_' + k]:.5g}" for k in SETTLED)
+        diff = " / ".join(f"{abs(r[k] - r['transient_' + k]) / abs(r['transient_' + k]):.1e}"
+                          for k in SETTLED)
+        drift = " / ".join(f"{r['drift_' + k]:.1e}" for k in SETTLED)
+        lines.append(head + f"{st} | {tr} | {diff} | {drift} | {r['cpu_s']:.0f} s / "
+                            f"{r['transient_cpu_s']:.0f} s ({r['transient_periods']} periods) |")
+    return lines + [""]
+
+
 def main(argv: list[str] | None = None) -> int:
     ap = argparse.ArgumentParser(description=DESCRIPTION)
     ap.add_argument("--rows", type=Path, default=ROWS)
@@ -243,9 +313,10 @@ def main(argv: list[str] | None = None) -> int:
     ap.add_argument("--report-only", action="store_true")
     ap.add_argument("--no-fallback", dest="fallback", action="store_false",
                     help="record a steady failure without running the transient fallback")
-    ap.add_argument("--part", choices=("grid", "contact", "defaults"), default="grid",
+    ap.add_argument("--part", choices=("grid", "contact", "defaults", "settle"), default="grid",
                     help="the law grid (default), penalty against barrier at hard points, or "
-                         "the law grid with the library's defaults (auto mesh, rescue)")
+                         "the law grid with the library's defaults (auto mesh, rescue), or "
+                         "steady = settled transient at two steep points")
     ap.add_argument("--cell", choices=("stations 0+1", "station 1"), default=None,
                     help="part defaults: one cell only")
     args = ap.parse_args(argv)
@@ -260,6 +331,9 @@ def main(argv: list[str] | None = None) -> int:
         run_defaults(args.rows, surfaces, args.cell, {
             (r["cell"], r["pressure"], r["velocity"]) for r in rows
             if r.get("part") == "defaults"})
+    elif args.part == "settle" and not args.report_only:
+        run_settle(args.rows, surfaces, {(r["cell"], r["pressure"], r["velocity"])
+                                         for r in rows if r.get("part") == "settle"})
     elif not args.report_only:
         for name, surf in surfaces.items():
             for v in VELOCITIES:
