@@ -42,6 +42,7 @@ class Timing:
     wall: float         # [s]
     cpu: float          # [s], the run and the worker processes it waited for
     warnings: int       # lines of the run's output that say "warning"
+    said: tuple[str, ...] = ()   # the first few of them
 
 
 def estimate(example: Path, workers: int) -> str:
@@ -68,8 +69,9 @@ def run(example: Path, workers: int) -> Timing:
         raise SystemExit(f"{example.name}: run failed ({proc.returncode}): "
                          f"{proc.stderr.strip().splitlines()[-1:]}")
     cpu = (cpu1.ru_utime - cpu0.ru_utime) + (cpu1.ru_stime - cpu0.ru_stime)
-    said = sum("warning" in line.lower() for line in (proc.stdout + proc.stderr).splitlines())
-    return Timing(example.stem, guess, wall, cpu, said)
+    lines = [ln.strip() for ln in (proc.stdout + proc.stderr).splitlines()
+             if "warning" in ln.lower()]
+    return Timing(example.stem, guess, wall, cpu, len(lines), tuple(dict.fromkeys(lines))[:4])
 
 
 def _minutes(seconds: float) -> str:
@@ -86,13 +88,14 @@ def main() -> None:
     commit = subprocess.run(["git", "rev-parse", "--short", "HEAD"], cwd=ROOT,
                             capture_output=True, text=True, check=True).stdout.strip()
     load0, start = os.getloadavg()[0], time.strftime("%Y-%m-%d %H:%M UTC", time.gmtime())
-    rows = []
+    rows, said = [], []
     for name in args.examples:
         t = run(ROOT / "examples" / f"{name}.toml", args.workers)
         print(f"{t.example}: estimate {t.estimate}; wall {t.wall:.0f} s, CPU {t.cpu:.0f} s",
               flush=True)
         rows.append(f"| `{t.example}` | {t.estimate} | {_minutes(t.wall)} | "
                     f"{_minutes(t.cpu)} | {t.warnings} |")
+        said += [f"- `{t.example}`: {line[:200]}" for line in t.said]
     text = "\n".join([
         "# The examples from an empty cache against their estimate "
         "(`benchmarks/bench_examples.py`)", "",
@@ -103,7 +106,9 @@ def main() -> None:
         "`rubbercontact run EXAMPLE --check` (to a factor of 2); CPU is the run's and its "
         "workers'.", "",
         "| example | `--check` estimate | wall | CPU | warning lines |",
-        "|---|---|---:|---:|---:|", *rows, ""])
+        "|---|---|---:|---:|---:|", *rows, "",
+        *(["Warning lines (first few per example, 200 characters):", "", *said, ""]
+          if said else [])])
     print(text)
     if args.output:
         args.output.write_text(text)
