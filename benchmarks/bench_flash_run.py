@@ -41,7 +41,7 @@ import xarray as xr
 import rubbercontact as rc
 import rubbercontact.pipeline.execute as execute
 import rubbercontact.pipeline.lawstage as lawstage
-from rubbercontact.hybrid.lawtable import max_height
+from rubbercontact.hybrid.linearlaw import linear_law_table
 from rubbercontact.materials import GeneralizedMaxwell
 from rubbercontact.pipeline.setup import resolve, task_material
 
@@ -68,31 +68,11 @@ def config(cache: Path, flash: bool) -> dict:
 
 
 def linear_law(cfg: dict) -> xr.Dataset:
-    """The VHS law of the run's high-slope waves at its speeds, as a law table (the points
-    in (near) full contact excluded)."""
+    """The VHS law of the run's high-slope waves at its computed speeds, as a law table
+    (the points in (near) full contact excluded)."""
     setup = resolve(rc.config.parse_config(cfg))
-    hs0 = setup.hs0
     mat = GeneralizedMaxwell(**task_material(setup.material))
-    v = np.asarray(setup.speeds.computed, float)
-    names = ("mean_separation", "contact_fraction", "shear_stress", "friction", "wall_time")
-    data = {k: np.zeros((v.size, LAW_PRESSURES.size)) for k in names}
-    full = np.zeros((v.size, LAW_PRESSURES.size), bool)
-    for i, vi in enumerate(v):
-        for j, p in enumerate(LAW_PRESSURES):
-            r = rc.halfspace.solve_sliding(hs0, hs0.period, mat, float(vi), float(p), n=1024)
-            full[i, j] = r.contact_fraction >= 0.99
-            for k, x in zip(names, (r.mean_separation, r.contact_fraction, r.friction * p,
-                                    r.friction, 0.0), strict=True):
-                data[k][i, j] = x
-    law = xr.Dataset({k: (("velocity", "pressure"), a) for k, a in data.items()},
-                     coords={"velocity": v, "pressure": LAW_PRESSURES})
-    law["status"] = (("velocity", "pressure"), np.where(full, "excluded: full contact", "ok"))
-    law.attrs.update({"hs_wavelengths_mm": hs0.wavelengths.tolist(),
-                      "hs_amplitudes_mm": hs0.amplitudes.tolist(),
-                      "hs_phases_rad": hs0.phases.tolist(),
-                      "hs_max_height_mm": float(max_height(hs0)),
-                      "material": json.dumps(mat.as_dict())})
-    return law
+    return linear_law_table(setup.hs0, mat, setup.speeds.computed, LAW_PRESSURES, n=1024)
 
 
 PLAN_FLASH = execute.plan_flash

@@ -696,3 +696,19 @@ def test_a_file_without_a_law_is_rejected_with_what_it_lacks(tmp_path):
     xr.Dataset({"mean_separation": ("x", [1.0])}).to_netcdf(tmp_path / "other.nc")
     with pytest.raises(InputError, match="not a law table"):
         read_law(tmp_path / "other.nc")
+
+
+def test_the_linear_law_as_a_table_is_the_linear_law_at_its_pressures():
+    # linear_law_table (a run's law.nc layout) and linear_law (the table dict the hybrid
+    # reads) are two readings of the same VHS solves: at linear_law's own pressures below
+    # full contact they agree to round-off, and the zero-load anchor is the wave's height.
+    from rubbercontact.hybrid.linearlaw import linear_law, linear_law_table
+
+    hs, mat = rc.roughness.high_slope_wave(), rc.materials.sbr()
+    ref = linear_law(hs, mat, 10.0, n=256, points=12)
+    p = np.asarray(ref["pressure"][:-1])[:4]            # the anchor (p = 0) last
+    law = linear_law_table(hs, mat, [10.0], p, n=256).isel(velocity=0)
+    np.testing.assert_allclose(law["mean_separation"], ref["separation"][:4], rtol=1e-12)
+    np.testing.assert_allclose(law["shear_stress"], ref["shear_stress"][:4], rtol=1e-12)
+    assert np.all(law["status"] == "ok")
+    assert law.attrs["hs_max_height_mm"] == ref["separation"][-1]

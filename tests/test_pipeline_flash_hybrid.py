@@ -20,7 +20,8 @@ import xarray as xr
 
 import rubbercontact as rc
 from rubbercontact.hybrid.lawspeed import LawSpeeds, blend_tables
-from rubbercontact.hybrid.lawtable import max_height, tabulated_law_from_dict
+from rubbercontact.hybrid.lawtable import tabulated_law_from_dict
+from rubbercontact.hybrid.linearlaw import linear_law_table
 from rubbercontact.materials import GeneralizedMaxwell
 from rubbercontact.pipeline.setup import resolve, task_material
 
@@ -49,33 +50,12 @@ def _config(tmp_path, speeds=(1.0, 100.0, 1e4), material=None, **over) -> dict:
 
 
 def _linear_law(cfg: dict) -> xr.Dataset:
-    """The VHS law of the run's high-slope wave at its computed speeds, as a law table
-    (the points in (near) full contact excluded, as the linear law leaves them out)."""
+    """The VHS law of the run's high-slope waves at its computed speeds, as a law table
+    (the points in (near) full contact excluded)."""
     setup = resolve(rc.config.parse_config(cfg))
-    hs0 = setup.hs0
     mat = GeneralizedMaxwell(**task_material(setup.material))
-    v = np.asarray(setup.speeds.computed, float)
-    p = np.geomspace(0.01, 100.0, 9)
-    names = ("mean_separation", "contact_fraction", "shear_stress", "friction", "wall_time")
-    data = {k: np.zeros((v.size, p.size)) for k in names}
-    full = np.zeros((v.size, p.size), bool)
-    for i, vi in enumerate(v):
-        for j, pj in enumerate(p):
-            r = rc.halfspace.solve_sliding(hs0, hs0.period, mat, float(vi), float(pj), n=128)
-            full[i, j] = r.contact_fraction >= 0.99
-            for k, x in zip(names, (r.mean_separation, r.contact_fraction, r.friction * pj,
-                                    r.friction, 0.0), strict=True):
-                data[k][i, j] = x
-    law = xr.Dataset({k: (("velocity", "pressure"), a) for k, a in data.items()},
-                     coords={"velocity": v, "pressure": p})
-    law["status"] = (("velocity", "pressure"),
-                     np.where(full, "excluded: full contact", "ok"))
-    law.attrs.update({"hs_wavelengths_mm": hs0.wavelengths.tolist(),
-                      "hs_amplitudes_mm": hs0.amplitudes.tolist(),
-                      "hs_phases_rad": hs0.phases.tolist(),
-                      "hs_max_height_mm": float(max_height(hs0)),
-                      "material": json.dumps(mat.as_dict())})
-    return law
+    return linear_law_table(setup.hs0, mat, setup.speeds.computed,
+                            np.geomspace(0.01, 100.0, 9), n=128)
 
 
 @pytest.fixture(autouse=True)

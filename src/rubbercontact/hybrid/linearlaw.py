@@ -109,3 +109,39 @@ def continue_with_linear_shape(table: dict, hs_surface: SineSeries,
     ext = np.array(rows[::-1]).reshape(-1, 4)   # ascending in u
     return {"separation": [*ext[:, 0], *u], "pressure": [*ext[:, 1], *sig],
             "contact_fraction": [*ext[:, 2], *alpha], "shear_stress": [*ext[:, 3], *tau]}
+
+
+def linear_law_table(hs_surface: SineSeries, material: GeneralizedMaxwell,
+                     velocities, pressures, *, n: int = 1024, nu: float = 0.5):
+    """The VHS law as a run's law table (``xarray.Dataset`` on ``velocity × pressure``, as
+    a run's ``law.nc``), e.g. for ``pipeline.run(cfg, law=...)`` without the FEM.
+
+    Points in (near) full contact (``A >= 0.99``) have the status ``"excluded: full
+    contact"``, where the mean separation stops changing with the pressure.
+    """
+    import json
+
+    import xarray as xr
+
+    from .. import halfspace
+
+    v, p = np.asarray(velocities, float), np.asarray(pressures, float)
+    names = ("mean_separation", "contact_fraction", "shear_stress", "friction", "wall_time")
+    data = {k: np.zeros((v.size, p.size)) for k in names}
+    for i, vi in enumerate(v):
+        for j, pj in enumerate(p):
+            r = halfspace.solve_sliding(hs_surface, hs_surface.period, material, float(vi),
+                                        float(pj), n=n, nu=nu)
+            for k, x in zip(names, (r.mean_separation, r.contact_fraction, r.friction * pj,
+                                    r.friction, 0.0), strict=True):
+                data[k][i, j] = x
+    law = xr.Dataset({k: (("velocity", "pressure"), a) for k, a in data.items()},
+                     coords={"velocity": v, "pressure": p})
+    law["status"] = (("velocity", "pressure"),
+                     np.where(data["contact_fraction"] >= 0.99, "excluded: full contact", "ok"))
+    law.attrs.update({"hs_wavelengths_mm": hs_surface.wavelengths.tolist(),
+                      "hs_amplitudes_mm": hs_surface.amplitudes.tolist(),
+                      "hs_phases_rad": hs_surface.phases.tolist(),
+                      "hs_max_height_mm": float(max_height(hs_surface)),
+                      "material": json.dumps(material.as_dict())})
+    return law
