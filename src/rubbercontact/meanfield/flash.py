@@ -61,6 +61,15 @@ to every node (the background heating of Fortunato et al., J. Phys.: Condens. Ma
 175008, 2015, in its simplest form). The limits are exact: an infinitely conducting rubber, or one
 whose modulus does not depend on temperature, gives the isothermal theory.
 
+One scale, in closed form (tests/test_meanfield_flash_laws.py): a single node and a
+power-law rubber ``E ∝ (iω)^n``, whose shift multiplies the modulus by the real ``a_T^n``;
+the theory depends on ``σ0/E`` only, so ``ΔT = (1/A − 1) Γ μ σ0 v`` with μ, A the
+isothermal theory's at the load ``σ0 a_T(T0 + ΔT)^{−n}``: a scalar equation. At small
+loads (``A ∝ σ0/|E|``, μ fixed by the loss angle), an exponential shift ``log10 a_T =
+−sΔT`` and high speed (``Γ → (2/K)√(RD/πv)``), the rise without feedback is ``ΔT0 = Γ μ
+σ0 v/A ∝ v^{1/2+n}`` and with it ``ΔT = ΔT0 e^{−kΔT}``, ``k = n s ln 10``: ``ΔT =
+W(kΔT0)/k`` (Lambert's W), growing only as ``ln(v)/k`` once ``kΔT0 ≫ 1``.
+
 Solution
 --------
 A fixed point on the node temperatures ``T_i``, ``T = T0 + ΔT(T)``, by Anderson mixing
