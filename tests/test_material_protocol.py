@@ -5,7 +5,12 @@ through the half-space solver and the mean-field theory: in full contact of a si
 give the closed form ``μ = q²Δ² Im E_r(qv)/(4σ0)``; with exponent 1 it *is* the standard
 linear solid, i.e. a one-branch :class:`GeneralizedMaxwell`, whose answers it must reproduce in
 partial contact. A stiff wall law of a new class (a 12th-power wall) declaring
-``kind = "wall"`` must be solved by the wall + soft algorithm.
+``kind = "wall"`` must be solved by the wall + soft algorithm. A law need not be an
+``InteractionLaw`` at all: classes of their own with only ``kind``, ``pressure`` and
+``stiffness`` give the closed form of a linear spring layer on a sine and, for an
+exponential, the answers of the built-in table of it; the mean-field theory reads a
+high-slope law in pressure of its own class (``at``, ``compliance_at``, ``max_pressure``)
+at a nearly uniform pressure as its closed form.
 """
 
 from __future__ import annotations
@@ -22,6 +27,7 @@ from rubbercontact.errors import InputError
 from rubbercontact.halfspace import (
     InteractionLaw,
     LennardJonesRepulsion,
+    SumLaw,
     TabulatedLaw,
     solve_sliding,
 )
@@ -188,3 +194,145 @@ def test_a_law_of_unknown_kind_is_refused():
 
     with pytest.raises(InputError, match="declares kind 'adhesive'"):
         split_law(Sticky(1e-6, 1.0) + _soft())
+
+
+# --- laws: the protocol, not the class -----------------------------------------------------------
+class LinearSpring:
+    """``σ = k (u0 − u)`` for ``u < u0``, else 0: a soft law of its own class, not an
+    :class:`InteractionLaw`, with only the members of the ``Law`` protocol."""
+
+    kind = "soft"
+
+    def __init__(self, k: float, u0: float) -> None:
+        self.k, self.u0 = k, u0
+
+    def pressure(self, u):
+        return self.k * np.maximum(self.u0 - np.asarray(u, dtype=float), 0.0)
+
+    def stiffness(self, u):
+        return np.where(np.asarray(u, dtype=float) < self.u0, self.k, 0.0)
+
+
+class Exponential:
+    """``σ = p0 exp(−u/ℓ)``: the protocol's members only, as :class:`LinearSpring`."""
+
+    kind = "soft"
+
+    def __init__(self, p0: float, ell: float) -> None:
+        self.p0, self.ell = p0, ell
+
+    def pressure(self, u):
+        return self.p0 * np.exp(-np.asarray(u, dtype=float) / self.ell)
+
+    def stiffness(self, u):
+        return self.pressure(u) / self.ell
+
+
+@pytest.mark.parametrize("velocity", [1e-2, 10.0, 1e4])
+def test_a_law_of_its_own_class_gives_the_closed_form_of_a_spring_layer(velocity):
+    # full contact of a sine on the half-space through a linear spring layer: the layer (k)
+    # and the half-space (M = E_r q/2 per unit height of the mode) act in series, so the
+    # pressure mode is Δ kM/(k+M) and μ = qΔ Im[kM/(k+M)]/(2σ0); ū = u0 − σ0/k
+    lam, delta = 0.125, 0.002
+    q = 2 * np.pi / lam
+    m = _er(COLE, q * velocity) * q / 2
+    k = abs(m)                                   # the layer as stiff as the half-space
+    p_mode = delta * k * m / (k + m)
+    sigma0 = 1.5 * abs(p_mode)                   # σ > 0 everywhere: the law stays linear
+    law = LinearSpring(k, 0.01)
+    assert not isinstance(law, InteractionLaw)
+    res = solve_sliding(SineSeries([lam], [delta]), None, COLE, velocity, sigma0, n=256,
+                        law=law)
+    assert res.contact_fraction == 1.0
+    # a linear law on one Fourier mode: Newton is exact in a step, so round-off only
+    # (measured 3e-15)
+    assert res.friction == pytest.approx(q * delta * p_mode.imag / (2 * sigma0), rel=1e-10)
+    assert res.mean_separation == pytest.approx(0.01 - sigma0 / k, rel=1e-10)
+    assert res.info["law"] == {"law": "LinearSpring"}
+
+
+def test_a_law_of_its_own_class_equals_the_built_in_table_of_it():
+    # the log-PCHIP of TabulatedLaw is exact for an exponential, continued below and above
+    # the table with the same exponential: the two laws agree to round-off, and so do the
+    # solves, alone (Newton) and behind a wall (wall + soft): measured 1.5e-12 at most
+    ell, p0 = 0.002, 2.0
+    u = np.linspace(0.0, 0.04, 41)
+    table = TabulatedLaw(u, p0 * np.exp(-u / ell))
+    own = Exponential(p0, ell)
+    np.testing.assert_allclose(table.pressure(u[:-1] + 3e-4), own.pressure(u[:-1] + 3e-4),
+                               rtol=1e-12)
+    surf = rc.roughness.section3(phases=[0.3, 1.2, 2.5]).partition(1.0)[1]
+    sbr = rc.materials.sbr()
+    for mine, theirs in ((own, table), (LennardJonesRepulsion() + own,
+                                        LennardJonesRepulsion() + table)):
+        a = solve_sliding(surf, None, sbr, 10.0, 1.0, n=1024, law=mine)
+        b = solve_sliding(surf, None, sbr, 10.0, 1.0, n=1024, law=theirs)
+        assert a.method == b.method
+        assert b.friction > 0.01                 # a dissipative, non-trivial solve
+        # (an exponential is "in contact" everywhere: the contact fraction says nothing)
+        assert a.info.get("wall_soft_method") == b.info.get("wall_soft_method")
+        assert a.friction == pytest.approx(b.friction, rel=1e-10)
+        assert a.mean_separation == pytest.approx(b.mean_separation, rel=1e-10)
+        np.testing.assert_allclose(a.pressure, b.pressure, rtol=0,
+                                   atol=1e-10 * b.pressure.max())
+    # the wall routes the protocol law as the soft part, in either order of the sum
+    parts = split_law(own + LennardJonesRepulsion())
+    assert parts.stiff is not None and parts.soft.kind == "soft"
+
+
+def test_an_object_that_is_not_a_law_is_refused_in_one_line():
+    class NoStiffness:
+        kind = "soft"
+
+        def pressure(self, u):
+            return np.zeros_like(u)
+
+    with pytest.raises(InputError, match="missing stiffness") as err:
+        solve_sliding(SineSeries([1.0], [0.01]), None, COLE, 1.0, 0.1, law=NoStiffness())
+    assert "\n" not in str(err.value)
+    bad_kind = Exponential(1.0, 1e-3)
+    bad_kind.kind = "sticky"
+    with pytest.raises(InputError, match="declares kind 'sticky'"):
+        solve_sliding(SineSeries([1.0], [0.01]), None, COLE, 1.0, 0.1, law=bad_kind)
+    with pytest.raises(InputError, match="missing kind"):
+        SumLaw(LennardJonesRepulsion(), type("K", (), {"pressure": 0, "stiffness": 0})())
+
+
+class ClosedFormPressureLaw:
+    """A high-slope law in pressure of its own class (not a ``PressureLaw``):
+    ``α = σ/(1+σ)``, ``Δτ = 0.3σ²``, a layer of constant compliance."""
+
+    max_pressure = 10.0
+
+    def __init__(self, compliance: float) -> None:
+        self.compliance = compliance
+
+    def at(self, sigma):
+        s = np.asarray(sigma, dtype=float)
+        return s / (1 + s), 0.3 * s**2
+
+    def compliance_at(self, sigma):
+        return np.full(np.shape(sigma), self.compliance)
+
+
+@pytest.mark.parametrize("interface", ["rigid", "law"])
+def test_a_pressure_law_of_its_own_class_is_read_at_the_nearly_uniform_pressure(interface):
+    # a low-slope scale of negligible slope: P(σ) → δ(σ − σ0), so μ_hs → Δτ(σ0)/σ0 = 0.3σ0
+    # and A → α(σ0); G ~ 1e-8 leaves a relative spread of 1e-4 in σ, which the law's
+    # curvature turns into ~1e-8 at most (measured 1.4e-12)
+    ls = mf.PSD.from_sines(SineSeries([8.0], [1e-6]))
+    sigma0 = 1.3
+    opts = mf.MeanFieldOptions(interface=interface)
+    res = mf.solve(ls, rc.materials.sbr(), 10.0, sigma0, law=ClosedFormPressureLaw(0.05),
+                   options=opts)
+    assert res.friction_hs == pytest.approx(0.3 * sigma0, rel=1e-7)
+    assert res.contact_fraction == pytest.approx(sigma0 / (1 + sigma0), rel=1e-7)
+    if interface == "law":
+        # a layer without compliance (NaN: a theory law's) is refused, in one line
+        with pytest.raises(InputError, match="needs the law's separations"):
+            mf.solve(ls, rc.materials.sbr(), 10.0, sigma0, law=ClosedFormPressureLaw(np.nan),
+                     options=opts)
+    with pytest.raises(InputError, match="missing at") as err:
+        mf.solve(ls, rc.materials.sbr(), 10.0, sigma0, law=object(), options=opts)
+    assert "\n" not in str(err.value)
+

@@ -5,9 +5,9 @@
 :mod:`.newton` and :mod:`.walls`, their common linear solve in :mod:`.contact_set`.
 """
 
-from .laws import InteractionLaw, LennardJonesRepulsion, SumLaw, TabulatedLaw
+from .laws import InteractionLaw, Law, LennardJonesRepulsion, SumLaw, TabulatedLaw, check_law
 from .options import SolverOptions
 from .solver import SlidingResult, solve_sliding
 
-__all__ = ["InteractionLaw", "LennardJonesRepulsion", "SlidingResult", "SolverOptions", "SumLaw",
-           "TabulatedLaw", "solve_sliding"]
+__all__ = ["InteractionLaw", "Law", "LennardJonesRepulsion", "SlidingResult", "SolverOptions",
+           "SumLaw", "TabulatedLaw", "check_law", "solve_sliding"]

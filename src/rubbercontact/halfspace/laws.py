@@ -12,12 +12,17 @@ Every law declares its :attr:`~InteractionLaw.kind`: ``"wall"`` for a stiff stan
 wall (the half-space solver then treats it as the wall of the wall + soft algorithm,
 :mod:`.walls`), ``"soft"`` for any other law. A new law class states its kind; the solvers read
 the attribute, never the class.
+
+A law need not inherit from :class:`InteractionLaw`: any object with the members of
+:class:`Law` (``kind``, ``pressure``, ``stiffness``) is one. :func:`check_law` checks them
+structurally and fills the optional members (``contact_fraction``, ``resolve``, ...) with
+:class:`InteractionLaw`'s defaults where the object has none.
 """
 
 from __future__ import annotations
 
 from dataclasses import dataclass, field
-from typing import ClassVar, Literal
+from typing import ClassVar, Literal, Protocol
 
 import numpy as np
 from scipy.interpolate import PchipInterpolator
@@ -26,7 +31,8 @@ from .._validation import finite_array, positive_scalar
 from ..errors import InputError
 from .inverse import InverseWall
 
-__all__ = ["LAW_KINDS", "InteractionLaw", "LennardJonesRepulsion", "TabulatedLaw", "SumLaw"]
+__all__ = ["LAW_KINDS", "InteractionLaw", "Law", "LennardJonesRepulsion", "TabulatedLaw", "SumLaw",
+           "check_law"]
 
 #: E-folds of the exponential continuation below a table before it turns linear.
 _MAX_EFOLDS = 20.0
@@ -86,10 +92,131 @@ class InteractionLaw:
         """Plain-data description (for result attributes)."""
         return {"law": type(self).__name__}
 
-    def __add__(self, other: InteractionLaw) -> SumLaw:
-        if not isinstance(other, InteractionLaw):
+    def __add__(self, other: Law) -> SumLaw:
+        if _missing(other):
             return NotImplemented
         return SumLaw(self, other)
+
+    def __radd__(self, other: Law) -> SumLaw:
+        # ``user_law + LennardJonesRepulsion()``: a protocol law need not define ``__add__``
+        if _missing(other):
+            return NotImplemented
+        return SumLaw(other, self)
+
+
+class Law(Protocol):
+    """What the solvers need of an interaction law (see the module docstring).
+
+    The optional members of :class:`InteractionLaw` (``contact_fraction``,
+    ``shear_stress``, ``in_contact``, ``resolve``, ``members``, ``inverse``, ``describe``)
+    are used when present; :func:`check_law` supplies the defaults otherwise.
+    """
+
+    #: ``"wall"`` or ``"soft"`` (:data:`LAW_KINDS`).
+    kind: str
+
+    def pressure(self, u: np.ndarray) -> np.ndarray:
+        """Pressure ``σ(u)`` [MPa], >= 0, non-increasing in the separation ``u`` [mm]."""
+        ...
+
+    def stiffness(self, u: np.ndarray) -> np.ndarray:
+        """Stiffness ``k(u) = −dσ/du`` [MPa/mm], >= 0."""
+        ...
+
+
+#: The members :func:`check_law` requires, and what each one is.
+_LAW_MEMBERS = {
+    "kind": f"one of {LAW_KINDS}",
+    "pressure": "a method u [mm] -> sigma [MPa]",
+    "stiffness": "a method u [mm] -> -dsigma/du [MPa/mm]",
+}
+#: The members :func:`check_law` fills from :class:`InteractionLaw` when a law lacks them.
+_OPTIONAL_MEMBERS = ("contact_fraction", "shear_stress", "in_contact", "resolve", "members",
+                     "inverse", "describe")
+
+
+def _missing(law: object) -> list[str]:
+    """The required members ``law`` lacks (empty: it is a :class:`Law`)."""
+    missing = [m for m in _LAW_MEMBERS if not hasattr(law, m)]
+    return missing + [m for m in ("pressure", "stiffness")
+                      if m not in missing and not callable(getattr(law, m))]
+
+
+def check_law(law: object, what: str = "law") -> InteractionLaw:
+    """Return ``law`` as a law the solvers can use, or raise.
+
+    Structural, like :func:`rubbercontact.materials.check_material`: the members of
+    :class:`Law` are looked up, the class is not. An object with all of
+    :class:`InteractionLaw`'s members is returned as it is; one with only the required
+    members is wrapped so that the optional ones take :class:`InteractionLaw`'s defaults
+    (no companions ``α``/``Δτ``, "in contact" where ``σ > 0``, nothing to resolve, no
+    inverse form).
+
+    Raises
+    ------
+    InputError
+        One line naming what is missing, or the undeclared kind.
+    """
+    missing = _missing(law)
+    if missing:
+        wants = "; ".join(f"{m}: {_LAW_MEMBERS[m]}" for m in missing)
+        raise InputError(f"{what}: {type(law).__name__} is not an interaction law (missing "
+                         f"{wants}); see rubbercontact.halfspace.laws")
+    if law.kind not in LAW_KINDS:
+        raise InputError(f"{what}: {type(law).__name__} declares kind {law.kind!r}; expected "
+                         f"one of {LAW_KINDS}")
+    if all(hasattr(law, m) for m in _OPTIONAL_MEMBERS):
+        return law
+    return _ProtocolLaw(law)
+
+
+class _ProtocolLaw(InteractionLaw):
+    """A :class:`Law` with only some of the optional members: the others are the base's."""
+
+    def __init__(self, law: Law) -> None:
+        self.law = law
+
+    @property
+    def kind(self) -> str:  # type: ignore[override]  # the wrapped law's, per instance
+        return self.law.kind
+
+    def pressure(self, u):
+        return self.law.pressure(u)
+
+    def stiffness(self, u):
+        return self.law.stiffness(u)
+
+    def _optional(self, name: str, *args):
+        own = getattr(self.law, name, None)
+        return getattr(super(), name)(*args) if own is None else own(*args)
+
+    def contact_fraction(self, u):
+        return self._optional("contact_fraction", u)
+
+    def shear_stress(self, u):
+        return self._optional("shear_stress", u)
+
+    def in_contact(self, u):
+        return self._optional("in_contact", u)
+
+    def inverse(self):
+        return self._optional("inverse")
+
+    def resolve(self, length_scale: float, pressure_scale: float) -> InteractionLaw:
+        own = getattr(self.law, "resolve", None)
+        return self if own is None else check_law(own(length_scale, pressure_scale))
+
+    @property
+    def members(self) -> tuple[InteractionLaw, ...]:
+        own = getattr(self.law, "members", None)
+        return (self,) if own is None else tuple(check_law(m) for m in own)
+
+    def describe(self) -> dict:
+        own = getattr(self.law, "describe", None)
+        return {"law": type(self.law).__name__} if own is None else own()
+
+    def __repr__(self) -> str:
+        return repr(self.law)
 
 
 def _ninth_power(r: np.ndarray) -> np.ndarray:
@@ -409,12 +536,10 @@ class SumLaw(InteractionLaw):
     "In contact" is where any member is in contact.
     """
 
-    def __init__(self, *laws: InteractionLaw) -> None:
+    def __init__(self, *laws: Law) -> None:
         flat: list[InteractionLaw] = []
         for law in laws:
-            if not isinstance(law, InteractionLaw):
-                raise InputError(f"law: expected interaction laws, got {law!r}")
-            flat.extend(law.members)
+            flat.extend(check_law(law).members)
         if not flat:
             raise InputError("law: SumLaw needs at least one law")
         for name in ("contact_fraction", "shear_stress"):

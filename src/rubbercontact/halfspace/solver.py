@@ -87,7 +87,7 @@ from .hardwall import (
     hard_wall_pk,
     hard_wall_viscoelastic,
 )
-from .laws import InteractionLaw
+from .laws import InteractionLaw, Law, check_law
 from .newton import solve_single_law
 from .options import SolverOptions
 from .problem import Grid, Problem, Solution, sample_surface
@@ -184,7 +184,7 @@ class SlidingResult:
 
 
 def solve_sliding(surface, period, material: Material, velocity: float,
-                  mean_pressure: float, law: InteractionLaw | None = None, n: int = 4096,
+                  mean_pressure: float, law: Law | None = None, n: int = 4096,
                   nu: float = 0.5, tol: float = 1e-8, max_iter: int = 200,
                   method: str = "auto", options: SolverOptions | None = None,
                   start: np.ndarray | None = None) -> SlidingResult:
@@ -210,8 +210,10 @@ def solve_sliding(surface, period, material: Material, velocity: float,
         Imposed mean pressure ``σ0`` [MPa], > 0.
     law
         ``None``: hard wall (exact complementarity). Otherwise an
-        :class:`~rubbercontact.halfspace.laws.InteractionLaw`; unset Lennard-Jones parameters are
-        resolved from the surface's rms height and ``σ0``.
+        :class:`~rubbercontact.halfspace.laws.InteractionLaw` or any object with the members
+        of :class:`~rubbercontact.halfspace.laws.Law` (``kind``, ``pressure``,
+        ``stiffness``); unset Lennard-Jones parameters are resolved from the surface's rms
+        height and ``σ0``.
     n
         Grid points for a SineSeries (ignored for sampled heights).
     nu
@@ -245,8 +247,8 @@ def solve_sliding(surface, period, material: Material, velocity: float,
         Not converged; ``.last_state`` is the last :class:`SlidingResult`.
     """
     t0 = time.perf_counter()
-    velocity, sigma0, tol = _check_inputs(material, velocity, mean_pressure, nu, tol, max_iter,
-                                          method, law)
+    velocity, sigma0, tol, law = _check_inputs(material, velocity, mean_pressure, nu, tol,
+                                               max_iter, method, law)
     if options is None:
         options = SolverOptions()
     elif not isinstance(options, SolverOptions):
@@ -293,8 +295,9 @@ def solve_sliding(surface, period, material: Material, velocity: float,
 
 
 def _check_inputs(material, velocity, mean_pressure, nu, tol, max_iter, method,
-                  law) -> tuple[float, float, float]:
-    """Validate the scalar arguments of :func:`solve_sliding`; return ``v``, ``σ0``, ``tol``."""
+                  law) -> tuple[float, float, float, InteractionLaw | None]:
+    """Validate the arguments of :func:`solve_sliding` but the surface and options; return
+    ``v``, ``σ0``, ``tol`` and the law as the solvers use it (:func:`.laws.check_law`)."""
     check_material(material)
     if isinstance(velocity, bool) or not isinstance(velocity, int | float | np.floating |
                                                     np.integer):
@@ -310,9 +313,7 @@ def _check_inputs(material, velocity, mean_pressure, nu, tol, max_iter, method,
         raise InputError(f"max_iter: must be an integer >= 1, got {max_iter!r}")
     if method not in ("auto", "active-set", "pk"):
         raise InputError(f"method: expected 'auto', 'active-set' or 'pk', got {method!r}")
-    if law is not None and not isinstance(law, InteractionLaw):
-        raise InputError(f"law: expected None (hard wall) or an InteractionLaw, got {law!r}")
-    return velocity, sigma0, tol
+    return velocity, sigma0, tol, None if law is None else check_law(law)
 
 
 def _start(start: np.ndarray | None, prob: Problem) -> np.ndarray | None:

@@ -121,10 +121,21 @@ class PressureLaw:
         return np.interp(s, self.pressure[1:], self.compliance[1:])
 
 
+#: What the theory needs of a high-slope law as a function of pressure (a
+#: :class:`PressureLaw` has them; any object with them is such a law).
+_PRESSURE_LAW_MEMBERS = {
+    "at": "a method sigma [MPa] -> (alpha_hs, delta_tau_hs [MPa])",
+    "compliance_at": "a method sigma [MPa] -> c [mm/MPa] (NaN: none)",
+    "max_pressure": "the table's highest pressure [MPa]",
+}
+
+
 def as_pressure_law(law, velocity: float) -> PressureLaw:
-    """A :class:`PressureLaw` from a table dict, a law ``xarray.Dataset`` or itself."""
-    if isinstance(law, PressureLaw):
-        return law
+    """A :class:`PressureLaw` from a table dict or a law ``xarray.Dataset``; any object with
+    the members of a pressure law (``at``, ``compliance_at``, ``max_pressure``) as it is.
+
+    The last check is structural: the members are looked up, the class is not.
+    """
     if isinstance(law, dict):
         return PressureLaw.from_table(law)
     import xarray as xr
@@ -133,8 +144,12 @@ def as_pressure_law(law, velocity: float) -> PressureLaw:
         from ..hybrid.law import as_law, law_at_velocity
 
         return PressureLaw.from_table(law_at_velocity(as_law(law), velocity))
+    missing = [m for m in _PRESSURE_LAW_MEMBERS if not hasattr(law, m)]
+    if not missing:
+        return law
+    wants = "; ".join(f"{m}: {_PRESSURE_LAW_MEMBERS[m]}" for m in missing)
     raise InputError(f"law: expected None, a law table (dict), a law xarray.Dataset or a "
-                     f"PressureLaw, got {type(law).__name__}")
+                     f"pressure law; {type(law).__name__} is none (missing {wants})")
 
 
 def theory_law(psd, material, velocity: float, pressures, nu: float = 0.5,
@@ -164,15 +179,17 @@ def march_with_layer(comp: Compliance, mean_pressure: float, law: PressureLaw
 
     Node ``i`` sees the layer's compliance at ``σ0/A(ζ_{i−1})`` (module docstring).
     """
-    if not np.all(np.isfinite(law.compliance[1:])):
-        raise InputError("interface: 'law' needs the law's separations (its compliance); "
-                         "this law has none (a theory law); use interface='rigid'")
     n = comp.wavenumbers.size
     s, f = np.zeros(n), np.zeros(n)
     g, g_run = np.zeros(n), 0.0
     for i in range(n):
         local = mean_pressure / float(contact_fraction(g_run))
-        resp = modal_response(comp, law.compliance_at(local), nodes=slice(i, i + 1))
+        # checked where it is read: a law without separations (a theory law) has none
+        c_layer = law.compliance_at(local)
+        if not np.all(np.isfinite(c_layer)):
+            raise InputError("interface: 'law' needs the law's separations (its compliance); "
+                             "this law has none (a theory law); use interface='rigid'")
+        resp = modal_response(comp, c_layer, nodes=slice(i, i + 1))
         s[i], f[i] = resp.pressure_variance[0], resp.friction_stress[0]
         g_run += s[i] / (2.0 * mean_pressure**2)
         g[i] = g_run

@@ -186,7 +186,9 @@ def solve(psd: PSD, material: Material, velocity: float, mean_pressure: float,
     law
         ``None`` (plain theory), or the high-slope law: a table at this speed
         (:func:`rubbercontact.hybrid.law_at_velocity`; the hybrid's ``interface_law``
-        dict) or a law ``xarray.Dataset`` (:func:`rubbercontact.hybrid.effective_law`).
+        dict), a law ``xarray.Dataset`` (:func:`rubbercontact.hybrid.effective_law`), or
+        a pressure law: a :class:`.PressureLaw` or any object with its ``at``,
+        ``compliance_at`` and ``max_pressure``.
     options
         :class:`MeanFieldOptions` (Persson's theory, default) or :class:`StripOptions`
         (the strip cascade of a 1D sine series, without a law).
