@@ -1,6 +1,7 @@
 """The phase-averaged eq. 28 of the validation (:mod:`rubbercontact.compare`, which
 ``studies/_compare.py`` re-exports) on hand-made realizations; the report's words on them
-are tested with the studies (studies/tests/test_section3_report.py)."""
+are tested with the studies (studies/tests/test_section3_report.py). The realizations are
+the ``phase_data`` fixture's (conftest.py at the repository root, shared with those tests)."""
 
 import numpy as np
 import pytest
@@ -8,22 +9,9 @@ import pytest
 import rubbercontact.compare as compare
 
 
-def _data(r: int = 10, n: int = 200, offset: float = 0.02) -> dict:
-    """VHS-like curves varying with the phase; FEM = VHS − ``offset`` in friction, same
-    area, on the first ``r``; every hybrid equal to the VHS on all ``n``."""
-    rng = np.random.default_rng(3)
-    phi = rng.uniform(0, 2 * np.pi, n)
-    pressures = np.array([0.15, 0.35, 0.8])
-    area = 0.03 * pressures ** 0.8 * (1 + 0.1 * np.sin(phi))[:, None]
-    mu = 0.4 + 0.5 * pressures ** 0.5 * (1 + 0.2 * np.cos(phi))[:, None]
-    every = {m: (area, mu) for m in ("hybrid", "hybrid-windowed", "vhs")}
-    paired = {m: (a[:r], x[:r]) for m, (a, x) in every.items()}
-    return {"pressures": pressures, "fem": (area[:r], mu[:r] - offset),
-            "paired": paired, "all": every}
-
-
-def test_control_variate_fem_curve_is_the_vhs_mean_over_all_realizations_minus_the_offset():
-    data = _data()
+def test_control_variate_fem_curve_is_the_vhs_mean_over_all_realizations_minus_the_offset(
+        phase_data):
+    data = phase_data()
     curves = compare.phase_mean_curves(data)
     a_all, mu_all = (x.mean(axis=0) for x in data["all"]["vhs"])
     np.testing.assert_allclose(curves["phase"]["fem"][0], a_all, rtol=1e-13)
@@ -33,8 +21,8 @@ def test_control_variate_fem_curve_is_the_vhs_mean_over_all_realizations_minus_t
                                data["fem"][1].mean(axis=0), rtol=1e-13)
 
 
-def test_phase_averaged_eq28_is_the_offset_over_the_fem_friction():
-    data = _data()
+def test_phase_averaged_eq28_is_the_offset_over_the_fem_friction(phase_data):
+    data = phase_data()
     (e, ci), = compare.eq28_phase_averaged({10.0: data}, resamples=200).values()
     # FEM and hybrids share the area curve, and linear interpolation keeps a constant
     # offset: e = mean_k 0.02 / μ_FEM(A_k) over the 4 common areas, exactly.
@@ -47,8 +35,8 @@ def test_phase_averaged_eq28_is_the_offset_over_the_fem_friction():
         assert used == 200 and low <= e[m] * 1.05 and high >= e[m] * 0.95
 
 
-def test_a_failed_fem_test_drops_only_that_realization_at_that_load():
-    data = _data()
+def test_a_failed_fem_test_drops_only_that_realization_at_that_load(phase_data):
+    data = phase_data()
     fem_a, fem_mu = (x.copy() for x in data["fem"])
     fem_a[3, 1] = fem_mu[3, 1] = np.nan
     data["fem"] = (fem_a, fem_mu)
@@ -60,23 +48,11 @@ def test_a_failed_fem_test_drops_only_that_realization_at_that_load():
     assert np.all(np.isfinite(est))
 
 
-def _data_at(pressures, r: int, n: int = 200, offset: float = 0.02) -> dict:
-    """``_data`` at other loads (the same phases, so it merges with ``_data``)."""
-    rng = np.random.default_rng(3)
-    phi = rng.uniform(0, 2 * np.pi, n)
-    p = np.asarray(pressures, float)
-    area = 0.03 * p ** 0.8 * (1 + 0.1 * np.sin(phi))[:, None]
-    mu = 0.4 + 0.5 * p ** 0.5 * (1 + 0.2 * np.cos(phi))[:, None]
-    every = {m: (area, mu) for m in ("hybrid", "hybrid-windowed", "vhs")}
-    return {"pressures": p, "fem": (area[:r], mu[:r] - offset),
-            "paired": {m: (a[:r], x[:r]) for m, (a, x) in every.items()}, "all": every}
-
-
-def test_merged_loads_keep_each_loads_fem_realizations():
+def test_merged_loads_keep_each_loads_fem_realizations(phase_data):
     # 10 FEM realizations at three loads, 5 at two added ones: the merge pads the added
     # loads' FEM with NaN, sorts by load, and the control variate at every load is then
     # exactly mean_N(VHS) - offset (the offset is constant, whatever R is).
-    merged = compare.merge_phase_data(_data(), _data_at([0.05, 1.2], r=5))
+    merged = compare.merge_phase_data(phase_data(), phase_data([0.05, 1.2], r=5))
     np.testing.assert_array_equal(merged["pressures"], [0.05, 0.15, 0.35, 0.8, 1.2])
     fem_mu = merged["fem"][1]
     assert fem_mu.shape == (10, 5)
@@ -93,24 +69,24 @@ def test_merged_loads_keep_each_loads_fem_realizations():
     assert e["hybrid-windowed"] == pytest.approx(np.mean(0.02 / mus["fem"]), rel=1e-12)
 
 
-def test_merging_refuses_repeated_loads_or_another_n():
+def test_merging_refuses_repeated_loads_or_another_n(phase_data):
     with pytest.raises(ValueError, match="loads repeat"):
-        compare.merge_phase_data(_data(), _data_at([0.35], r=5))
+        compare.merge_phase_data(phase_data(), phase_data([0.35], r=5))
     with pytest.raises(ValueError, match="differ"):
-        compare.merge_phase_data(_data(), _data_at([1.2], r=5, n=100))
+        compare.merge_phase_data(phase_data(), phase_data([1.2], r=5, n=100))
 
 
-def test_below_load_keeps_the_loads_under_the_limit():
-    merged = compare.merge_phase_data(_data(), _data_at([0.05, 1.2], r=5))
+def test_below_load_keeps_the_loads_under_the_limit(phase_data):
+    merged = compare.merge_phase_data(phase_data(), phase_data([0.05, 1.2], r=5))
     below = compare.below_load(merged, 1.2)
     np.testing.assert_array_equal(below["pressures"], [0.05, 0.15, 0.35, 0.8])
     assert below["fem"][1].shape == (10, 4) and below["all"]["vhs"][0].shape == (200, 4)
 
 
-def test_fitted_beta_is_one_for_an_offset_fem_and_gives_the_same_error():
+def test_fitted_beta_is_one_for_an_offset_fem_and_gives_the_same_error(phase_data):
     # FEM = VHS − offset: the fitted β is exactly 1, so the regression estimator is the
     # difference estimator and eq. 28 is unchanged.
-    data = _data()
+    data = phase_data()
     (e_d, _), = compare.eq28_phase_averaged({10.0: data}, resamples=20).values()
     (e_r, _), = compare.eq28_phase_averaged({10.0: data}, resamples=20,
                                              beta="regression").values()

@@ -1,42 +1,15 @@
 """The validation report's words on the phase-averaged eq. 28 (studies/_section3_report.py,
 studies/_section3_phase.py) on hand-made realizations; the numbers themselves are the
-package's (rubbercontact.compare, tests/test_validate_phase.py)."""
-
-import numpy as np
+package's (rubbercontact.compare, tests/test_validate_phase.py), on the same ``phase_data``
+fixture's realizations (conftest.py at the repository root)."""
 
 import rubbercontact.compare as compare
 from studies import _section3_report as s3report
 from studies._templates import render
 
 
-def _data(r: int = 10, n: int = 200, offset: float = 0.02) -> dict:
-    """VHS-like curves varying with the phase; FEM = VHS − ``offset`` in friction, same
-    area, on the first ``r``; every hybrid equal to the VHS on all ``n``."""
-    rng = np.random.default_rng(3)
-    phi = rng.uniform(0, 2 * np.pi, n)
-    pressures = np.array([0.15, 0.35, 0.8])
-    area = 0.03 * pressures ** 0.8 * (1 + 0.1 * np.sin(phi))[:, None]
-    mu = 0.4 + 0.5 * pressures ** 0.5 * (1 + 0.2 * np.cos(phi))[:, None]
-    every = {m: (area, mu) for m in ("hybrid", "hybrid-windowed", "vhs")}
-    paired = {m: (a[:r], x[:r]) for m, (a, x) in every.items()}
-    return {"pressures": pressures, "fem": (area[:r], mu[:r] - offset),
-            "paired": paired, "all": every}
-
-
-def _data_at(pressures, r: int, n: int = 200, offset: float = 0.02) -> dict:
-    """``_data`` at other loads (the same phases, so it merges with ``_data``)."""
-    rng = np.random.default_rng(3)
-    phi = rng.uniform(0, 2 * np.pi, n)
-    p = np.asarray(pressures, float)
-    area = 0.03 * p ** 0.8 * (1 + 0.1 * np.sin(phi))[:, None]
-    mu = 0.4 + 0.5 * p ** 0.5 * (1 + 0.2 * np.cos(phi))[:, None]
-    every = {m: (area, mu) for m in ("hybrid", "hybrid-windowed", "vhs")}
-    return {"pressures": p, "fem": (area[:r], mu[:r] - offset),
-            "paired": {m: (a[:r], x[:r]) for m, (a, x) in every.items()}, "all": every}
-
-
-def test_extended_rows_name_the_range_and_leave_the_pointwise_hybrid_out_in_the_second():
-    merged = compare.merge_phase_data(_data(), _data_at([0.05, 1.2], r=5))
+def test_extended_rows_name_the_range_and_leave_the_pointwise_hybrid_out_in_the_second(phase_data):
+    merged = compare.merge_phase_data(phase_data(), phase_data([0.05, 1.2], r=5))
     rows, text = s3report.extended_rows({10.0: merged}, 1.39)
     assert len(rows) == 3 and "all models" in rows[0] and "without the pointwise" in rows[1]
     assert rows[1].split("|")[3].strip() == "-"          # no pointwise-hybrid entry
@@ -45,8 +18,8 @@ def test_extended_rows_name_the_range_and_leave_the_pointwise_hybrid_out_in_the_
     assert "exceeds" not in text        # μσ0 <= 1.14 MPa < E∞/3 = 1.39 MPa everywhere
 
 
-def test_a_fem_friction_stress_above_the_relaxed_shear_modulus_is_named_and_left_out():
-    merged = compare.merge_phase_data(_data(), _data_at([0.05, 1.2], r=5))
+def test_a_fem_friction_stress_above_the_relaxed_shear_modulus_is_named_and_left_out(phase_data):
+    merged = compare.merge_phase_data(phase_data(), phase_data([0.05, 1.2], r=5))
     fem_a, fem_mu = (x.copy() for x in merged["fem"])
     fem_mu[:, -1] = 1.5                                  # μσ0 = 1.8 MPa at 1.2 MPa
     merged["fem"] = (fem_a, fem_mu)
@@ -58,12 +31,12 @@ def test_a_fem_friction_stress_above_the_relaxed_shear_modulus_is_named_and_left
     assert "and 0.8 MPa the FEM's" not in text          # below E∞/3: not named
 
 
-def test_phase_curves_figure_is_drawn(tmp_path):
-    merged = compare.merge_phase_data(_data(), _data_at([0.05, 1.2], r=5))
+def test_phase_curves_figure_is_drawn(tmp_path, phase_data):
+    merged = compare.merge_phase_data(phase_data(), phase_data([0.05, 1.2], r=5))
     path = s3report.plot_phase_curves({10.0: merged, 50.0: merged}, tmp_path / "f.png")
     assert path.stat().st_size > 1000
 
 
-def test_beta_text_names_the_fitted_beta_of_an_offset_fem():
+def test_beta_text_names_the_fitted_beta_of_an_offset_fem(phase_data):
     # FEM = VHS − offset: the fitted β is exactly 1 (tests/test_validate_phase.py)
-    assert "β = 1.00 (0.000 → 0.000)" in s3report.beta_text({10.0: _data()})
+    assert "β = 1.00 (0.000 → 0.000)" in s3report.beta_text({10.0: phase_data()})
