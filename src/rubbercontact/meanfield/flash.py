@@ -268,17 +268,34 @@ class _Problem:
 
     def rise(self, parts: np.ndarray, area: np.ndarray, rows=slice(None)) -> np.ndarray:
         """``ΔT_i`` [K] from the node frictions and areas (module docstring)."""
-        w = parts * self.sigma0 * self.velocities[rows, None]
-        cum = np.cumsum(w[:, ::-1], axis=-1)[:, ::-1]                       # W_l
-        before = np.concatenate([np.ones_like(area[:, :1]), area[:, :-1]], axis=-1)
-        area = np.maximum(area, 1e-300)         # erf underflows only at absurd G
-        step = np.maximum(1.0 / area - 1.0 / before, 0.0)
-        return (np.cumsum(step * self.spot_rise[rows] * cum, axis=-1)
-                + self.tread_rise * cum[:, :1])
+        return cascade_rise(parts * self.sigma0 * self.velocities[rows, None], area,
+                            self.spot_rise[rows], self.tread_rise)
 
     def residual(self, temperature: np.ndarray, rows):
         """``T0 + ΔT(T) − T`` [K] at the speeds ``rows``."""
         return self.t0 + self.rise(*self.state(temperature, rows), rows) - temperature
+
+
+def cascade_rise(heat: np.ndarray, area: np.ndarray, spot_rise: np.ndarray,
+                 tread_rise: float = 0.0) -> np.ndarray:
+    """``ΔT_i = Σ_{l ≤ i} (1/A_l − 1/A_{l−1}) Γ_l W_l + t W_1`` [K] (module docstring).
+
+    Parameters
+    ----------
+    heat
+        ``w_j`` [mW/mm²]: each node's frictional power per nominal area, ``(..., nodes)``.
+    area
+        ``A_l`` [-], the contact fraction after each node, same shape.
+    spot_rise
+        ``Γ_l`` [K per mW/mm²], the centre temperature of a unit-flux spot of the node.
+    tread_rise
+        ``t`` [K per mW/mm²]: the background's rise per unit mean flux.
+    """
+    cum = np.cumsum(heat[..., ::-1], axis=-1)[..., ::-1]                   # W_l
+    before = np.concatenate([np.ones_like(area[..., :1]), area[..., :-1]], axis=-1)
+    area = np.maximum(area, 1e-300)         # erf underflows only at absurd G
+    step = np.maximum(1.0 / area - 1.0 / before, 0.0)
+    return np.cumsum(step * spot_rise * cum, axis=-1) + tread_rise * cum[..., :1]
 
 
 def _anderson_step(x, f, dxs, dfs, beta: float) -> np.ndarray:

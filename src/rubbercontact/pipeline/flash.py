@@ -18,8 +18,13 @@ run's true speeds:
   the high-slope law read at ``a_T(T0 + T_c) v``, interpolated in ``ln v`` between its
   tabulated speeds and clamped (and said) below the slowest (:mod:`.flash_hybrid`).
 
-``meanfield-hybrid``, ``meanfield-strips`` and ``fem`` are not computed with the flash yet:
-the run says so in ``attrs["flash_note"]``, one line.
+* ``meanfield-hybrid``: per load, at each speed the contact temperature its own heat
+  gives, one for both scales — the mean-field solve at ``a_T(T0 + T_c) v``, the law read
+  there as for the hybrids — its rise the mean-field flash's cascade at the finest
+  low-slope spots (:mod:`.flash_meanfield`).
+
+``meanfield-strips`` and ``fem`` are not computed with the flash yet: the run says so in
+``attrs["flash_note"]``, one line (and ``run --check``'s plan, and ``summary``).
 
 Variables added (``model, [temperature,] velocity, pressure``; NaN for the models without
 the flash): ``friction_flash``, ``contact_fraction_flash``, ``flash_temperature`` [K] (the
@@ -49,11 +54,13 @@ from ..thermal import FlashSearch, FlashSweep, ThermalProperties, flash_sweep
 from ..thermal.contact import start_pressure
 from ..thermal.kernel import rise_bound
 from .flash_hybrid import HYBRID_FLASH_MODELS, LawReads, hybrid_solver, law_speeds
+from .flash_meanfield import MODEL as MEANFIELD_HYBRID
+from .flash_meanfield import meanfield_hybrid_flash, meanfield_hybrid_solver
 from .plan import meanfield_surfaces
 from .setup import RunSetup, task_material
 
 #: Models the run computes with the flash temperature.
-FLASH_MODELS = ("meanfield", "vhs", *HYBRID_FLASH_MODELS)
+FLASH_MODELS = ("meanfield", MEANFIELD_HYBRID, "vhs", *HYBRID_FLASH_MODELS)
 #: The half-space models among them.
 HALFSPACE_FLASH_MODELS = ("vhs", *HYBRID_FLASH_MODELS)
 #: Prefix of every message about the flash (the config table).
@@ -173,6 +180,10 @@ def add_flash(ds: xr.Dataset, setup: RunSetup, plan: FlashPlan | None,
         for it, temp in enumerate(per_t):
             for ip, p in enumerate(pressures):
                 at = (im, it, slice(None), ip)
+                if m == MEANFIELD_HYBRID:
+                    _fill_meanfield_hybrid(out, at, setup, float(p), temp, plan, acc,
+                                           laws, reads)
+                    continue
                 if m not in HALFSPACE_FLASH_MODELS:
                     _fill_meanfield(out, at, m, setup, float(p), temp, plan, acc)
                     continue
@@ -184,7 +195,7 @@ def add_flash(ds: xr.Dataset, setup: RunSetup, plan: FlashPlan | None,
                 guides[key] = _fill_halfspace(out, at, m, setup, float(p), temp, plan, acc,
                                               solver, guides.get(key) if plan.guided else None,
                                               iso)
-    hybrids = tuple(m for m in plan.models if m in HYBRID_FLASH_MODELS)
+    hybrids = tuple(m for m in plan.models if m in (*HYBRID_FLASH_MODELS, MEANFIELD_HYBRID))
     if reads.note(hybrids):
         acc.notes.append(reads.note(hybrids))
     ds = _with_variables(ds, out, nodes, temps is not None, plan, acc.notes, acc.residual)
@@ -224,6 +235,29 @@ def _fill_meanfield(out: dict, at: tuple, m: str, setup: RunSetup, pressure: flo
         out[key][at] = values
     out["flash_scale_temperature"][at] = (curve.node_temperature
                                           - curve.background_temperature)
+
+
+def _fill_meanfield_hybrid(out: dict, at: tuple, setup: RunSetup, pressure: float,
+                           temperature: float | None, plan: FlashPlan, acc: _Tally,
+                           laws, reads: LawReads) -> None:
+    """One ``meanfield-hybrid`` flash μ(v) into ``out[...][at]`` (:mod:`.flash_meanfield`)."""
+    m = MEANFIELD_HYBRID
+    solve = meanfield_hybrid_solver(setup, pressure, laws, reads)
+    if solve is None:
+        acc.failed(m, pressure, temperature, "no low-slope wave: the law's flat-interface "
+                                             "solve, isothermal")
+        return
+    res = meanfield_hybrid_flash(solve, setup.speeds.velocities, pressure,
+                                 setup.material.shift, temperature,
+                                 replace(plan.options, temperature=temperature))
+    for speed, message in res.failures.items():
+        acc.failed(m, pressure, temperature, f"{speed:g} mm/s: {message}")
+    if np.isfinite(res.residual).any():
+        acc.residual = max(acc.residual, float(np.nanmax(res.residual)))
+    for key, values in (("friction_flash", res.friction),
+                        ("contact_fraction_flash", res.contact_fraction),
+                        ("flash_temperature", res.rise), ("flash_heat_flux", res.heat_flux)):
+        out[key][at] = values
 
 
 def _vhs_solver(setup: RunSetup, pressure: float) -> Callable[[int], Callable]:

@@ -1,0 +1,175 @@
+r"""``meanfield-hybrid`` with the flash temperature: one contact temperature for both scales.
+
+What is computed
+----------------
+Per load and run temperature ``T0``, at each of the run's true speeds ``v``: the contact
+temperature ``T0 + T_c`` that the model's own friction gives. At a rise ``T_c`` the model
+is solved as the run solves it (:func:`rubbercontact.meanfield.solve` on the low-slope
+waves with the high-slope law, the same options) at the reduced speed
+``u = a_T(T0 + T_c) v``: the reference rubber at ``u`` is the rubber at ``T0 + T_c``, and
+the law is read at ``u`` (:mod:`rubbercontact.hybrid.lawspeed`: interpolated in ``ln v``
+between its tabulated speeds, clamped below the slowest and said in
+``attrs["flash_note"]``, as for the hybrids). Its heat gives the rise by the mean-field
+flash's cascade (:func:`rubbercontact.meanfield.flash.cascade_rise`, the spots of each
+low-slope node, radius ``spot_radius/q``, sliding at ``v``): each node's ``w_j = μ_j σ0 v``
+and the law's ``μ_hs σ0 v``, released where the law acts, inside the finest low-slope
+spots; ``T_c`` is the rise of those finest spots — where the high-slope law is read — and
+the root of ``T_c = ΔT(T_c)`` is found by Brent's method to the flash's tolerance.
+
+The approximation
+-----------------
+One temperature for every scale — the finest low-slope spots', the hottest of the
+low-slope nodes — where the ``meanfield`` model gives each node its own
+(:mod:`rubbercontact.meanfield.flash`): the coarse nodes are evaluated hotter than they
+are, which moves μ the way the flash does, by somewhat more. The high-slope asperities'
+own flash inside those spots is left out (the law is an isothermal FEM table), as for the
+hybrids (:mod:`.flash_hybrid`). The limits are exact: an infinitely conducting rubber has
+no rise and the run's own solve, bit for bit; so does a rubber whose shift is 1.
+"""
+
+from __future__ import annotations
+
+from collections.abc import Callable
+from dataclasses import dataclass
+
+import numpy as np
+from scipy.optimize import brentq
+
+from ..errors import ConvergenceError
+from ..hybrid.lawspeed import LawSpeeds
+from ..materials import GeneralizedMaxwell
+from ..materials.shift import shift_law_from_dict
+from ..meanfield import PSD
+from ..meanfield import solve as solve_meanfield
+from ..meanfield.flash import HOTTEST, FlashOptions, cascade_rise
+from ..meanfield.options import options_from_dict
+from ..models import registry
+from ..models.planning import RunPoint
+from ..thermal.spots import band_centre_temperature
+from .flash_hybrid import LawReads
+from .setup import RunSetup, task_material
+
+#: The model.
+MODEL = "meanfield-hybrid"
+
+
+@dataclass(frozen=True)
+class MeanFieldHybridFlash:
+    """``meanfield-hybrid`` with the flash at one load and run temperature, per speed.
+
+    Attributes
+    ----------
+    friction, contact_fraction
+        ``μ``, ``A/A0`` [-] at the contact temperature (NaN where the search failed).
+    rise
+        ``T_c`` [K] above the run's temperature.
+    heat_flux
+        ``μ σ0 v`` [mW/mm²].
+    residual
+        ``|ΔT(T_c) − T_c|`` [K].
+    failures
+        ``{speed [mm/s]: message}``.
+    """
+
+    friction: np.ndarray
+    contact_fraction: np.ndarray
+    rise: np.ndarray
+    heat_flux: np.ndarray
+    residual: np.ndarray
+    failures: dict
+
+
+def meanfield_hybrid_solver(setup: RunSetup, pressure: float, laws: LawSpeeds | None,
+                            reads: LawReads) -> Callable[[float], object] | None:
+    """``solve(reduced_speed)``: the model's :class:`~rubbercontact.meanfield.solve` at
+    ``pressure`` [MPa] as the run's task solves it, the law read at ``reduced_speed``
+    [mm/s]; None when the model has no low-slope wave (its answer is the law's
+    flat-interface half-space solve, not a mean-field one)."""
+    material = GeneralizedMaxwell(**task_material(setup.material))
+    cls = registry.model_class(MODEL)
+    data = cls.run_data(MODEL, setup)
+    if laws is not None and reads.slowest is None:
+        reads.slowest = float(laws.speeds[0])
+
+    def task(speed: float) -> tuple[str, dict]:
+        table = None
+        if laws is not None:
+            read = laws.at(speed)
+            table = read.table
+            reads.reads += 1
+            if read.clamped:
+                reads.clamped += 1
+                reads.lowest = min(reads.lowest, speed)
+        return cls.run_task(MODEL, RunPoint(setup, material, float(speed),
+                                            np.array([pressure]), table, None, data))
+
+    if not data.get("wavelengths"):
+        return None
+
+    def solve(speed: float):
+        _, kw = task(speed)             # the mean-field task's (there are low-slope waves)
+        return solve_meanfield(PSD.from_dict(kw["surface"]), GeneralizedMaxwell(**kw["material"]),
+                               kw["velocity"], kw["mean_pressure"], nu=kw["nu"],
+                               law=kw["interface_law"], options=options_from_dict(kw["options"]))
+
+    return solve
+
+
+def contact_rise(result, velocity: float, pressure: float, flash: FlashOptions) -> float:
+    """``ΔT`` [K] of the finest low-slope spots from the heat of ``result`` (a
+    :class:`~rubbercontact.meanfield.MeanFieldResult`) sliding at the true ``velocity``
+    [mm/s] under ``pressure`` [MPa] (module docstring)."""
+    q, parts = result.friction_spectrum
+    heat = np.asarray(parts, float) * pressure * velocity
+    heat[-1] += result.friction_hs * pressure * velocity
+    th = flash.thermal
+    spots = band_centre_temperature(flash.spot_radius / q, velocity, th)
+    tread = 0.0
+    if flash.contact_time is not None:
+        tread = 4 / 3 * np.sqrt(th.diffusivity * flash.contact_time / np.pi) / (
+            th.conductivity_package)
+    return float(cascade_rise(heat, np.asarray(result.area.contact_fraction, float), spots,
+                              tread)[-1])
+
+
+def meanfield_hybrid_flash(solve: Callable[[float], object], velocities: np.ndarray,
+                           pressure: float, shift, temperature: float | None,
+                           flash: FlashOptions) -> MeanFieldHybridFlash:
+    """The root ``T_c = ΔT(T_c)`` at each speed (module docstring): a speed whose heat at
+    ``T_c = 0`` raises the spots by no more than the tolerance keeps its isothermal solve;
+    otherwise the root is bracketed in ``[0, ΔT(0)]``, widened by doubling up to
+    :data:`~rubbercontact.meanfield.flash.HOTTEST` K, and found by Brent's method to
+    ``flash.tolerance`` [K]."""
+    law = shift_law_from_dict(shift)
+    t0 = law.t_ref if temperature is None else float(temperature)
+    v = np.asarray(velocities, float)
+    out = np.full((5, v.size), np.nan)
+    failures: dict = {}
+    for k, speed in enumerate(v):
+        seen: dict = {}
+
+        def excess(rise: float, speed: float = speed, seen: dict = seen) -> float:
+            if rise not in seen:
+                res = solve(float(10.0 ** float(law.log10_shift(t0 + rise)) * speed))
+                seen[rise] = (res, contact_rise(res, speed, pressure, flash) - rise)
+            return seen[rise][1]
+
+        try:
+            top = excess(0.0)
+            root = 0.0
+            if top > flash.tolerance:
+                hi = top
+                while excess(hi) > 0:
+                    if hi > HOTTEST:
+                        raise ConvergenceError(f"no contact temperature below {HOTTEST:g} K "
+                                               f"above the run's balances the heat")
+                    hi *= 2
+                root = brentq(excess, 0.0, hi, xtol=flash.tolerance)
+            resid = abs(excess(root))
+        except ConvergenceError as exc:
+            failures[float(speed)] = str(exc).splitlines()[0]
+            continue
+        res = seen[root][0]
+        out[:, k] = (res.friction, res.contact_fraction, root,
+                     res.friction * pressure * speed, resid)
+    return MeanFieldHybridFlash(*out, failures=failures)
