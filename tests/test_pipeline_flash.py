@@ -268,6 +268,26 @@ def test_the_plan_names_the_flash_and_check_catches_its_inputs(tmp_path, capsys)
     assert "shift law" in capsys.readouterr().err
 
 
+def test_the_fem_in_a_flash_run_says_in_one_line_that_it_is_isothermal(tmp_path):
+    """The FEM has no flash: the plan's one flash line (run --check) says so, and the same
+    note goes into attrs["flash_note"] (plan_flash's, printed by summary); meanfield-hybrid
+    is computed with the flash (pipeline/flash_meanfield.py), not named."""
+    from rubbercontact.cli.run import describe_plan
+    from rubbercontact.pipeline.flash import plan_flash
+    from rubbercontact.pipeline.setup import resolve
+
+    cfg = rc.config.parse_config(_config(tmp_path, {"enabled": True},
+                                         models=["meanfield", "meanfield-hybrid", "fem"],
+                                         surface={"wavelengths": [0.125, 1.0],
+                                                  "amplitudes": [0.02, 0.04]}))
+    line = [x for x in describe_plan(cfg).splitlines() if x.startswith("flash")]
+    assert len(line) == 1 and line[0].endswith("not yet for fem (isothermal)")
+    plan = plan_flash(resolve(cfg))
+    assert plan.models == ("meanfield", "meanfield-hybrid") and plan.skipped == ("fem",)
+    assert plan.note == "flash temperature computed for meanfield, meanfield-hybrid only; " \
+                        "not yet for fem (isothermal)"
+
+
 def test_a_fixed_point_that_does_not_converge_is_a_note_and_nan_not_a_crash(tmp_path):
     # one step cannot meet 1e-3 K where the rubber heats at all (here ~0.02 K at 1 mm/s)
     ds = _run(_config(tmp_path, {"enabled": True, "max_iterations": 1},
