@@ -6,6 +6,8 @@
 - ``closed_forms``: the closed forms that tests compare the solvers against.
 - ``hand_made_law``: an interface-law table with known derivatives (for the mean-field
   enrichment and its task).
+- ``cole_cole``: a Cole–Cole (fractional Zener) solid in closed form, a material that is
+  not a Prony series (the solvers take materials by their members).
 - ``run_example``: runs ``examples/NAME.py`` as a script on its reduced settings and
   returns its global variables.
 """
@@ -15,6 +17,7 @@ from __future__ import annotations
 import os
 import runpy
 import warnings
+from dataclasses import dataclass
 from pathlib import Path
 from types import SimpleNamespace
 
@@ -73,6 +76,31 @@ def hand_made_law():
                 "shear_stress": list(0.3 * sig**2)}
 
     return table
+
+
+@dataclass(frozen=True)
+class ColeCole:
+    """``E(ω) = E_r + (E_u − E_r) (iωτ)^a / (1 + (iωτ)^a)`` [MPa]: no finite Prony series
+    for ``a < 1``; ``a = 1`` is the standard linear solid."""
+
+    relaxed: float = 3.0
+    unrelaxed: float = 300.0
+    tau: float = 1e-4
+    exponent: float = 0.4
+    name: str = "Cole-Cole"
+    is_elastic: bool = False
+
+    def complex_modulus(self, omega) -> np.ndarray:
+        # principal branch of the power: (−iy)^a = conj((iy)^a), so E(−ω) = conj E(ω)
+        x = (1j * np.asarray(omega, dtype=float) * self.tau) ** self.exponent
+        return self.relaxed + (self.unrelaxed - self.relaxed) * x / (1.0 + x)
+
+
+@pytest.fixture(scope="session")
+def cole_cole():
+    """``cole_cole(relaxed=3, unrelaxed=300, tau=1e-4, exponent=0.4)``: a :class:`ColeCole`
+    solid (the class itself; instances are frozen)."""
+    return ColeCole
 
 
 @pytest.fixture

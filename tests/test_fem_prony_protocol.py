@@ -5,7 +5,8 @@ A plain dataclass carrying ``E_∞``, the branches ``(E_i, τ_i)`` and ``as_dict
 :class:`GeneralizedMaxwell` — must relax in the FEM's constitutive law as its closed-form
 ``E(t) = E_∞ + Σ E_i exp(−t/τ_i)``, and a whole sliding test on it must be the test of the
 same series as a :class:`GeneralizedMaxwell` (the FEM reads nothing else of a material).
-A closed-form Cole–Cole solid has ``E(ω)`` but no branches to integrate in time.
+A closed-form Cole–Cole solid (the ``cole_cole`` fixture) has ``E(ω)`` but no branches
+to integrate in time.
 """
 
 from __future__ import annotations
@@ -47,23 +48,6 @@ class PlainProny:
             self.moduli * np.exp(-t / self.relaxation_times), axis=-1)
 
 
-@dataclass(frozen=True)
-class ColeCole:
-    """``E(ω) = E_r + (E_u − E_r) (iωτ)^a / (1 + (iωτ)^a)`` [MPa]: a closed-form modulus
-    with no finite Prony series for ``a < 1``."""
-
-    relaxed: float = 3.0
-    unrelaxed: float = 300.0
-    tau: float = 1e-4
-    exponent: float = 0.4
-    name: str = "Cole-Cole"
-    is_elastic: bool = False
-
-    def complex_modulus(self, omega) -> np.ndarray:
-        x = (1j * np.asarray(omega, dtype=float) * self.tau) ** self.exponent
-        return self.relaxed + (self.unrelaxed - self.relaxed) * x / (1.0 + x)
-
-
 PLAIN: PronyMaterial = PlainProny()
 
 
@@ -98,15 +82,15 @@ def test_a_sliding_test_on_another_prony_class_is_the_generalized_maxwell_one():
     assert a.contact_fraction == b.contact_fraction
 
 
-def test_the_fem_refuses_a_material_without_prony_branches_in_one_line():
+def test_the_fem_refuses_a_material_without_prony_branches_in_one_line(cole_cole):
     surf = SineSeries([0.125], [0.004])
     with pytest.raises(InputError, match="not a Prony series") as err:
-        rc.fem.sliding_test(surf, ColeCole(), 0.2, 10.0, (16, 8))
+        rc.fem.sliding_test(surf, cole_cole(), 0.2, 10.0, (16, 8))
     msg = str(err.value)
     assert "\n" not in msg
     assert all(m in msg for m in ("equilibrium_modulus", "moduli", "relaxation_times"))
     with pytest.raises(InputError, match="not a Prony series"):
-        MaterialParameters.from_material(ColeCole())
+        MaterialParameters.from_material(cole_cole())
 
 
 def test_branch_arrays_of_different_lengths_are_refused():

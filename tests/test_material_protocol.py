@@ -1,14 +1,14 @@
 """Solvers take any material with the members of ``Material`` and route laws by their kind.
 
-A Cole–Cole (fractional Zener) solid, written in closed form and not a Prony series, goes
-through the half-space solver and the mean-field theory: in full contact of a sine both must
-give the closed form ``μ = q²Δ² Im E_r(qv)/(4σ0)``; with exponent 1 it *is* the standard
-linear solid, i.e. a one-branch :class:`GeneralizedMaxwell`, whose answers it must reproduce in
-partial contact. A stiff wall law of a new class (a 12th-power wall) declaring
-``kind = "wall"`` must be solved by the wall + soft algorithm. A law need not be an
-``InteractionLaw`` at all: classes of their own with only ``kind``, ``pressure`` and
-``stiffness`` give the closed form of a linear spring layer on a sine and, for an
-exponential, the answers of the built-in table of it; the mean-field theory reads a
+A Cole–Cole (fractional Zener) solid (the ``cole_cole`` fixture), written in closed form
+and not a Prony series, goes through the half-space solver and the mean-field theory: in
+full contact of a sine both must give the closed form ``μ = q²Δ² Im E_r(qv)/(4σ0)``; with
+exponent 1 it *is* the standard linear solid, i.e. a one-branch :class:`GeneralizedMaxwell`,
+whose answers it must reproduce in partial contact. A stiff wall law of a new class (a
+12th-power wall) declaring ``kind = "wall"`` must be solved by the wall + soft algorithm.
+A law need not be an ``InteractionLaw`` at all: classes of their own with only ``kind``,
+``pressure`` and ``stiffness`` give the closed form of a linear spring layer on a sine and,
+for an exponential, the answers of the built-in table of it; the mean-field theory reads a
 high-slope law in pressure of its own class (``at``, ``compliance_at``, ``max_pressure``)
 at a nearly uniform pressure as its closed form.
 """
@@ -32,75 +32,55 @@ from rubbercontact.halfspace import (
     solve_sliding,
 )
 from rubbercontact.halfspace.walls import split_law
-from rubbercontact.materials import GeneralizedMaxwell, Material, check_material
+from rubbercontact.materials import GeneralizedMaxwell, check_material
 from rubbercontact.roughness import SineSeries
-
-
-@dataclass(frozen=True)
-class ColeCole:
-    """``E(ω) = E_r + (E_u − E_r) (iωτ)^a / (1 + (iωτ)^a)`` [MPa]: no finite Prony series
-    for ``a < 1``; ``a = 1`` is the standard linear solid."""
-
-    relaxed: float = 3.0
-    unrelaxed: float = 300.0
-    tau: float = 1e-4
-    exponent: float = 0.4
-    name: str = "Cole-Cole"
-    is_elastic: bool = False
-
-    def complex_modulus(self, omega) -> np.ndarray:
-        # principal branch of the power: (−iy)^a = conj((iy)^a), so E(−ω) = conj E(ω)
-        x = (1j * np.asarray(omega, dtype=float) * self.tau) ** self.exponent
-        return self.relaxed + (self.unrelaxed - self.relaxed) * x / (1.0 + x)
-
-
-COLE: Material = ColeCole()
 
 
 def _er(material, omega):
     return complex(material.complex_modulus(omega)) / 0.75      # ν = 0.5
 
 
-def test_cole_cole_is_causal_and_not_a_prony_series():
+def test_cole_cole_is_causal_and_not_a_prony_series(cole_cole):
+    cole = cole_cole()
     w = np.array([1e-2, 1.0, 1e4, 1e8])
-    e = COLE.complex_modulus(w)
-    np.testing.assert_allclose(COLE.complex_modulus(-w), np.conj(e), rtol=1e-15)
+    e = cole.complex_modulus(w)
+    np.testing.assert_allclose(cole.complex_modulus(-w), np.conj(e), rtol=1e-15)
     assert np.all(e.imag > 0)
     # the loss peak of a Cole–Cole solid is broader than any single Maxwell branch's:
     # at 100× the peak frequency tan δ of the SLS has fallen far more
-    sls = ColeCole(exponent=1.0)
-    peak = 1.0 / COLE.tau
-    assert COLE.complex_modulus(100 * peak).imag / COLE.complex_modulus(peak).imag > \
+    sls = cole_cole(exponent=1.0)
+    peak = 1.0 / cole.tau
+    assert cole.complex_modulus(100 * peak).imag / cole.complex_modulus(peak).imag > \
         5 * sls.complex_modulus(100 * peak).imag / sls.complex_modulus(peak).imag
 
 
 @pytest.mark.parametrize("velocity", [1e-2, 10.0, 1e4])
-def test_full_contact_friction_of_a_sine_in_the_halfspace(velocity):
+def test_full_contact_friction_of_a_sine_in_the_halfspace(velocity, cole_cole):
     lam, delta = 0.125, 0.002
     q = 2 * np.pi / lam
-    er = _er(COLE, q * velocity)
+    er = _er(cole_cole(), q * velocity)
     sigma0 = 1.5 * abs(er) * q * delta / 2          # full contact: σ0 > |E_r| qΔ/2
-    res = solve_sliding(SineSeries([lam], [delta]), None, COLE, velocity, sigma0, n=256)
+    res = solve_sliding(SineSeries([lam], [delta]), None, cole_cole(), velocity, sigma0, n=256)
     assert res.contact_fraction == 1.0
     # one Fourier mode is exact on the grid: only the solver tolerance (1e-8) remains
     assert res.friction == pytest.approx(q**2 * delta**2 * er.imag / (4 * sigma0), rel=1e-7)
 
 
 @pytest.mark.parametrize("velocity", [1e-2, 10.0, 1e4])
-def test_full_contact_friction_of_sines_in_the_meanfield(velocity):
+def test_full_contact_friction_of_sines_in_the_meanfield(velocity, cole_cole):
     surf = rc.roughness.section3()
     q, d = surf.wavenumbers, surf.amplitudes
-    er = COLE.complex_modulus(q * velocity) / 0.75
+    er = cole_cole().complex_modulus(q * velocity) / 0.75
     sigma0 = 1e4 * float(np.max(q * d * np.abs(er)))   # G ~ 1e-8: A = 1 to round-off
-    res = mf.solve(mf.PSD.from_sines(surf), COLE, velocity, sigma0)
+    res = mf.solve(mf.PSD.from_sines(surf), cole_cole(), velocity, sigma0)
     assert res.contact_fraction == 1.0
     # a sum in closed form: round-off only
     assert res.friction == pytest.approx(float(np.sum(q**2 * d**2 * er.imag)) / (4 * sigma0),
                                          rel=1e-12)
 
 
-def test_standard_linear_solid_in_closed_form_is_the_one_branch_prony_series():
-    sls = ColeCole(unrelaxed=30.0, tau=1e-3, exponent=1.0)
+def test_standard_linear_solid_in_closed_form_is_the_one_branch_prony_series(cole_cole):
+    sls = cole_cole(unrelaxed=30.0, tau=1e-3, exponent=1.0)
     prony = GeneralizedMaxwell(sls.relaxed, [sls.unrelaxed - sls.relaxed], [sls.tau])
     surf = rc.roughness.section3(phases=[0.3, 1.2, 2.5])
     v, sigma0 = 10.0, 1.0                       # partial contact (A ~ 6 %), dissipative
@@ -229,19 +209,19 @@ class Exponential:
 
 
 @pytest.mark.parametrize("velocity", [1e-2, 10.0, 1e4])
-def test_a_law_of_its_own_class_gives_the_closed_form_of_a_spring_layer(velocity):
+def test_a_law_of_its_own_class_gives_the_closed_form_of_a_spring_layer(velocity, cole_cole):
     # full contact of a sine on the half-space through a linear spring layer: the layer (k)
     # and the half-space (M = E_r q/2 per unit height of the mode) act in series, so the
     # pressure mode is Δ kM/(k+M) and μ = qΔ Im[kM/(k+M)]/(2σ0); ū = u0 − σ0/k
     lam, delta = 0.125, 0.002
     q = 2 * np.pi / lam
-    m = _er(COLE, q * velocity) * q / 2
+    m = _er(cole_cole(), q * velocity) * q / 2
     k = abs(m)                                   # the layer as stiff as the half-space
     p_mode = delta * k * m / (k + m)
     sigma0 = 1.5 * abs(p_mode)                   # σ > 0 everywhere: the law stays linear
     law = LinearSpring(k, 0.01)
     assert not isinstance(law, InteractionLaw)
-    res = solve_sliding(SineSeries([lam], [delta]), None, COLE, velocity, sigma0, n=256,
+    res = solve_sliding(SineSeries([lam], [delta]), None, cole_cole(), velocity, sigma0, n=256,
                         law=law)
     assert res.contact_fraction == 1.0
     # a linear law on one Fourier mode: Newton is exact in a step, so round-off only
@@ -280,7 +260,7 @@ def test_a_law_of_its_own_class_equals_the_built_in_table_of_it():
     assert parts.stiff is not None and parts.soft.kind == "soft"
 
 
-def test_an_object_that_is_not_a_law_is_refused_in_one_line():
+def test_an_object_that_is_not_a_law_is_refused_in_one_line(cole_cole):
     class NoStiffness:
         kind = "soft"
 
@@ -288,12 +268,12 @@ def test_an_object_that_is_not_a_law_is_refused_in_one_line():
             return np.zeros_like(u)
 
     with pytest.raises(InputError, match="missing stiffness") as err:
-        solve_sliding(SineSeries([1.0], [0.01]), None, COLE, 1.0, 0.1, law=NoStiffness())
+        solve_sliding(SineSeries([1.0], [0.01]), None, cole_cole(), 1.0, 0.1, law=NoStiffness())
     assert "\n" not in str(err.value)
     bad_kind = Exponential(1.0, 1e-3)
     bad_kind.kind = "sticky"
     with pytest.raises(InputError, match="declares kind 'sticky'"):
-        solve_sliding(SineSeries([1.0], [0.01]), None, COLE, 1.0, 0.1, law=bad_kind)
+        solve_sliding(SineSeries([1.0], [0.01]), None, cole_cole(), 1.0, 0.1, law=bad_kind)
     with pytest.raises(InputError, match="missing kind"):
         SumLaw(LennardJonesRepulsion(), type("K", (), {"pressure": 0, "stiffness": 0})())
 
