@@ -252,6 +252,10 @@ def _fill_meanfield_hybrid(out: dict, at: tuple, setup: RunSetup, pressure: floa
                                  replace(plan.options, temperature=temperature))
     for speed, message in res.failures.items():
         acc.failed(m, pressure, temperature, f"{speed:g} mm/s: {message}")
+    if solve.beyond > 0:
+        acc.failed(m, pressure, temperature, f"up to {solve.beyond:.1f} % of a flash "
+                                             f"solve's low-slope contact beyond the law's "
+                                             f"highest pressure, where it is held")
     if np.isfinite(res.residual).any():
         acc.residual = max(acc.residual, float(np.nanmax(res.residual)))
     for key, values in (("friction_flash", res.friction),

@@ -29,6 +29,8 @@ no rise and the run's own solve, bit for bit; so does a rubber whose shift is 1.
 
 from __future__ import annotations
 
+import re
+import warnings
 from collections.abc import Callable
 from dataclasses import dataclass
 
@@ -37,6 +39,7 @@ from scipy.optimize import brentq
 
 from ..errors import ConvergenceError
 from ..hybrid.lawspeed import LawSpeeds
+from ..hybrid.lawtable import LawWarning
 from ..materials import GeneralizedMaxwell
 from ..materials.shift import shift_law_from_dict
 from ..meanfield import PSD
@@ -108,10 +111,21 @@ def meanfield_hybrid_solver(setup: RunSetup, pressure: float, laws: LawSpeeds | 
 
     def solve(speed: float):
         _, kw = task(speed)             # the mean-field task's (there are low-slope waves)
-        return solve_meanfield(PSD.from_dict(kw["surface"]), GeneralizedMaxwell(**kw["material"]),
-                               kw["velocity"], kw["mean_pressure"], nu=kw["nu"],
-                               law=kw["interface_law"], options=options_from_dict(kw["options"]))
+        with warnings.catch_warnings(record=True) as caught:
+            warnings.simplefilter("always", LawWarning)
+            res = solve_meanfield(PSD.from_dict(kw["surface"]),
+                                  GeneralizedMaxwell(**kw["material"]), kw["velocity"],
+                                  kw["mean_pressure"], nu=kw["nu"], law=kw["interface_law"],
+                                  options=options_from_dict(kw["options"]))
+        for w in caught:
+            if not issubclass(w.category, LawWarning):
+                warnings.warn_explicit(w.message, w.category, w.filename, w.lineno)
+                continue
+            share = re.match(r"law: ([0-9.]+) %", str(w.message))
+            solve.beyond = max(solve.beyond, float(share.group(1)) if share else np.inf)
+        return res
 
+    solve.beyond = 0.0          # the largest share [%] of a contact beyond the law's pressures
     return solve
 
 
