@@ -206,7 +206,7 @@ def contact_solve(prob: Problem, idx: np.ndarray, rhs: np.ndarray, total: float,
                   precond: np.ndarray, c: np.ndarray | None = None,
                   x0: np.ndarray | None = None, rtol: float = 1e-10,
                   extra_diag: np.ndarray | None = None,
-                  multi_shift: bool = False) -> LinearSolve:
+                  multi_shift: bool = False, soft_shifts: int | None = None) -> LinearSolve:
     """Solve ``(M x)_B + c x + λ = rhs``, ``Σ x = total`` on the flat indices ``idx``.
 
     ``precond`` is the stiffness kernel used as preconditioner; ``extra_diag`` (optional, bool
@@ -215,6 +215,8 @@ def contact_solve(prob: Problem, idx: np.ndarray, rhs: np.ndarray, total: float,
     median of ``c``; a steep law's contact edges), the preconditioner becomes the
     variable-coefficient stiffness ``1/(M(q) + c(x))``, interpolated in ``log c`` between
     the kernels for the shifts ``c̄, √(c̄ m_d), m_d`` (one forward and three inverse FFTs).
+    ``soft_shifts``: the number of shifts of the soft-law preconditioner on maps
+    (:func:`_soft_law_shifts`; ``None``: ``_SOFT_SHIFTS``).
     """
     nb = idx.size
     opts = prob.options
@@ -224,10 +226,13 @@ def contact_solve(prob: Problem, idx: np.ndarray, rhs: np.ndarray, total: float,
     single = (opts.single_precision_2d and len(prob.shape) == 2
               and prob.size >= _SINGLE_MIN_POINTS)
     buf = np.zeros(prob.size)
+    # single precision: the iterations scatter into a float32 work grid (the transforms'
+    # input; the same rounding as converting a float64 grid, without the copy)
+    work = np.zeros(prob.size, np.float32) if single else buf
     m_diag = prob.compliance_diagonal
     op = _restricted_operator(prob, idx, c, buf, single=False)
 
-    soft = _soft_law_shifts(prob, c, np.iscomplexobj(precond))
+    soft = _soft_law_shifts(prob, c, np.iscomplexobj(precond), soft_shifts)
     if soft is not None:
         extra_diag = None   # every row on the variable-coefficient kernel
     if extra_diag is not None and extra_diag.any():
@@ -256,18 +261,17 @@ def contact_solve(prob: Problem, idx: np.ndarray, rhs: np.ndarray, total: float,
 
     def pre(v):
         v = v - v.mean()
-        buf[idc] = v if cont is None else v[cont]
+        work[idc] = v if cont is None else v[cont]
         if weights is None:
             apply = prob.apply_single if single else prob.apply
-            pc = apply(kernels[0], buf)[idc].astype(float, copy=False)
+            pc = apply(kernels[0], work)[idc].astype(float, copy=False)
         else:
             prob.matvecs += len(kernels)
-            field = buf.reshape(prob.shape)
-            spec = kn.forward(field.astype(np.float32) if single else field)
+            spec = kn.forward(work.reshape(prob.shape))
             pc = weights[0] * kn.inverse(spec * kernels[0], prob.shape).ravel()[idc]
             for kern, wgt in zip(kernels[1:], weights[1:], strict=True):
                 pc += wgt * kn.inverse(spec * kern, prob.shape).ravel()[idc]
-        buf[idc] = 0.0
+        work[idc] = 0.0
         if cont is None:
             out = pc
         else:
@@ -278,7 +282,8 @@ def contact_solve(prob: Problem, idx: np.ndarray, rhs: np.ndarray, total: float,
 
     base = np.full(nb, total / nb)
     if single:
-        return _refined_solve_single(prob, idx, rhs, c, base, x0, rtol, pre, kernels, buf)
+        return _refined_solve_single(prob, idx, rhs, c, base, x0, rtol, pre, kernels, buf,
+                                     work)
     b = rhs - (op(base) + 0.0)  # op already removes the mean; rhs mean is irrelevant (λ)
     b = b - b.mean()
     if np.linalg.norm(b) <= 1e-14 * np.linalg.norm(rhs):
@@ -314,7 +319,8 @@ _SOFT_LOWEST = 1e-3
 _SOFT_SHIFTS = 3
 
 
-def _soft_law_shifts(prob: Problem, c: np.ndarray | None, complex_kernel: bool
+def _soft_law_shifts(prob: Problem, c: np.ndarray | None, complex_kernel: bool,
+                     count: int | None = None
                      ) -> tuple[list[np.ndarray], np.ndarray | None] | None:
     """Kernels and weights of the soft-law preconditioner on a map, or ``None``.
 
@@ -331,7 +337,9 @@ def _soft_law_shifts(prob: Problem, c: np.ndarray | None, complex_kernel: bool
     ``options.soft_law_preconditioner_2d``; maps of at least 256² points: the iterations
     of the default grow with the grid (13–14 per active-set step at 128², 21 at 256², 30 at
     512², 47 at 1024² on that case), and at 128² the extra FFTs cost more than they save
-    (0.34 against 0.28 s). 1D grids never use it.
+    (0.34 against 0.28 s). 1D grids never use it. ``count``: the number of shifts
+    (``None``: ``_SOFT_SHIFTS``; the hard wall + soft law steps take
+    ``options.wall_soft_shifts_2d``).
     """
     opts = prob.options
     if c is None or len(prob.shape) != 2 or not opts.soft_law_preconditioner_2d \
@@ -345,7 +353,7 @@ def _soft_law_shifts(prob: Problem, c: np.ndarray | None, complex_kernel: bool
     hi = float(c.max())
     if hi <= 1.01 * lo:   # one local compliance: its kernel alone (no interpolation)
         return [kn.stiffness_kernel(prob.compliance, hi, hermitian=not complex_kernel)], None
-    shifts = np.geomspace(lo, hi, _SOFT_SHIFTS)
+    shifts = np.geomspace(lo, hi, _SOFT_SHIFTS if count is None else count)
     kernels = [kn.stiffness_kernel(prob.compliance, float(sh),
                                    hermitian=not complex_kernel) for sh in shifts]
     return kernels, _shift_weights(c, shifts)
@@ -354,7 +362,7 @@ def _soft_law_shifts(prob: Problem, c: np.ndarray | None, complex_kernel: bool
 def _restricted_operator(prob: Problem, idx: np.ndarray, c: np.ndarray | None,
                          buf: np.ndarray, single: bool) -> Callable[[np.ndarray], np.ndarray]:
     """``v ↦ (M v)_B + c v`` with its mean removed (the subspace ``Σ x = 0``); ``buf`` a zero
-    grid-sized work array; ``single``: single-precision FFTs."""
+    grid-sized work array (float32 for ``single``: single-precision FFTs)."""
     kernel = prob.compliance_single() if single else prob.compliance
     apply = prob.apply_single if single else prob.apply
 
@@ -393,7 +401,8 @@ _SINGLE_CYCLES = 8
 def _refined_solve_single(prob: Problem, idx: np.ndarray, rhs: np.ndarray,
                           c: np.ndarray | None, base: np.ndarray, x0: np.ndarray | None,
                           rtol: float, pre: Callable[[np.ndarray], np.ndarray],
-                          kernels: list[np.ndarray], buf: np.ndarray) -> LinearSolve:
+                          kernels: list[np.ndarray], buf: np.ndarray,
+                          work: np.ndarray) -> LinearSolve:
     """Mixed-precision iterative refinement (maps, ``options.single_precision_2d``).
 
     Each cycle: the double-precision residual ``r`` of the set's system (one float64 FFT
@@ -401,9 +410,10 @@ def _refined_solve_single(prob: Problem, idx: np.ndarray, rhs: np.ndarray,
     precision to ``max(rtol |b|/|r|, _SINGLE_FLOOR)``. Stops when ``|r| <= rtol |b|`` in
     double precision (``b`` the residual of the uniform start), i.e. the test of the
     double-precision path; the last residual gives ``λ``. Each float32 FFT pair costs
-    0.3–0.45 of a float64 one on 512²–1024² (measured).
+    0.3–0.45 of a float64 one on 512²–1024² (measured). ``buf``: a zero float64 grid for
+    the residuals, ``work``: a zero float32 grid for the iterations.
     """
-    op32 = _restricted_operator(prob, idx, c, buf, single=True)
+    op32 = _restricted_operator(prob, idx, c, work, single=True)
     res = _set_residual(prob, idx, rhs, c, base, buf)
     b = res - res.mean()
     bnorm = float(np.linalg.norm(b))

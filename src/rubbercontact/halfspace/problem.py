@@ -121,7 +121,8 @@ class Problem:
         """:meth:`apply` in single precision: float32 field, ``kernel`` complex64 or float32
         (:func:`~.kernels.single`); one FFT pair in ``matvecs``, float32 result."""
         self.matvecs += 1
-        return kn.apply_kernel(kernel, flat.reshape(self.shape).astype(np.float32)).ravel()
+        return kn.apply_kernel(kernel, flat.reshape(self.shape).astype(np.float32, copy=False)
+                               ).ravel()
 
     def compliance_single(self) -> np.ndarray:
         """``M`` in single precision (cached)."""
