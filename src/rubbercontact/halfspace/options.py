@@ -85,6 +85,21 @@ class SolverOptions:
         preconditioned by the variable-coefficient stiffness ``1/(M(q) + c(x))`` over all
         rows (:mod:`~rubbercontact.halfspace.contact_set`); ``False``: ``1/(M + c̄)`` on the
         rows with ``c`` below the diagonal and the diagonal ``1/(c + m_d)`` on the others.
+    wall_soft_coarse_tol_2d : float or None, default 1e-6
+        Maps: the coarser grids of the hard wall + soft law stage stop at this tolerance
+        (or ``tol`` if larger) instead of ``tol``: their answer is only the finer grid's
+        start, and the finer grid takes as many steps from it (the 1024² linear-law case of
+        ``benchmarks/maps.md``: 9 on 1024², 7 instead of 9 on 512² and 256², 3209 instead
+        of 3446 FFT pairs; 1e-5 saved one more 512² step and cost two finer GMRES
+        iterations). ``None``: ``tol`` on every grid.
+    wall_soft_shifts_2d : int, default 2
+        Shifts of the soft-law preconditioner (``soft_law_preconditioner_2d``) in the
+        systems of the hard wall + soft law steps on maps; the Newton steps keep three.
+        Those steps' systems, solved to ``wall_soft_linear_rtol_2d``, take as many GMRES
+        iterations with two shifts as with three, at three FFTs per iteration instead of
+        four (the 1024² linear-law case of ``benchmarks/maps.md``: 162 against 160
+        iterations, 532 against 686 FFT pairs on the finest grid); the Newton steps took
+        40 % more iterations with two.
     newton_forcing_target_2d : bool, default True
         Maps: the GMRES tolerance of a Newton step is at least ``0.01 tol/res`` (a step need
         not solve its linear system further than the tolerance asks); ``False``: at least
@@ -115,6 +130,8 @@ class SolverOptions:
     multi_shift_2d: bool = False
     single_precision_2d: bool = True
     soft_law_preconditioner_2d: bool = True
+    wall_soft_shifts_2d: int = 2
+    wall_soft_coarse_tol_2d: float | None = 1e-6
     newton_forcing_target_2d: bool = True
 
     def __post_init__(self) -> None:
@@ -124,12 +141,15 @@ class SolverOptions:
             if f.type == "bool":
                 if not isinstance(value, bool):
                     raise InputError(f"{name}: expected True or False, got {value!r}")
-            elif f.type == "float":
+            elif f.type.startswith("float"):
+                if value is None and "None" in f.type:
+                    continue
                 if isinstance(value, bool) or not isinstance(value, numbers.Real) \
                         or not 0.0 < value < 1.0:
                     raise InputError(f"{name}: expected a number in (0, 1), got {value!r}")
             elif value is not None or "None" not in f.type:
-                smallest = 0 if f.name in ("dense_max_points", "dense_max_set") else 1
+                smallest = {"dense_max_points": 0, "dense_max_set": 0,
+                            "wall_soft_shifts_2d": 2}.get(f.name, 1)
                 if isinstance(value, bool) or not isinstance(value, numbers.Integral) \
                         or value < smallest:
                     allowed = " or None" if "None" in f.type else ""

@@ -121,7 +121,8 @@ def wall_soft_active_set(prob: Problem, soft: InteractionLaw, tol: float, max_it
         rhs = np.where(on_a, -u[idx], c * (f[idx] - sigma[idx])) - w_free[idx]
         contact = c < m_diag
         lin = contact_solve(prob, idx, rhs, total, shifted_preconditioner(prob, c, contact),
-                            c=c, rtol=_linear_rtol(prob), extra_diag=~contact)
+                            c=c, rtol=_linear_rtol(prob), extra_diag=~contact,
+                            soft_shifts=prob.options.wall_soft_shifts_2d)
         lin_its += lin.iterations
         dsig[idx] = lin.x
         dw = prob.displacement(dsig)
@@ -161,6 +162,14 @@ def _linear_rtol(prob: Problem) -> float:
     return opts.wall_soft_linear_rtol_2d if len(prob.shape) == 2 else opts.wall_soft_linear_rtol
 
 
+def _coarse_tol(prob: Problem, tol: float) -> float:
+    """Tolerance of the coarser grids' hard wall + soft law: ``tol``; on maps at least
+    ``options.wall_soft_coarse_tol_2d`` (their answer is only the finer grid's start)."""
+    if len(prob.shape) == 2 and prob.options.wall_soft_coarse_tol_2d is not None:
+        return max(tol, prob.options.wall_soft_coarse_tol_2d)
+    return tol
+
+
 def _with_soft_start(act: Solution, soft_newton_iterations: int, linear_iterations: int,
                      **extra) -> Solution:
     """``act`` with the soft Newton's (and coarser grids') counts added to its info."""
@@ -178,7 +187,7 @@ def _hard_wall_soft(prob: Problem, soft: InteractionLaw, tol: float,
     """
     if prob.can_coarsen(prob.options.wall_soft_coarse_min_points):
         coarse = prob.coarse()
-        out_c = _hard_wall_soft(coarse, soft, tol, max_iter)
+        out_c = _hard_wall_soft(coarse, soft, _coarse_tol(prob, tol), max_iter)
         prob.matvecs += coarse.matvecs
         if out_c is not None:
             act = wall_soft_active_set(prob, soft, tol, min(max_iter, 100),
