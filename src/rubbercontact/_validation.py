@@ -7,6 +7,7 @@ Physics kernels assume clean arrays; these helpers are called where data enter
 from __future__ import annotations
 
 import numbers
+from collections.abc import Collection, Mapping
 
 import numpy as np
 
@@ -48,3 +49,34 @@ def positive_scalar(name: str, value, *, allow_zero: bool = False, unit: str = "
         rel = ">= 0" if allow_zero else "> 0"
         raise InputError(f"{name}: must be {rel}, got {v}{u}")
     return v
+
+
+def missing_members(obj: object, members: Mapping[str, str],
+                    methods: Collection[str] = ()) -> list[str]:
+    """The names of ``members`` that ``obj`` lacks, or has but cannot call (``methods``).
+
+    The structural check of a protocol (a material, a law): members are looked up, the
+    class is not, so any object that has them passes.
+    """
+    return [m for m in members
+            if not hasattr(obj, m) or (m in methods and not callable(getattr(obj, m)))]
+
+
+def require_members(obj: object, members: Mapping[str, str], *, what: str, kind: str,
+                    hint: str, methods: Collection[str] = ()) -> None:
+    """Raise :class:`InputError` unless ``obj`` has every member (:func:`missing_members`).
+
+    Parameters
+    ----------
+    members
+        Name -> what it should be; the message lists the missing ones with these words.
+    what, kind, hint
+        The message reads ``"{what}: {class} is not {kind} (missing ...); {hint}"``, one line.
+    methods
+        The members that must be callable.
+    """
+    missing = missing_members(obj, members, methods)
+    if missing:
+        wants = "; ".join(f"{m}: {members[m]}" for m in missing)
+        raise InputError(f"{what}: {type(obj).__name__} is not {kind} (missing {wants}); "
+                         f"{hint}")

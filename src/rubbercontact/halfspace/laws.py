@@ -27,7 +27,7 @@ from typing import ClassVar, Literal, Protocol
 import numpy as np
 from scipy.interpolate import PchipInterpolator
 
-from .._validation import finite_array, positive_scalar
+from .._validation import finite_array, missing_members, positive_scalar, require_members
 from ..errors import InputError
 from .inverse import InverseWall
 
@@ -130,6 +130,8 @@ _LAW_MEMBERS = {
     "pressure": "a method u [mm] -> sigma [MPa]",
     "stiffness": "a method u [mm] -> -dsigma/du [MPa/mm]",
 }
+#: Those of them that must be callable.
+_LAW_METHODS = ("pressure", "stiffness")
 #: The members :func:`check_law` fills from :class:`InteractionLaw` when a law lacks them.
 _OPTIONAL_MEMBERS = ("contact_fraction", "shear_stress", "in_contact", "resolve", "members",
                      "inverse", "describe")
@@ -137,9 +139,7 @@ _OPTIONAL_MEMBERS = ("contact_fraction", "shear_stress", "in_contact", "resolve"
 
 def _missing(law: object) -> list[str]:
     """The required members ``law`` lacks (empty: it is a :class:`Law`)."""
-    missing = [m for m in _LAW_MEMBERS if not hasattr(law, m)]
-    return missing + [m for m in ("pressure", "stiffness")
-                      if m not in missing and not callable(getattr(law, m))]
+    return missing_members(law, _LAW_MEMBERS, _LAW_METHODS)
 
 
 def check_law(law: object, what: str = "law") -> InteractionLaw:
@@ -157,11 +157,8 @@ def check_law(law: object, what: str = "law") -> InteractionLaw:
     InputError
         One line naming what is missing, or the undeclared kind.
     """
-    missing = _missing(law)
-    if missing:
-        wants = "; ".join(f"{m}: {_LAW_MEMBERS[m]}" for m in missing)
-        raise InputError(f"{what}: {type(law).__name__} is not an interaction law (missing "
-                         f"{wants}); see rubbercontact.halfspace.laws")
+    require_members(law, _LAW_MEMBERS, methods=_LAW_METHODS, what=what,
+                    kind="an interaction law", hint="see rubbercontact.halfspace.laws")
     if law.kind not in LAW_KINDS:
         raise InputError(f"{what}: {type(law).__name__} declares kind {law.kind!r}; expected "
                          f"one of {LAW_KINDS}")

@@ -17,6 +17,7 @@ from typing import Protocol
 
 import numpy as np
 
+from .._validation import require_members
 from ..errors import InputError
 
 __all__ = ["Material", "PronyMaterial", "check_material", "check_prony"]
@@ -102,15 +103,11 @@ def check_prony(material: object, what: str = "material") -> PronyMaterial:
     InputError
         One line naming what is missing or malformed.
     """
-    missing = [m for m in _PRONY_MEMBERS if not hasattr(material, m)]
-    if not missing and not callable(material.as_dict):
-        missing = ["as_dict"]
-    if missing:
-        wants = "; ".join(f"{m}: {_PRONY_MEMBERS[m]}" for m in missing)
-        raise InputError(f"{what}: {type(material).__name__} is not a Prony series (missing "
-                         f"{wants}); the FEM integrates each Prony branch in time: use "
-                         f"rubbercontact.materials.GeneralizedMaxwell (fit_prony fits one "
-                         f"to DMA data)")
+    require_members(material, _PRONY_MEMBERS, methods=("as_dict",), what=what,
+                    kind="a Prony series",
+                    hint="the FEM integrates each Prony branch in time: use "
+                         "rubbercontact.materials.GeneralizedMaxwell (fit_prony fits one to "
+                         "DMA data)")
     moduli = np.asarray(material.moduli, dtype=float)
     times = np.asarray(material.relaxation_times, dtype=float)
     if moduli.ndim != 1 or moduli.shape != times.shape:
@@ -130,12 +127,8 @@ def check_material(material: object, what: str = "material") -> Material:
     InputError
         One line naming the missing members and what each should be.
     """
-    missing = [m for m in _MEMBERS if not hasattr(material, m)]
-    if not missing and not callable(material.complex_modulus):
-        missing = ["complex_modulus"]
-    if missing:
-        wants = "; ".join(f"{m}: {_MEMBERS[m]}" for m in missing)
-        raise InputError(f"{what}: {type(material).__name__} is not a material (missing "
-                         f"{wants}); use rubbercontact.materials.GeneralizedMaxwell or any "
-                         f"object with these members")
+    require_members(material, _MEMBERS, methods=("complex_modulus",), what=what,
+                    kind="a material",
+                    hint="use rubbercontact.materials.GeneralizedMaxwell or any object with "
+                         "these members")
     return material

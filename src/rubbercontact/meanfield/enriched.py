@@ -48,6 +48,7 @@ from dataclasses import dataclass
 
 import numpy as np
 
+from .._validation import require_members
 from ..errors import InputError
 from ..hybrid.law import LawWarning, tabulated_law_from_dict
 from ..hybrid.windowing import law_in_pressure
@@ -144,12 +145,11 @@ def as_pressure_law(law, velocity: float) -> PressureLaw:
         from ..hybrid.law import as_law, law_at_velocity
 
         return PressureLaw.from_table(law_at_velocity(as_law(law), velocity))
-    missing = [m for m in _PRESSURE_LAW_MEMBERS if not hasattr(law, m)]
-    if not missing:
-        return law
-    wants = "; ".join(f"{m}: {_PRESSURE_LAW_MEMBERS[m]}" for m in missing)
-    raise InputError(f"law: expected None, a law table (dict), a law xarray.Dataset or a "
-                     f"pressure law; {type(law).__name__} is none (missing {wants})")
+    require_members(law, _PRESSURE_LAW_MEMBERS, methods=("at", "compliance_at"), what="law",
+                    kind="a pressure law",
+                    hint="expected None, a law table (dict), a law xarray.Dataset or an "
+                         "object with these members")
+    return law
 
 
 def theory_law(psd, material, velocity: float, pressures, nu: float = 0.5,
