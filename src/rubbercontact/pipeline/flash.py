@@ -29,8 +29,9 @@ run's true speeds:
 Variables added (``model, [temperature,] velocity, pressure``; NaN for the models without
 the flash): ``friction_flash``, ``contact_fraction_flash``, ``flash_temperature`` [K] (the
 rise of the finest contact spots above the run's temperature; ``vhs`` and the hybrids: of
-the contact's mean), ``flash_heat_flux`` [mW/mm²] (the frictional heat into the rubber
-per nominal area, ``μ σ0 v``; the half-space models: of the solved pressure); per
+the contact's mean; ``meanfield-hybrid``: of its finest low-slope spots),
+``flash_heat_flux`` [mW/mm²] (the frictional heat into the rubber per nominal area,
+``μ σ0 v``; the half-space models: of the solved pressure); per
 scale, ``flash_scale_temperature`` [K] on ``flash_wavenumber`` [rad/mm] (the
 ``meanfield`` spectrum's nodes), the rise of the contact spots seen at each magnification.
 """
@@ -70,7 +71,8 @@ VARIABLES = {
     "friction_flash": ("1", "friction coefficient with the flash temperature"),
     "contact_fraction_flash": ("1", "real contact fraction with the flash temperature"),
     "flash_temperature": ("K", "rise of the finest contact spots above the run's "
-                               "temperature (vhs, hybrids: of the contact's mean)"),
+                               "temperature (vhs, hybrids: of the contact's mean; "
+                               "meanfield-hybrid: of the finest low-slope spots)"),
     "flash_heat_flux": ("mW/mm^2", "frictional heat into the rubber per nominal area"),
 }
 #: The per-scale variable, on ``flash_wavenumber`` besides the dims above.
