@@ -52,6 +52,20 @@ def test_an_infinitely_conducting_rubber_is_the_isothermal_run(tmp_path):
 
 
 @pytest.mark.filterwarnings("ignore::rubbercontact.hybrid.lawtable.LawWarning")
+def test_with_temperatures_each_is_its_isothermal_run_at_infinite_conductivity(tmp_path):
+    """At each run temperature T the search solves at a_T(T + T_c) v with T_c = 0: the
+    run's own reduced speed and law table, so each temperature is its isothermal answer
+    (to the rounding of a_T v computed twice: 1e-12)."""
+    mat = _material(thermal={"conductivity": 1e12})
+    ds = _run(_config(tmp_path, speeds=(1.0, 1e3), material=mat, models=[MODEL],
+                      temperatures=[0.0, 40.0]))
+    h = ds.sel(model=MODEL)
+    assert h["friction_flash"].dims == ("temperature", "velocity", "pressure")
+    np.testing.assert_allclose(h["friction_flash"], h["friction_mean"], rtol=1e-12)
+    assert np.all(h["flash_temperature"].values == 0.0)
+
+
+@pytest.mark.filterwarnings("ignore::rubbercontact.hybrid.lawtable.LawWarning")
 def test_a_temperature_independent_rubber_heats_but_keeps_its_friction(tmp_path):
     """WLF with C1 = 1e-300: a_T = 1 exactly, every solve is the run's own whatever the
     rise; the rise grows with the speed (1 mm/s: below 1e-2 K); the heat is μσ0v."""
