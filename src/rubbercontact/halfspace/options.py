@@ -85,6 +85,10 @@ class SolverOptions:
         preconditioned by the variable-coefficient stiffness ``1/(M(q) + c(x))`` over all
         rows (:mod:`~rubbercontact.halfspace.contact_set`); ``False``: ``1/(M + c̄)`` on the
         rows with ``c`` below the diagonal and the diagonal ``1/(c + m_d)`` on the others.
+    wall_soft_moving_rtol_2d : float or None, default 5e-2
+        Maps: the GMRES tolerance of a hard wall + soft law step while its contact set
+        still moves (the first step, and after an update that changed more than 1 % of
+        the set); ``None``: ``wall_soft_linear_rtol_2d`` throughout.
     wall_soft_coarse_tol_2d : float or None, default 1e-6
         Maps: the coarser grids of the hard wall + soft law stage stop at this tolerance
         (or ``tol`` if larger) instead of ``tol``: their answer is only the finer grid's
@@ -132,6 +136,7 @@ class SolverOptions:
     soft_law_preconditioner_2d: bool = True
     wall_soft_shifts_2d: int = 2
     wall_soft_coarse_tol_2d: float | None = 1e-6
+    wall_soft_moving_rtol_2d: float | None = 5e-2
     newton_forcing_target_2d: bool = True
 
     def __post_init__(self) -> None:

@@ -106,6 +106,7 @@ def wall_soft_active_set(prob: Problem, soft: InteractionLaw, tol: float, max_it
         # semismooth complementarity residual min(u, W λ), λ = σ − f(u₊), as a displacement
         return np.minimum(uu, wgt * (sig - ff))
 
+    moving = True    # the set changed by more than _MOVING_SET of its points at the last update
     for it in range(1, max_iter + 1):
         stiff = active | (k * m_diag > 1e-8)
         idx = np.flatnonzero(stiff)
@@ -121,7 +122,7 @@ def wall_soft_active_set(prob: Problem, soft: InteractionLaw, tol: float, max_it
         rhs = np.where(on_a, -u[idx], c * (f[idx] - sigma[idx])) - w_free[idx]
         contact = c < m_diag
         lin = contact_solve(prob, idx, rhs, total, shifted_preconditioner(prob, c, contact),
-                            c=c, rtol=_linear_rtol(prob), extra_diag=~contact,
+                            c=c, rtol=_linear_rtol(prob, moving), extra_diag=~contact,
                             soft_shifts=prob.options.wall_soft_shifts_2d)
         lin_its += lin.iterations
         dsig[idx] = lin.x
@@ -145,6 +146,7 @@ def wall_soft_active_set(prob: Problem, soft: InteractionLaw, tol: float, max_it
         res = float(np.linalg.norm(merit(sigma, u, f_t, wgt))) / zscale / np.sqrt(n)
         new = wgt * lam > u
         changed = int(np.count_nonzero(new != active))
+        moving = changed > _MOVING_SET * max(int(new.sum()), 1)
         history.append((int(active.sum()), changed, lin.iterations, lin.residual, t, res))
         if res <= tol:
             return Solution(sigma, u, w, ubar, it, res, True,
@@ -155,10 +157,19 @@ def wall_soft_active_set(prob: Problem, soft: InteractionLaw, tol: float, max_it
                     {"linear_iterations": lin_its, "history": history, "active": active})
 
 
-def _linear_rtol(prob: Problem) -> float:
+#: A hard wall + soft law update that changes more than this fraction of the contact set
+#: leaves the next step's system to ``options.wall_soft_moving_rtol_2d`` on maps.
+_MOVING_SET = 0.01
+
+
+def _linear_rtol(prob: Problem, moving: bool = False) -> float:
     """GMRES tolerance of a hard wall + soft law step: ``options.wall_soft_linear_rtol``, on
-    maps ``options.wall_soft_linear_rtol_2d``."""
+    maps ``options.wall_soft_linear_rtol_2d``, or ``options.wall_soft_moving_rtol_2d``
+    while the set still ``moving`` (the first step, and after an update that changed more
+    than ``_MOVING_SET`` of it)."""
     opts = prob.options
+    if moving and len(prob.shape) == 2 and opts.wall_soft_moving_rtol_2d is not None:
+        return max(opts.wall_soft_moving_rtol_2d, opts.wall_soft_linear_rtol_2d)
     return opts.wall_soft_linear_rtol_2d if len(prob.shape) == 2 else opts.wall_soft_linear_rtol
 
 
