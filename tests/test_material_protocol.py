@@ -16,6 +16,7 @@ at a nearly uniform pressure as its closed form.
 from __future__ import annotations
 
 from dataclasses import dataclass
+from types import SimpleNamespace
 from typing import ClassVar
 
 import numpy as np
@@ -110,6 +111,9 @@ def test_an_object_without_a_modulus_is_refused_in_one_line():
         mf.solve(mf.PSD.from_sines(SineSeries([1.0], [0.01])), NoModulus(), 1.0, 0.1)
     with pytest.raises(InputError, match="is_elastic"):
         check_material(object())
+    # a modulus that is there but not a method is named beside what is missing
+    with pytest.raises(InputError, match=r"missing complex_modulus: .*; name: a str"):
+        check_material(SimpleNamespace(complex_modulus=3.0, is_elastic=True))
     assert check_material(rc.materials.sbr()) is not None
 
 
