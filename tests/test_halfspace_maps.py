@@ -44,9 +44,10 @@ PREVIOUS = SolverOptions(coarse_min_side_2d=None, single_precision_2d=False, mul
 ROUND_BEFORE = SolverOptions(soft_law_preconditioner_2d=False, newton_forcing_target_2d=False,
                              wall_soft_linear_rtol_2d=1e-3)
 #: the defaults of commit 2de76b6: the hard wall + soft law steps on three shifts and to
-#: 1e-2 throughout, the coarser grids of that stage to ``tol``
+#: 1e-2 throughout, the coarser grids of that stage to ``tol``, the final Newton's first
+#: step on the geometric-mean tangent
 ROUND_2DE76B6 = SolverOptions(wall_soft_shifts_2d=3, wall_soft_coarse_tol_2d=None,
-                              wall_soft_moving_rtol_2d=None)
+                              wall_soft_moving_rtol_2d=None, wall_soft_first_tangent_2d=False)
 MAT = sbr()
 #: relative agreement of μ, contact fraction and ū with the previous path
 RTOL = 1e-6
@@ -253,11 +254,11 @@ def test_soft_law_preconditioner_keeps_the_answer(rough, soft_preconditioner_cal
     _assert_same(new, solve_sliding(*args, law=law, options=PREVIOUS))
 
 
-def test_two_shift_steps_and_looser_coarse_grids_keep_the_answer(rough, monkeypatch):
+def test_wall_soft_map_switches_keep_the_answer(rough, monkeypatch):
     # the hard wall + soft law steps on two shifts (the Newton steps on three) and to 5e-2
-    # while the set moves, its coarser grid to 1e-6, against the defaults of 2de76b6;
-    # measured at 256²: μ, A, ū within 2e-15, pressure 5e-13, 1038 instead of 1141 FFT
-    # pairs
+    # while the set moves, its coarser grid to 1e-6, the final Newton's first step on the
+    # tangent at the pressure, against the defaults of 2de76b6; measured at 256²: μ, A, ū
+    # within 9e-13, pressure 2e-11, 1028 instead of 1141 FFT pairs
     shifts = []
     original = contact_set._soft_law_shifts
 

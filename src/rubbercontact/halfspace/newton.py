@@ -157,7 +157,10 @@ def newton_law(prob: Problem, law: InteractionLaw, tol: float, max_iter: int,
         k = law.stiffness(u)
         rhs_inv = None
         if inverse is not None and soft is not None:
-            inv, c_inv, rhs_inv = _wall_soft_rows(inverse, soft, sigma, f, u)
+            # the first step from the hard wall + soft law state: its pressure is close to
+            # the answer, its separation (u = 0 on the wall contact) is not
+            first = it == 1 and prob.options.wall_soft_first_tangent_2d
+            inv, c_inv, rhs_inv = _wall_soft_rows(inverse, soft, sigma, f, u, first)
             k_inv = k.copy()
             k_inv[inv] = 1.0 / c_inv
         elif inverse is not None:
@@ -240,7 +243,8 @@ def _multi_shift(prob: Problem) -> bool:
 
 
 def _wall_soft_rows(inverse: InverseWall, soft: InteractionLaw, sigma: np.ndarray,
-                    f: np.ndarray, u: np.ndarray) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
+                    f: np.ndarray, u: np.ndarray, at_pressure: bool = False
+                    ) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
     """Mixed-Newton rows of a wall + soft law ``f = f_w + f_s``: mask, ``c`` and right side.
 
     Rows where both the wall's share ``s = σ − f_s(u)`` and ``f_w(u)`` are in the contact
@@ -251,12 +255,22 @@ def _wall_soft_rows(inverse: InverseWall, soft: InteractionLaw, sigma: np.ndarra
     wall + soft law state the points just off the wall contact carry the soft law's
     pressure, and taking them in made the line search damp the first four steps (measured:
     8 steps, against 4 with both and 10 for the plain Newton; ``benchmarks/maps.md``).
+
+    ``at_pressure`` (the first step from the hard wall + soft law state,
+    ``options.wall_soft_first_tangent_2d``): the tangent at ``s̃ = s`` instead. That state's
+    wall share ``s`` is close to the answer while ``f_w(u)`` is nearly the same on every
+    contact point (``u = 0`` there, shifted by ``ū``; on the 1024² linear-law case of
+    ``benchmarks/maps.md`` ``s`` spans 2.5–10 MPa and ``f_w`` 1.96–2.15): the first step
+    then takes the residual from 0.34 to 0.025–0.035 instead of 0.12, and the Newton ends
+    in 4 steps instead of 5 (130 instead of 144 GMRES iterations). Later steps keep the
+    geometric mean: with the tangent at ``s`` throughout the residual stalled at 1.5e-8
+    (512²).
     """
     f_s = soft.pressure(u)
     s_w, f_w = sigma - f_s, f - f_s
     s_c = inverse.threshold
     inv = np.minimum(s_w, f_w) > s_c
-    s_lin = np.sqrt(s_w[inv] * f_w[inv])
+    s_lin = s_w[inv] if at_pressure else np.sqrt(s_w[inv] * f_w[inv])
     g_s = inverse.separation(s_lin)
     c_w = inverse.compliance(s_lin, g_s)
     g_s = g_s - c_w * (s_w[inv] - s_lin)

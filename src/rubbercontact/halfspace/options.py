@@ -76,6 +76,11 @@ class SolverOptions:
         Maps: the final Newton of a Lennard-Jones wall + soft law linearises the wall's
         contact rows in the wall's inverse form (the mixed Newton with a soft member);
         ``False``: the plain Newton there.
+    wall_soft_first_tangent_2d : bool, default True
+        Maps: the first step of that mixed Newton takes the tangent of the wall's inverse at
+        the wall's share of the pressure instead of the geometric mean with ``f_w(u)``
+        (:func:`~rubbercontact.halfspace.newton._wall_soft_rows`): 4 instead of 5 steps on
+        the 1024² linear-law case of ``benchmarks/maps.md``.
     multi_shift_2d : bool, default False
         Maps: ``multi_shift`` also on maps. Off by default: on the self-affine maps of
         ``benchmarks/maps.md`` it saved no GMRES iterations and doubled their FFTs.
@@ -131,6 +136,7 @@ class SolverOptions:
     wall_soft_linear_rtol_2d: float = 1e-2
     coarse_min_side_2d: int | None = 128
     wall_soft_mixed_newton_2d: bool = True
+    wall_soft_first_tangent_2d: bool = True
     multi_shift_2d: bool = False
     single_precision_2d: bool = True
     soft_law_preconditioner_2d: bool = True
