@@ -32,6 +32,7 @@ import numpy as np
 
 from ..materials.maxwell import GeneralizedMaxwell
 from ..roughness.sines import SineSeries
+from .deformation import measure_deformation
 from .multilevel import coarse_meshes, prolong
 from .newton_krylov import Counters, Endpoint, PathResult, follow, newton_krylov
 from .options import FemOptions
@@ -120,12 +121,19 @@ def _press(setup: CellSetup, kernel: StreamlineKernel, options: FemOptions,
     plain = follow(cell, U0, Endpoint(local, 0.0), Endpoint(local, load), 0.0, "face",
                    setup.atol, options.steady, counters, f"frictionless press {name}")
     if not plain.converged:
-        raise SteadyFailure(plain.reason, counters.tried, counters)
+        raise SteadyFailure(_with_strain(plain, setup), counters.tried, counters)
     memory = follow(cell, plain.U, Endpoint(local, load), Endpoint(kernel, load), 0.0, "face",
                     setup.atol, options.steady, counters, f"memory {name}")
     if not memory.converged:
-        raise SteadyFailure(memory.reason, counters.tried, counters)
+        raise SteadyFailure(_with_strain(memory, setup), counters.tried, counters)
     return memory.U
+
+
+def _with_strain(path: PathResult, setup: CellSetup) -> str:
+    """The stop of ``path`` and the strain of the last state it reached: on steep cells
+    above E∞ the stop is the strain of wrapping the crests (:mod:`.deformation`)."""
+    return (f"{path.reason}; at λ = {path.reached:.3g}: "
+            f"{measure_deformation(setup.model, path.U).describe()}")
 
 
 def _press_by_height(setup: CellSetup, cell: SteadyCell, press: PathResult,
