@@ -43,6 +43,7 @@ class Timing:
     cpu: float          # [s], the run and the worker processes it waited for
     warnings: int       # lines of the run's output that say "warning"
     said: tuple[str, ...] = ()   # the first few of them
+    solves: str = ""    # the solves' own clocks (results.nc), :func:`solve_times`
 
 
 def estimate(example: Path, workers: int) -> str:
@@ -51,6 +52,33 @@ def estimate(example: Path, workers: int) -> str:
                          cwd=ROOT, capture_output=True, text=True, check=True).stdout
     found = re.search(r"cost: (about [^(]+)", out)
     return found[1].strip() if found else "(no estimate printed)"
+
+
+def solve_times(results_nc: Path) -> str:
+    """What the solves of a run took by their own clocks (``results.nc``: each point's
+    ``wall_time``, so under load it counts the waiting too): the law's FEM points (how many,
+    their sum, the slowest, how many were re-solved on a finer mesh) and the models'
+    points (how many, their sum)."""
+    if not results_nc.exists():
+        return "no results.nc"
+    import numpy as np
+    import xarray as xr
+
+    parts = []
+    with xr.open_dataset(results_nc) as res:
+        if "law_wall_time" in res:
+            wall = res["law_wall_time"].values
+            done = np.isfinite(wall)
+            refined = (int(np.nansum(res["law_refined"].values[done]))
+                       if "law_refined" in res else 0)
+            parts.append(f"law FEM {int(done.sum())} points, {np.nansum(wall):.0f} s "
+                         f"(slowest {np.nanmax(wall) if done.any() else 0:.0f} s, "
+                         f"{refined} refined)")
+        if "wall_time" in res:
+            wall = res["wall_time"].values
+            parts.append(f"models {int(np.isfinite(wall).sum())} points, "
+                         f"{np.nansum(wall):.0f} s")
+    return "; ".join(parts)
 
 
 def run(example: Path, workers: int) -> Timing:
@@ -65,13 +93,15 @@ def run(example: Path, workers: int) -> Timing:
                               cwd=ROOT, capture_output=True, text=True)
         wall = time.perf_counter() - t0
         cpu1 = resource.getrusage(resource.RUSAGE_CHILDREN)
+        solves = solve_times(Path(tmp) / "out" / "results.nc")
     if proc.returncode != 0:
         raise SystemExit(f"{example.name}: run failed ({proc.returncode}): "
                          f"{proc.stderr.strip().splitlines()[-1:]}")
     cpu = (cpu1.ru_utime - cpu0.ru_utime) + (cpu1.ru_stime - cpu0.ru_stime)
     lines = [ln.strip() for ln in (proc.stdout + proc.stderr).splitlines()
              if "warning" in ln.lower()]
-    return Timing(example.stem, guess, wall, cpu, len(lines), tuple(dict.fromkeys(lines))[:4])
+    return Timing(example.stem, guess, wall, cpu, len(lines), tuple(dict.fromkeys(lines))[:4],
+                  solves)
 
 
 def _minutes(seconds: float) -> str:
@@ -91,10 +121,10 @@ def main() -> None:
     rows, said = [], []
     for name in args.examples:
         t = run(ROOT / "examples" / f"{name}.toml", args.workers)
-        print(f"{t.example}: estimate {t.estimate}; wall {t.wall:.0f} s, CPU {t.cpu:.0f} s",
-              flush=True)
+        print(f"{t.example}: estimate {t.estimate}; wall {t.wall:.0f} s, CPU {t.cpu:.0f} s; "
+              f"{t.solves}; load {os.getloadavg()[0]:.1f}", flush=True)
         rows.append(f"| `{t.example}` | {t.estimate} | {_minutes(t.wall)} | "
-                    f"{_minutes(t.cpu)} | {t.warnings} |")
+                    f"{_minutes(t.cpu)} | {os.getloadavg()[0]:.1f} | {t.solves} | {t.warnings} |")
         said += [f"- `{t.example}`: {line[:200]}" for line in t.said]
     text = "\n".join([
         "# The examples from an empty cache against their estimate "
@@ -105,8 +135,9 @@ def main() -> None:
         "above the workers: wall times are then high, CPU times less so). The estimate is "
         "`rubbercontact run EXAMPLE --check` (to a factor of 2); CPU is the run's and its "
         "workers'.", "",
-        "| example | `--check` estimate | wall | CPU | warning lines |",
-        "|---|---|---:|---:|---:|", *rows, "",
+        "| example | `--check` estimate | wall | CPU | load at the end | the solves' own "
+        "clocks (results.nc) | warning lines |",
+        "|---|---|---:|---:|---:|---|---:|", *rows, "",
         *(["Warning lines (first few per example, 200 characters):", "", *said, ""]
           if said else [])])
     print(text)
