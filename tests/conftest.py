@@ -8,6 +8,8 @@
   enrichment and its task).
 - ``cole_cole``: a Cole–Cole (fractional Zener) solid in closed form, a material that is
   not a Prony series (the solvers take materials by their members).
+- ``step_shear``: the FEM constitutive law's shear stress after a step of simple shear,
+  held (to compare with a Prony series' closed-form relaxation modulus).
 - ``run_example``: runs ``examples/NAME.py`` as a script on its reduced settings and
   returns its global variables.
 """
@@ -101,6 +103,37 @@ def cole_cole():
     """``cole_cole(relaxed=3, unrelaxed=300, tau=1e-4, exponent=0.4)``: a :class:`ColeCole`
     solid (the class itself; instances are frozen)."""
     return ColeCole
+
+
+def _step_shear(material, holds, shear: float = 0.5) -> tuple[np.ndarray, np.ndarray]:
+    """``(t, σ_xy(t))`` [s, MPa] of one material point of the FEM's constitutive law: simple
+    shear ``γ = shear`` applied in a step of 1e-15 s (glassy), then held for the steps
+    ``holds`` [s]. For the neo-Hookean branches ``σ_xy = γ E(t)/3`` exactly."""
+    from rubbercontact.fem.constitutive import (
+        MaterialParameters,
+        ViscousState,
+        cauchy_from_pk2,
+        update_stress,
+    )
+
+    par = MaterialParameters.from_material(material)
+    F = np.array([[[1.0, shear], [0.0, 1.0]]])
+    p = np.zeros(1)
+    st = ViscousState.zeros((1,), par.n_branches)
+    S, _, _, _, st = update_stress(par, F, p, st, 1e-15)
+    t, times, sxy = 1e-15, [], []
+    for dt in holds:
+        S, _, _, _, st = update_stress(par, F, p, st, dt)
+        t += dt
+        times.append(t)
+        sxy.append(cauchy_from_pk2(F, S)[0, 2])
+    return np.array(times), np.array(sxy)
+
+
+@pytest.fixture(scope="session")
+def step_shear():
+    """``step_shear(material, holds, shear=0.5) -> (t, σ_xy)`` (:func:`_step_shear`)."""
+    return _step_shear
 
 
 @pytest.fixture
