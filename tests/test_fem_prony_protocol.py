@@ -18,9 +18,7 @@ import pytest
 
 import rubbercontact as rc
 from rubbercontact.errors import InputError
-from rubbercontact.fem.constitutive import (
-    MaterialParameters,
-)
+from rubbercontact.fem.constitutive import MaterialParameters
 from rubbercontact.materials import GeneralizedMaxwell, PronyMaterial, check_prony
 from rubbercontact.roughness import SineSeries
 
