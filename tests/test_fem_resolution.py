@@ -146,7 +146,7 @@ def test_config_mesh_is_auto_by_default_and_explicit_still_works():
 
 def test_cost_estimate_prices_the_automatic_mesh():
     from rubbercontact.pipeline import resolve
-    from rubbercontact.pipeline.cost import estimate_cost, fem_point_seconds, law_mesh
+    from rubbercontact.pipeline.cost import estimate_cost, law_mesh, law_point_seconds
 
     cfg = rc.config.parse_config({
         "surface": {"preset": "section3"}, "velocities": [10.0],
@@ -158,7 +158,8 @@ def test_cost_estimate_prices_the_automatic_mesh():
     assert mesh[0] == auto_nx(setup.hs0, 16)
     stage = next(s for s in estimate_cost(setup).stages if s.name.startswith("law FEM"))
     assert f"{mesh[0]} x {mesh[1]} (auto)" in stage.name
-    assert stage.each_s == pytest.approx(fem_point_seconds(mesh))
+    assert stage.each_s == pytest.approx(np.mean([law_point_seconds(setup, p)
+                                                  for p in (0.1, 0.5)]))
 
 
 def test_quasi_static_friction_vanishes_on_the_chosen_mesh():

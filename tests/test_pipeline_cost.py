@@ -1,18 +1,29 @@
 """run --check's cost estimate: the solves counted as the planner plans them, priced by
 the measured per-point costs."""
 
+import math
+
 import numpy as np
 import pytest
 
 from rubbercontact.config import parse_config
 from rubbercontact.pipeline import resolve
 from rubbercontact.pipeline.cost import (
+    AUTO_REFINED_SHARE,
+    CONTINUATION_FACTOR,
+    FEM_ELEMENT_EXPONENT,
     FEM_POINT_S,
+    FEM_PRESSURE_SLOPE,
+    FEM_REFERENCE_MESH,
+    HALFSPACE_POINTS,
     HALFSPACE_SOLVE_S,
     OVERHEAD_S,
+    TRANSIENT_FACTOR,
+    Stage,
     estimate_cost,
     fem_point_seconds,
     halfspace_solve_seconds,
+    law_point_seconds,
 )
 from rubbercontact.pipeline.lawstage import law_pressures
 from rubbercontact.pipeline.plan import model_tasks
@@ -41,22 +52,92 @@ def test_counts_are_the_planned_solves():
 
 
 def test_prices_scale_from_the_measured_points():
-    assert fem_point_seconds((40, 30)) == pytest.approx(FEM_POINT_S)
-    # unknowns 2 (nx + 1)(ny + 1) to the power 1.5
-    ratio = (2 * 65 * 49 / (2 * 41 * 31)) ** 1.5
-    assert fem_point_seconds((64, 48)) == pytest.approx(FEM_POINT_S * ratio)
-    assert fem_point_seconds((40, 30), "transient") > 10 * fem_point_seconds((40, 30))
-    assert halfspace_solve_seconds(2048) == pytest.approx(HALFSPACE_SOLVE_S)
-    assert halfspace_solve_seconds(4096) == pytest.approx(HALFSPACE_SOLVE_S * 2 * 12 / 11)
+    assert fem_point_seconds(FEM_REFERENCE_MESH) == pytest.approx(FEM_POINT_S)
+    # elements to the power FEM_ELEMENT_EXPONENT: doubling nx or ny costs the same
+    nx, ny = FEM_REFERENCE_MESH
+    double = 2 ** FEM_ELEMENT_EXPONENT
+    assert fem_point_seconds((2 * nx, ny)) == pytest.approx(FEM_POINT_S * double)
+    assert fem_point_seconds((nx, 2 * ny)) == pytest.approx(FEM_POINT_S * double)
+    # the load against the relaxed modulus: linear in p / E_inf, and only through it
+    at = fem_point_seconds((40, 30), pressure=2.0, modulus=4.0)
+    assert at == pytest.approx(fem_point_seconds((40, 30)) * (1 + FEM_PRESSURE_SLOPE / 2))
+    assert fem_point_seconds((40, 30), pressure=4.0, modulus=8.0) == pytest.approx(at)
+    assert fem_point_seconds((40, 30), pressure=3.0, modulus=4.0) > at
+    assert fem_point_seconds((40, 30), "transient", 2.0, 4.0) == pytest.approx(
+        TRANSIENT_FACTOR * at)
+    assert TRANSIENT_FACTOR > 10
+    assert halfspace_solve_seconds(HALFSPACE_POINTS) == pytest.approx(HALFSPACE_SOLVE_S)
+    assert halfspace_solve_seconds(2 * HALFSPACE_POINTS) == pytest.approx(
+        HALFSPACE_SOLVE_S * 2 * math.log(2 * HALFSPACE_POINTS) / math.log(HALFSPACE_POINTS))
+
+
+def _law_stage(cfg: dict):
+    setup = resolve(parse_config(cfg))
+    return setup, next(s for s in estimate_cost(setup).stages
+                       if s.name.startswith("law FEM"))
+
+
+def test_the_law_costs_its_points_at_their_pressures_on_its_mesh():
+    setup, stage = _law_stage(CONFIG)
+    e_inf = setup.material.equilibrium_modulus
+    each = [fem_point_seconds((40, 30), "steady", p, e_inf) for p in (0.1, 0.5, 2.0)]
+    assert stage.total_s == pytest.approx(2 * sum(each))            # 2 speeds
+    # twice the points (a second set of pressures a hair apart): twice the cost
+    more = {**CONFIG, "law": {"pressures": [0.1, 0.5, 2.0, 0.1001, 0.5001, 2.0001]}}
+    assert _law_stage(more)[1].total_s == pytest.approx(2 * stage.total_s, rel=1e-3)
+    # a finer law cell: each point by the elements to the exponent
+    finer = {**CONFIG, "fem": {**CONFIG["fem"], "mesh": [80, 30]}}
+    assert _law_stage(finer)[1].each_s == pytest.approx(
+        stage.each_s * 2 ** FEM_ELEMENT_EXPONENT)
+    # the time-stepped solver
+    transient = {**CONFIG, "fem": {**CONFIG["fem"], "solver": "transient"}}
+    assert _law_stage(transient)[1].each_s == pytest.approx(TRANSIENT_FACTOR * stage.each_s)
+
+
+def test_a_law_by_continuation_runs_one_task_per_pressure():
+    speeds = {"from": 1.0, "to": 100.0, "points": 5}
+    pressures = [0.1, 0.2, 0.5, 1.0, 2.0]
+    setup, stage = _law_stage({**CONFIG, "velocities": speeds,
+                               "law": {"pressures": pressures}})
+    assert setup.speeds.computed.size == 5 and len(stage.tasks) == 5
+    fresh = [law_point_seconds(setup, p) for p in pressures]
+    assert stage.total_s == pytest.approx(5 * CONTINUATION_FACTOR * sum(fresh))
+    # highest pressure first, each path its pressure's points in a row
+    assert stage.tasks == pytest.approx([5 * CONTINUATION_FACTOR * t for t in fresh[::-1]])
+    # five paths on two workers: the workers take them in order as they come free
+    assert stage.wall_s(2) < stage.total_s
+    assert stage.wall_s(2) >= max(stage.total_s / 2, max(stage.tasks))
+    assert stage.wall_s(5) == pytest.approx(max(stage.tasks))
+
+
+def test_an_automatic_mesh_budgets_the_refined_points():
+    cfg = {**CONFIG, "fem": {"full_mesh": [64, 48], "realizations": 2}}     # mesh = "auto"
+    setup, stage = _law_stage(cfg)
+    mesh = tuple(int(n) for n in stage.name.split("(")[1].split(" (")[0].split(" x "))
+    e_inf = setup.material.equilibrium_modulus
+    expect = [fem_point_seconds(mesh, "steady", p, e_inf)
+              + AUTO_REFINED_SHARE * fem_point_seconds((2 * mesh[0], mesh[1]), "steady", p,
+                                                       e_inf) for p in (0.1, 0.5, 2.0)]
+    assert stage.total_s == pytest.approx(2 * sum(expect))
+
+
+def test_wall_time_runs_the_tasks_in_rounds_of_the_workers():
+    assert Stage("x", 4, 10.0).wall_s(2) == pytest.approx(20.0)
+    assert Stage("x", 5, 10.0).wall_s(2) == pytest.approx(30.0)       # 3 rounds
+    assert Stage("x", 5, 10.0).wall_s(1) == pytest.approx(50.0)
+    assert Stage("x", 4, 10.0, (30.0, 4.0, 3.0, 3.0)).wall_s(2) == pytest.approx(30.0)
 
 
 def test_wall_time_shares_the_solves_between_the_workers():
     setup = resolve(parse_config(CONFIG))
     est = estimate_cost(setup)
     assert est.compute_s == pytest.approx(sum(s.count * s.each_s for s in est.stages))
-    assert est.wall_s == pytest.approx(est.compute_s / 2 + OVERHEAD_S)
+    assert est.wall_s == pytest.approx(sum(s.wall_s(2) for s in est.stages) + OVERHEAD_S)
+    assert est.compute_s / 2 + OVERHEAD_S <= est.wall_s <= est.compute_s + OVERHEAD_S
+    assert est.cpu_s == pytest.approx(est.compute_s + OVERHEAD_S)
     text = est.describe()
     assert "full FEM tests (64 x 48): 12 x" in text and "on 2 worker(s)" in text
+    assert "of CPU" in text
 
 
 def test_a_reused_law_costs_no_fem(tmp_path):
@@ -79,3 +160,11 @@ def test_each_mean_field_model_has_its_own_price():
         stage = stages[f"mean-field points ({m})"]
         assert stage.count == 2 * 3 and stage.each_s == MEANFIELD_POINT_S[m]
     assert MEANFIELD_POINT_S["meanfield"] < 0.01 < MEANFIELD_POINT_S["meanfield-strips"]
+
+
+def test_law_points_above_the_relaxed_modulus_are_said_not_budgeted():
+    said = estimate_cost(resolve(parse_config(CONFIG))).describe()
+    assert "not budgeted: the law's extension" in said and "above the rubber" not in said
+    high = {**CONFIG, "law": {"pressures": [0.1, 2.0, 8.0, 16.0]}}
+    said = estimate_cost(resolve(parse_config(high))).describe()
+    assert "law FEM points at 8, 16 MPa, above the rubber's E∞" in said

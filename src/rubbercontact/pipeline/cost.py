@@ -2,29 +2,29 @@
 measured per-point costs (``rubbercontact run --check``).
 
 The counts are exact (they follow :mod:`.plan` and :mod:`.lawstage`); the times are the
-counts times per-point costs measured on one core of the 2-core development machine, in
-the built-in default's run (``make run`` from an empty cache, 2026-12-03, commit 5ebb528;
-the load average was 3-4, so the figures are on the high side of a quiet machine's):
+counts times per-point costs measured on one core of the 2-core development machine. The
+measured constants are all in the block "Measured costs" below, each with where it was
+measured. The model, kept simple:
 
-- steady FEM: 3.6 s per point on the 40 × 30 law cell (mean of 14 points at 0.05-4 MPa,
-  10 and 50 mm/s; single points range from 1 to 18 s) and 14 s per point on the 64 × 48
-  full cell; in between, and beyond, as the unknowns to the power 1.5 (the two sizes give
-  1.5; the 24 × 12 cell of the README's quick start, 0.2 s measured, 0.4 s by the law);
-- a law path by continuation in speed costs a quarter of a fresh point per speed
-  (BENCHMARKS, "Steady FEM": 13 speeds at 1 MPa on the 120 × 23 cell in 23 s, 2.1× the
-  fresh 1 mm/s point); the time-stepped solver costs 20-200× the steady one (BENCHMARKS),
-  counted as 50×;
-- half-space: 0.05 s per load at 2048 points (96 solves of the default in 5.0 s), scaled
-  as ``n log n``;
-- mean-field, per point and model (CPU time of the tasks of the default's three loads at
-  10 and 50 mm/s on the section 3 and asphalt AC8 presets, 2026-12-03, load 2.5):
-  ``meanfield`` (Persson's theory) about 1 ms, ``meanfield-hybrid`` about 4 ms (the law's
-  compliance in series), ``meanfield-strips`` 0.06-0.27 s (the strip cascade; 0.17 s in
-  BENCHMARKS, "strip cascade"); a model not listed is priced as the strips.
+- a steady FEM point costs ``FEM_POINT_S`` on the reference law cell (120 × 23 elements),
+  times the elements to the power ``FEM_ELEMENT_EXPONENT``, times ``1 + FEM_PRESSURE_SLOPE
+  p / E∞`` (more Newton iterations as the load approaches the rubber's relaxed modulus);
+  the time-stepped solver ``TRANSIENT_FACTOR`` times that; along a path of speeds by
+  continuation ``CONTINUATION_FACTOR`` of a fresh point per speed; on an automatic mesh
+  a point whose narrowest contact patch is too narrow is re-solved on twice the columns
+  (:mod:`rubbercontact.fem`), budgeted as ``AUTO_REFINED_SHARE`` of the points;
+- a half-space solve ``HALFSPACE_SOLVE_S`` at ``HALFSPACE_POINTS``, as ``n log n``;
+- mean-field points per model, ``MEANFIELD_POINT_S``;
+- the wall time: each stage's tasks in rounds of ``workers`` (a law by continuation has one
+  task per pressure, so 5 pressures on 2 workers take 3 rounds), plus ``OVERHEAD_S``.
 
-A run's wall time is about the sum over the workers plus some 40 s of set-up (Dask, the
-roughness analysis of the default, the figures): the estimate is good to a factor of 2,
-the FEM's per-point cost varying by up to 10× with speed and load.
+Not foreseen: the law's extension when the local pressures go past its FEM points (a few
+FEM points and the law models once more, up to three rounds, :mod:`.lawcover`), a steady
+solve that stops and runs the barrier rescue or the transient fallback (minutes a point),
+and a loaded machine (the wall time then grows with the load, the CPU time much less).
+The FEM's cost varies by up to 10× with speed (the rubbery end, 1e-3 mm/s, costs the most)
+and load: the estimate is meant to a factor of 2 (``benchmarks/examples.md`` compares it
+with each example's measured time).
 """
 
 from __future__ import annotations
@@ -36,24 +36,79 @@ from ..models.planning import PER_LOAD, PER_REALIZATION
 from ..models.registry import planning
 from .setup import RunSetup
 
-#: Measured per-point costs [s] (module docstring).
-FEM_POINT_S = 3.6
-FEM_POINT_UNKNOWNS = 2 * 41 * 31          # the 40 x 30 cell's nodes, two components each
-FEM_EXPONENT = 1.5
+# --- Measured costs: the one place ------------------------------------------------------
+# CPU seconds of one process, one thread, on the 2-core x86_64 development machine. "Timed
+# 2026-12-04": single law points of the examples timed in process (fem_task, one worker,
+# 04:20-04:32 UTC, commit ee0af7b, load 9-11: CPU seconds, the wall was 4-5x that);
+# "BENCHMARKS": BENCHMARKS.md, "Steady FEM against the time-stepped test".
+#: Steady FEM point on the reference mesh, load far below E∞, 10-50 mm/s [s]. Timed
+#: 2026-12-04 on examples/asphalt.toml's cell: 1.39 s at 0.1 MPa / 10 mm/s, 1.20 s at
+#: 0.5 MPa / 50 mm/s.
+FEM_POINT_S = 1.3
+#: The reference mesh (nx, ny): the law cell of examples/asphalt.toml and section3.toml.
+FEM_REFERENCE_MESH = (120, 23)
+#: Cost against the elements ``nx ny``. BENCHMARKS (quiet, 2298ddb): the section 3 full
+#: cell, 240 × 45, 30.9 s at 0.35 MPa and 40.9 s at 2 MPa, where this model gives 19 and
+#: 39 s; the default 120 × 90 cell at 1 MPa / 10 mm/s 9.2 s, where it gives 27 s (its rows
+#: deep in the rubber are cheap): the exponent sits between the two.
+FEM_ELEMENT_EXPONENT = 1.75
+#: Cost against load: ``1 + FEM_PRESSURE_SLOPE p / E∞``. Timed 2026-12-04: 3.59 s at
+#: 2 MPa / 10 mm/s on the asphalt cell (p / E∞ = 0.48), 2.8x the light points; BENCHMARKS:
+#: 8 MPa / 10 mm/s (p / E∞ = 1.9) 14-17 s on the loaded machine, where this gives 10.5 s.
+FEM_PRESSURE_SLOPE = 3.7
+#: Time-stepped against steady solver: 22-196x (BENCHMARKS), taken as 50x.
 TRANSIENT_FACTOR = 50.0
-CONTINUATION_FACTOR = 0.25
-HALFSPACE_SOLVE_S = 0.05
-HALFSPACE_POINTS = 2048
-#: Per-point cost of each mean-field model [s] (module docstring).
+#: One speed of a path by continuation against a fresh point at 10-50 mm/s: BENCHMARKS
+#: (quiet) 13 speeds at 1 MPa in 23 s, 0.7x; examples/dma_compound.toml (2026-12-04, load
+#: 10) its paths at 0.1-3 MPa, 132 speeds in 135 s, 0.4x. (Fresh points at the rubbery end
+#: cost far more: 62 s at 1e-3 mm/s, 1 MPa, BENCHMARKS.)
+CONTINUATION_FACTOR = 0.5
+#: Share of an automatic mesh's points re-solved on twice the columns (the narrowest
+#: contact patch under ``fem.patch_columns`` columns): 2 of the 3 points of
+#: examples/captif_road.toml (2026-12-04).
+AUTO_REFINED_SHARE = 0.5
+#: One half-space solve (one load) [s] on ``HALFSPACE_POINTS`` points, scaled as n log n:
+#: examples/captif_road.toml (2026-12-04, load 9) 27 solves in 10 s by their own (wall)
+#: clocks; examples/asphalt.toml on the quiet machine (2026-12-03) 0.8 min of CPU in all,
+#: which leaves at most 0.2 s for each of its 120.
+HALFSPACE_SOLVE_S = 0.2
+HALFSPACE_POINTS = 16384
+#: Per-point cost of each mean-field model [s] (CPU time of the tasks of the default's
+#: three loads at 10 and 50 mm/s on the section 3 and asphalt AC8 presets, 2026-12-03,
+#: load 2.5; the strips: BENCHMARKS.md, "strip cascade"); a model not listed is priced as
+#: the strips.
 MEANFIELD_POINT_S = {"meanfield": 0.001, "meanfield-hybrid": 0.004, "meanfield-strips": 0.17}
-#: Set-up outside the solves (Dask's start, the figures) [s].
-OVERHEAD_S = 40.0
+#: Set-up outside the solves (Python and the Dask workers' start, the surface, the law's
+#: tables, the figures) [s]: the 2026-12-03 quiet asphalt run's 0.4 min wall less its solves.
+OVERHEAD_S = 15.0
+# ------------------------------------------------------------------------------------------
 
 
-def fem_point_seconds(mesh: tuple[int, int], solver: str = "steady") -> float:
-    """Expected cost of one FEM sliding test on ``mesh`` (nx, ny elements) [s]."""
-    unknowns = 2 * (mesh[0] + 1) * (mesh[1] + 1)
-    t = FEM_POINT_S * (unknowns / FEM_POINT_UNKNOWNS) ** FEM_EXPONENT
+def fem_point_seconds(mesh: tuple[int, int], solver: str = "steady",
+                      pressure: float = 0.0, modulus: float = math.inf) -> float:
+    """Expected cost of one FEM sliding test [s].
+
+    Parameters
+    ----------
+    mesh
+        Elements (nx, ny) of the cell.
+    solver
+        ``"steady"`` or ``"transient"`` (``fem.solver``).
+    pressure
+        Mean pressure of the test [MPa]; 0 (the default) prices a light load.
+    modulus
+        The rubber's relaxed modulus E∞ [MPa] that ``pressure`` is measured against.
+
+    Returns
+    -------
+    float
+        ``FEM_POINT_S (elements / reference elements)^FEM_ELEMENT_EXPONENT
+        (1 + FEM_PRESSURE_SLOPE pressure / modulus)``, times ``TRANSIENT_FACTOR`` for the
+        time-stepped solver.
+    """
+    elements = mesh[0] * mesh[1] / (FEM_REFERENCE_MESH[0] * FEM_REFERENCE_MESH[1])
+    t = FEM_POINT_S * elements ** FEM_ELEMENT_EXPONENT
+    t *= 1.0 + FEM_PRESSURE_SLOPE * pressure / modulus
     return t * (TRANSIENT_FACTOR if solver == "transient" else 1.0)
 
 
@@ -65,15 +120,42 @@ def halfspace_solve_seconds(n: int) -> float:
 
 @dataclass(frozen=True)
 class Stage:
-    """One kind of solve of a run: how many, and the expected cost of each [s]."""
+    """One kind of solve of a run: how many, and the expected cost of each [s].
+
+    Attributes
+    ----------
+    name
+        What the solves are, as ``run --check`` prints it.
+    count
+        How many solves.
+    each_s
+        Expected cost of one (the mean) [s].
+    tasks
+        Expected cost of each task [s], in the order the run hands them to the workers,
+        when the solves run as fewer tasks than solves (a law by continuation: one task per
+        pressure); empty: one task per solve.
+    """
 
     name: str
     count: int
     each_s: float
+    tasks: tuple[float, ...] = ()
 
     @property
     def total_s(self) -> float:
+        """Expected CPU time of the stage [s]."""
         return self.count * self.each_s
+
+    def wall_s(self, workers: int) -> float:
+        """Expected wall time of the stage on ``workers`` [s]: each task to the first free
+        worker, in order."""
+        tasks = self.tasks or (self.each_s,) * self.count
+        if not tasks:
+            return 0.0
+        free = [0.0] * max(1, min(workers, len(tasks)))
+        for t in tasks:
+            free[free.index(min(free))] += t
+        return max(free)
 
 
 @dataclass(frozen=True)
@@ -86,10 +168,13 @@ class CostEstimate:
         The kinds of solve (only those the run has).
     workers
         Parallel workers the solves share (``execution.workers``).
+    notes
+        What the run may cost beyond the estimate, as ``run --check`` prints it.
     """
 
     stages: tuple[Stage, ...]
     workers: int
+    notes: tuple[str, ...] = ()
 
     @property
     def compute_s(self) -> float:
@@ -98,16 +183,24 @@ class CostEstimate:
 
     @property
     def wall_s(self) -> float:
-        """Expected wall time [s]: the solves shared by the workers, plus set-up."""
-        return self.compute_s / self.workers + OVERHEAD_S
+        """Expected wall time [s]: each stage's tasks in rounds of the workers, plus
+        set-up."""
+        return sum(s.wall_s(self.workers) for s in self.stages) + OVERHEAD_S
+
+    @property
+    def cpu_s(self) -> float:
+        """Expected CPU time of the run [s]: the solves plus set-up."""
+        return self.compute_s + OVERHEAD_S
 
     def describe(self) -> str:
         """The estimate as the lines ``run --check`` prints."""
         lines = [f"cost: {s.name}: {s.count} x ~{_duration(s.each_s)} = "
                  f"{_duration(s.total_s)}" for s in self.stages if s.count]
         lines.append(f"cost: about {_duration(self.wall_s)} on {self.workers} worker(s) "
-                     f"from an empty cache (to a factor of 2; per-point costs measured on "
-                     f"one core, rubbercontact.pipeline.cost)")
+                     f"from an empty cache, {_duration(self.cpu_s)} of CPU (to a factor of "
+                     f"2 on a quiet machine; per-point costs measured on one core, "
+                     f"rubbercontact.pipeline.cost)")
+        lines += [f"cost: not budgeted: {note}" for note in self.notes]
         return "\n".join(lines)
 
 
@@ -123,13 +216,27 @@ def _duration(seconds: float) -> str:
 
 def law_mesh(setup: RunSetup) -> tuple[int, int]:
     """The law cell's mesh: ``fem.mesh``, or the automatic one of the high-slope cell
-    (:meth:`rubbercontact.fem.FemOptions.resolved`; a point refined by its resolution check
-    costs more, which the estimate does not foresee)."""
+    (:meth:`rubbercontact.fem.FemOptions.resolved`)."""
     return tuple(setup.config.fem.options(setup.material).resolved(setup.hs0).mesh)
+
+
+def law_point_seconds(setup: RunSetup, pressure: float) -> float:
+    """Expected cost of one fresh law FEM point at ``pressure`` [MPa] [s]: on the law
+    cell's mesh, and on an automatic mesh the share of points re-solved on twice the
+    columns."""
+    cfg, e_inf = setup.config, setup.material.equilibrium_modulus
+    mesh = law_mesh(setup)
+    t = fem_point_seconds(mesh, cfg.fem.solver, pressure, e_inf)
+    if cfg.fem.mesh == "auto":
+        t += AUTO_REFINED_SHARE * fem_point_seconds((2 * mesh[0], mesh[1]), cfg.fem.solver,
+                                                    pressure, e_inf)
+    return t
 
 
 def estimate_cost(setup: RunSetup) -> CostEstimate:
     """Count the solves of a resolved run (:func:`~.setup.resolve`) and price them."""
+    import numpy as np
+
     from .lawstage import law_pressures, uses_continuation
 
     cfg = setup.config
@@ -137,26 +244,43 @@ def estimate_cost(setup: RunSetup) -> CostEstimate:
     loads = (len(cfg.loads.pressures) if cfg.loads.pressures is not None
              else cfg.loads.sweep_points or max(6, len(cfg.loads.contact_areas) + 2))
     n_real = len(setup.realizations)
-    stages = []
+    e_inf = setup.material.equilibrium_modulus
+    stages, notes = [], []
     if setup.needs_law and cfg.law.file is None:
-        import numpy as np
-
-        n_law = len(law_pressures(cfg, np.ones(1)))
+        pressures = np.sort(law_pressures(cfg, np.ones(1)))
         mesh = law_mesh(setup)
-        each = fem_point_seconds(mesh, cfg.fem.solver)
+        each = np.array([law_point_seconds(setup, p) for p in pressures])
         how = " (auto)" if cfg.fem.mesh == "auto" else ""
         if uses_continuation(cfg, speeds):
-            each, how = each * CONTINUATION_FACTOR, f"{how}, by continuation in speed"
-        stages.append(Stage(f"law FEM points ({mesh[0]} x {mesh[1]}{how})",
-                            n_law * speeds, each))
+            # one task per pressure, highest first (lawstage.fem_points)
+            how = f"{how}, by continuation in speed"
+            paths = tuple(float(t) * CONTINUATION_FACTOR * speeds for t in each[::-1])
+            stages.append(Stage(f"law FEM points ({mesh[0]} x {mesh[1]}{how})",
+                                len(pressures) * speeds, sum(paths) / (len(paths) * speeds),
+                                paths))
+        else:
+            stages.append(Stage(f"law FEM points ({mesh[0]} x {mesh[1]}{how})",
+                                len(pressures) * speeds, float(each.mean()),
+                                tuple(np.tile(each, speeds).tolist())))
+        notes.append("the law's extension, if the local pressures go past its FEM points "
+                     "(FEM points and the law models once more, the run says so)")
+        above = pressures[pressures > e_inf]
+        if above.size:
+            notes.append(f"law FEM points at {', '.join(f'{p:g}' for p in above)} MPa, "
+                         f"above the rubber's E∞ ({e_inf:.3g} MPa), may stop and run the "
+                         f"barrier rescue or the transient fallback, minutes a point")
         stages.append(Stage("half-space solves of the high-slope waves (Fig. 7)",
-                            n_law * speeds,
+                            len(pressures) * speeds,
                             halfspace_solve_seconds(min(cfg.halfspace.n, 4096))))
     if "fem" in setup.models:
         mesh = cfg.fem.full_mesh_or_default
+        # loads given as contact areas: priced at E∞/4, about 1 MPa for the SBR, inside
+        # the 0.35-2 MPa the section 3 areas 0.01-0.1 take
+        load = (float(np.mean(cfg.loads.pressures)) if cfg.loads.pressures is not None
+                else e_inf / 4)
         stages.append(Stage(f"full FEM tests ({mesh[0]} x {mesh[1]})",
                             speeds * setup.n_fem * loads,
-                            fem_point_seconds(mesh, cfg.fem.solver)))
+                            fem_point_seconds(mesh, cfg.fem.solver, load, e_inf)))
     hs_models = [m for m in setup.models if planning(m).per == PER_REALIZATION]
     if hs_models:
         stages.append(Stage(f"half-space solves ({', '.join(hs_models)}; "
@@ -166,4 +290,4 @@ def estimate_cost(setup: RunSetup) -> CostEstimate:
     for m in (m for m in setup.models if planning(m).per == PER_LOAD):
         stages.append(Stage(f"mean-field points ({m})", speeds * loads,
                             MEANFIELD_POINT_S.get(m, MEANFIELD_POINT_S["meanfield-strips"])))
-    return CostEstimate(tuple(stages), cfg.execution.workers)
+    return CostEstimate(tuple(stages), cfg.execution.workers, tuple(notes))
