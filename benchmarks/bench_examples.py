@@ -38,7 +38,7 @@ class Timing:
     """One example: the estimate ``--check`` printed and the run's measured cost."""
 
     example: str
-    estimate: str       # as printed, e.g. "about 5 min on 2 worker(s)"
+    estimate: str       # as printed, e.g. "about 5 min on 2 worker(s); 9 min of CPU"
     wall: float         # [s]
     cpu: float          # [s], the run and the worker processes it waited for
     warnings: int       # lines of the run's output that say "warning"
@@ -47,11 +47,12 @@ class Timing:
 
 
 def estimate(example: Path, workers: int) -> str:
-    """The ``cost: about …`` line of ``--check``."""
+    """The ``cost: about …`` line of ``--check``: wall time on ``workers``, CPU time."""
     out = subprocess.run(CLI + ["run", str(example), "--check", "--workers", str(workers)],
                          cwd=ROOT, capture_output=True, text=True, check=True).stdout
-    found = re.search(r"cost: (about [^(]+)", out)
-    return found[1].strip() if found else "(no estimate printed)"
+    found = re.search(r"cost: (about .+?) \(to a factor", out)
+    return (found[1].replace(" from an empty cache,", ";") if found
+            else "(no estimate printed)")
 
 
 def solve_times(results_nc: Path) -> str:
