@@ -28,6 +28,7 @@ from rubbercontact.inputs import build_surface
 from rubbercontact.pipeline.setup import translated_to_zero_phase
 
 from ._rows import append_row, publish, read_rows
+from ._steep_strain import run_strain, strain_report
 from ._templates import render
 
 DESCRIPTION = "The steady FEM on the CAPTIF fits' steep high-slope cells over the law's range."
@@ -147,6 +148,7 @@ def report(rows: list[dict], surfaces: dict) -> str:
     lines += ["", *defaults_report([r for r in rows if r.get("part") == "defaults"],
                                    surfaces)]
     lines += ["", *settle_report([r for r in rows if r.get("part") == "settle"])]
+    lines += ["", *strain_report([r for r in rows if r.get("part") == "strain"])]
     return "\n".join(lines) + "\n"
 
 
@@ -313,10 +315,12 @@ def main(argv: list[str] | None = None) -> int:
     ap.add_argument("--report-only", action="store_true")
     ap.add_argument("--no-fallback", dest="fallback", action="store_false",
                     help="record a steady failure without running the transient fallback")
-    ap.add_argument("--part", choices=("grid", "contact", "defaults", "settle"), default="grid",
-                    help="the law grid (default), penalty against barrier at hard points, or "
-                         "the law grid with the library's defaults (auto mesh, rescue), or "
-                         "steady = settled transient at two steep points")
+    ap.add_argument("--part", choices=("grid", "contact", "defaults", "settle", "strain"),
+                    default="grid",
+                    help="the law grid (default), penalty against barrier at hard points, "
+                         "the law grid with the library's defaults (auto mesh, rescue), "
+                         "steady = settled transient at two steep points, or what stops "
+                         "the 10 MPa press (mesh by mesh)")
     ap.add_argument("--cell", choices=("stations 0+1", "station 1"), default=None,
                     help="part defaults: one cell only")
     args = ap.parse_args(argv)
@@ -334,6 +338,9 @@ def main(argv: list[str] | None = None) -> int:
     elif args.part == "settle" and not args.report_only:
         run_settle(args.rows, surfaces, {(r["cell"], r["pressure"], r["velocity"])
                                          for r in rows if r.get("part") == "settle"})
+    elif args.part == "strain" and not args.report_only:
+        run_strain(args.rows, surfaces, {(r["nx"], r["ny"], r["grading"]) for r in rows
+                                         if r.get("part") == "strain"})
     elif not args.report_only:
         for name, surf in surfaces.items():
             for v in VELOCITIES:

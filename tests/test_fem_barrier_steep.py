@@ -41,11 +41,21 @@ def test_barrier_converges_steady_at_3_mpa_10_mm_s_on_the_steep_cell():
 
 
 @pytest.mark.slow
-@pytest.mark.parametrize("p, v", [(10.0, 1.0), (10.0, 10.0)])
-def test_barrier_converges_steady_at_10_mpa_on_the_steep_cell(p, v):
-    # the penalty stops at 10 MPa / 10 mm/s and converges at 10 MPa / 1 mm/s only with
-    # the face impaled on a crest
-    _check(p, v)
+def test_above_e_inf_the_steep_cell_converges_or_says_what_strain_stopped_it():
+    # 10 MPa / 1 mm/s, 2.4 x E-inf, where the penalty "converges" only with the face
+    # impaled on a crest. The barrier's press stops here (docs/validation/steep_cells.md,
+    # part 'strain': frictionless, the stop moves *down* the load as the mesh is refined,
+    # at face stretches of 2-3 around crests of a few columns' radius: the cell's strain,
+    # not the contact). What the library owes the user: a converged, unimpaled answer,
+    # or an error naming the stage and the strain reached, never an impaled number.
+    opts = FemOptions(mesh=(40, 30), contact="barrier").with_(
+        steady={"newton_per_step": 60, "fallback": False})
+    try:
+        out = rc.fem.steady_sliding(STATIONS_01, rc.materials.sbr(), 10.0, 1.0, options=opts)
+    except rc.errors.ConvergenceError as exc:
+        assert "face stretched up to" in str(exc) and "principal stretches" in str(exc)
+    else:
+        assert not out.stats.impaled and out.stats.max_penetration == 0.0
 
 
 @pytest.mark.slow
