@@ -75,6 +75,19 @@ class LawReads:
     clamped: int = 0
     reads: int = 0
 
+    def table(self, laws: LawSpeeds | None, speed: float):
+        """The law's table at ``speed`` (None without a law), the read counted."""
+        if laws is None:
+            return None
+        if self.slowest is None:
+            self.slowest = float(laws.speeds[0])
+        read = laws.at(speed)
+        self.reads += 1
+        if read.clamped:
+            self.clamped += 1
+            self.lowest = min(self.lowest, speed)
+        return read.table
+
     def note(self, models: tuple[str, ...]) -> str:
         """One line on the clamped reads ("" when none)."""
         if not self.clamped:
@@ -118,22 +131,13 @@ def hybrid_solver(setup: RunSetup, model: str, realization: int, pressure: float
         return None
     mat = GeneralizedMaxwell(**kw["material"])
     window = kw.get("hs_window")
-    if laws is not None and reads.slowest is None:
-        reads.slowest = float(laws.speeds[0])
     solved: dict[float, object] = {}
 
     def solve(speed: float, start=None):
         key = float(speed)
         if key in solved:
             return solved[key]
-        table = None
-        if laws is not None:
-            read = laws.at(key)
-            table = read.table
-            reads.reads += 1
-            if read.clamped:
-                reads.clamped += 1
-                reads.lowest = min(reads.lowest, key)
+        table = reads.table(laws, key)
         res = solve_sliding(surface, kw["period"], mat, key, pressure,
                             law=halfspace_law(kw["law"], table, key), n=kw["n"], nu=kw["nu"],
                             tol=kw["tol"],

@@ -91,18 +91,9 @@ def meanfield_hybrid_solver(setup: RunSetup, pressure: float, laws: LawSpeeds | 
     material = GeneralizedMaxwell(**task_material(setup.material))
     cls = registry.model_class(MODEL)
     data = cls.run_data(MODEL, setup)
-    if laws is not None and reads.slowest is None:
-        reads.slowest = float(laws.speeds[0])
 
     def task(speed: float) -> tuple[str, dict]:
-        table = None
-        if laws is not None:
-            read = laws.at(speed)
-            table = read.table
-            reads.reads += 1
-            if read.clamped:
-                reads.clamped += 1
-                reads.lowest = min(reads.lowest, speed)
+        table = reads.table(laws, speed)
         return cls.run_task(MODEL, RunPoint(setup, material, float(speed),
                                             np.array([pressure]), table, None, data))
 
