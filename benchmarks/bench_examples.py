@@ -17,6 +17,7 @@ unless named.
 from __future__ import annotations
 
 import argparse
+import json
 import os
 import platform
 import re
@@ -59,7 +60,7 @@ def solve_times(results_nc: Path) -> str:
     """What the solves of a run took by their own clocks (``results.nc``: each point's
     ``wall_time``, so under load it counts the waiting too): the law's FEM points (how many,
     their sum, the slowest, how many were re-solved on a finer mesh) and the models'
-    points (how many, their sum)."""
+    points (how many, their sum); and the run's own stage timings (``timings_s``)."""
     if not results_nc.exists():
         return "no results.nc"
     import numpy as np
@@ -79,6 +80,9 @@ def solve_times(results_nc: Path) -> str:
             wall = res["wall_time"].values
             parts.append(f"models {int(np.isfinite(wall).sum())} points, "
                          f"{np.nansum(wall):.0f} s")
+        if "timings_s" in res.attrs:          # the run's own stages (wall)
+            stages = json.loads(res.attrs["timings_s"])
+            parts.append("run: " + ", ".join(f"{k} {v:.0f} s" for k, v in stages.items()))
     return "; ".join(parts)
 
 
