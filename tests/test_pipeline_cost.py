@@ -168,3 +168,18 @@ def test_law_points_above_the_relaxed_modulus_are_said_not_budgeted():
     high = {**CONFIG, "law": {"pressures": [0.1, 2.0, 8.0, 16.0]}}
     said = estimate_cost(resolve(parse_config(high))).describe()
     assert "law FEM points at 8, 16 MPa, above the rubber's E∞" in said
+
+
+def test_the_law_tables_cost_each_computed_speed_in_the_runs_own_process():
+    from rubbercontact.pipeline.cost import LAW_TABLE_SPEED_S
+
+    def tables(cfg):
+        return next(s for s in estimate_cost(resolve(parse_config(cfg))).stages
+                    if s.name.startswith("law tables"))
+
+    two = tables(CONFIG)
+    five = tables({**CONFIG, "velocities": {"from": 1.0, "to": 100.0, "points": 5}})
+    assert two.count == 2 and five.count == 5
+    assert five.total_s == pytest.approx(5 * LAW_TABLE_SPEED_S)
+    # serial: the workers do not share it
+    assert five.wall_s(2) == pytest.approx(five.total_s) == five.wall_s(8)

@@ -14,6 +14,8 @@ measured. The model, kept simple:
   a point whose narrowest contact patch is too narrow is re-solved on twice the columns
   (:mod:`rubbercontact.fem`), budgeted as ``AUTO_REFINED_SHARE`` of the points;
 - a half-space solve ``HALFSPACE_SOLVE_S`` at ``HALFSPACE_POINTS``, as ``n log n``;
+- the law's tables, continued past the top FEM pressure with the linear law's shape,
+  ``LAW_TABLE_SPEED_S`` per computed speed, serial in the run's own process;
 - mean-field points per model, ``MEANFIELD_POINT_S``;
 - the wall time: each stage's tasks in rounds of ``workers`` (a law by continuation has one
   task per pressure, so 5 pressures on 2 workers take 3 rounds), plus ``OVERHEAD_S``.
@@ -73,6 +75,14 @@ AUTO_REFINED_SHARE = 0.5
 #: which leaves at most 0.2 s for each of its 120.
 HALFSPACE_SOLVE_S = 0.2
 HALFSPACE_POINTS = 16384
+#: The law's table at one computed speed [s]: its continuation past the top FEM pressure
+#: with the linear law's shape (hybrid.linearlaw.continue_with_linear_shape: up to 41 VHS
+#: solves of the high-slope waves at 2048 points), serial in the run's own process, at every
+#: speed. 2026-12-04 (load 5-11; py-spy showed the runs' processes there for minutes):
+#: examples/dma_compound.toml's process ~300 s of CPU after its law tasks, for 33 speeds;
+#: the loop timed alone at 10 mm/s, CPU: asphalt 10.2 s (8 solves), captif_road 6.6 s (13),
+#: dma_compound 3.6 s (3), speed_sweep 7.9 s (13; 3.0 s at 0.01 mm/s).
+LAW_TABLE_SPEED_S = 7.0
 #: Per-point cost of each mean-field model [s] (CPU time of the tasks of the default's
 #: three loads at 10 and 50 mm/s on the section 3 and asphalt AC8 presets, 2026-12-03,
 #: load 2.5; the strips: BENCHMARKS.md, "strip cascade"); a model not listed is priced as
@@ -269,6 +279,9 @@ def estimate_cost(setup: RunSetup) -> CostEstimate:
             notes.append(f"law FEM points at {', '.join(f'{p:g}' for p in above)} MPa, "
                          f"above the rubber's E∞ ({e_inf:.3g} MPa), may stop and run the "
                          f"barrier rescue or the transient fallback, minutes a point")
+        stages.append(Stage("law tables past the top FEM pressure (linear-law shape, in "
+                            "the run's own process)", speeds, LAW_TABLE_SPEED_S,
+                            (speeds * LAW_TABLE_SPEED_S,)))
         stages.append(Stage("half-space solves of the high-slope waves (Fig. 7)",
                             len(pressures) * speeds,
                             halfspace_solve_seconds(min(cfg.halfspace.n, 4096))))
