@@ -66,9 +66,9 @@ TRANSIENT_FACTOR = 50.0
 #: cost far more: 62 s at 1e-3 mm/s, 1 MPa, BENCHMARKS.)
 CONTINUATION_FACTOR = 0.5
 #: Share of an automatic mesh's points re-solved on twice the columns (the narrowest
-#: contact patch under ``fem.patch_columns`` columns): 2 of the 3 points of
-#: examples/captif_road.toml (2026-12-04).
-AUTO_REFINED_SHARE = 0.5
+#: contact patch under ``fem.patch_columns`` columns), 2026-12-04: 2 of the 3 points of
+#: examples/captif_road.toml, 106 of the 135 of examples/speed_sweep.toml.
+AUTO_REFINED_SHARE = 0.75
 #: One half-space solve (one load) [s] on ``HALFSPACE_POINTS`` points, scaled as n log n:
 #: examples/captif_road.toml (2026-12-04, load 9) 27 solves in 10 s by their own (wall)
 #: clocks; examples/asphalt.toml on the quiet machine (2026-12-03) 0.8 min of CPU in all,
