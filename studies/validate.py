@@ -144,7 +144,11 @@ def run_case(case, cfg, outdir: Path, used_keys: set[str] | None = None):
     path = outdir / case / "results.nc"
     write_results(ds, path, overwrite=True)
     figs = plot_all(ds, outdir / case)
-    msgs = sorted({str(w.message) for w in caught})
+    # the models' validity notes (where a model left its validated class, e.g. a law
+    # read beyond its FEM points) are results, not warnings: listed beside them
+    notes = [line for k, v in sorted(ds.attrs.items()) if k.startswith("validity_")
+             for line in str(v).splitlines() if line]
+    msgs = sorted({str(w.message) for w in caught}) + notes
     return ds, wall, figs, msgs
 
 
