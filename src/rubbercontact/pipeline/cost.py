@@ -23,7 +23,10 @@ measured. The model, kept simple:
 Not foreseen: the law's extension when the local pressures go past its FEM points (a few
 FEM points and the law models once more, up to three rounds, :mod:`.lawcover`), a steady
 solve that stops and runs the barrier rescue or the transient fallback (minutes a point),
-and a loaded machine (the wall time then grows with the load, the CPU time much less).
+a steady point that needs many more Newton iterations than its neighbours (1 MPa on
+examples/captif_road.toml's steep automatic cell: 77 s of CPU on the quiet machine where
+this model gives 4 s and its 0.3 MPa neighbour took 3 s), and a loaded machine (the wall
+time then grows with the load, the CPU time much less).
 The FEM's cost varies by up to 10× with speed (the rubbery end, 1e-3 mm/s, costs the most)
 and load: the estimate is meant to a factor of 2 (``benchmarks/examples.md`` compares it
 with each example's measured time).
