@@ -227,8 +227,14 @@ def test_a_neighbouring_speed_starts_the_next_solve():
 
 
 def test_failure_falls_back_to_the_transient_test_and_says_so():
+    import warnings
+
     surf, mat = rc.roughness.high_slope_wave(), rc.materials.sbr()
-    with pytest.warns(RuntimeWarning, match="steady FEM solve failed"):
+    with pytest.warns(RuntimeWarning, match="steady FEM solve failed"), \
+            warnings.catch_warnings():
+        # the fallback's own note that its coarse 16 x 8 transient has not settled in its
+        # periods is not what this test is about
+        warnings.filterwarnings("ignore", message=".*period averages still change")
         out = rc.fem.steady_sliding(surf, mat, 1.0, 10.0, mesh=(16, 8), newton_per_step=1,
                                     max_steps=2)
     assert out.stats.solver == "transient (fallback)"
