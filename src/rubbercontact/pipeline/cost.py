@@ -73,19 +73,20 @@ CONTINUATION_FACTOR = 0.5
 #: examples/captif_road.toml, 106 of the 135 of examples/speed_sweep.toml.
 AUTO_REFINED_SHARE = 0.75
 #: One half-space solve (one load) [s] on ``HALFSPACE_POINTS`` points, scaled as n log n:
-#: examples/captif_road.toml (2026-12-04, load 9) 27 solves in 10 s by their own (wall)
-#: clocks; examples/asphalt.toml on the quiet machine (2026-12-03) 0.8 min of CPU in all,
-#: which leaves at most 0.2 s for each of its 120.
-HALFSPACE_SOLVE_S = 0.2
+#: the examples from an empty cache on the quiet machine (2026-12-04 05:21 UTC, load
+#: 0.3-2.4, benchmarks/examples.md), by the solves' own clocks: asphalt 120 solves in 4 s,
+#: dma_compound 594 in 11 s, speed_sweep 540 in 9 s (0.017-0.033 s each; 0.2 s had been
+#: read off a run at load 9).
+HALFSPACE_SOLVE_S = 0.03
 HALFSPACE_POINTS = 16384
 #: The law's table at one computed speed [s]: its continuation past the top FEM pressure
 #: with the linear law's shape (hybrid.linearlaw.continue_with_linear_shape: up to 41 VHS
 #: solves of the high-slope waves at 2048 points), serial in the run's own process, at every
-#: speed. 2026-12-04 (load 5-11; py-spy showed the runs' processes there for minutes):
-#: examples/dma_compound.toml's process ~300 s of CPU after its law tasks, for 33 speeds;
-#: the loop timed alone at 10 mm/s, CPU: asphalt 10.2 s (8 solves), captif_road 6.6 s (13),
-#: dma_compound 3.6 s (3), speed_sweep 7.9 s (13; 3.0 s at 0.01 mm/s).
-LAW_TABLE_SPEED_S = 7.0
+#: speed. On the quiet machine (2026-12-04 05:21 UTC, benchmarks/examples.md) the runs' CPU
+#: beyond their FEM and half-space solves' own clocks, per computed speed: speed_sweep 3.3 s
+#: (45 speeds), dma_compound 5 s (33), both with the process's start and figures in it; at
+#: load 5-11 the loop had taken 3.6-10 s a speed.
+LAW_TABLE_SPEED_S = 3.5
 #: Per-point cost of each mean-field model [s] (CPU time of the tasks of the default's
 #: three loads at 10 and 50 mm/s on the section 3 and asphalt AC8 presets, 2026-12-03,
 #: load 2.5; the strips: BENCHMARKS.md, "strip cascade"); a model not listed is priced as
