@@ -205,8 +205,9 @@ def weigh_law(dist: PressureDistribution, law: PressureLaw) -> tuple[float, floa
     if beyond.any():
         share = dist.expect(beyond.astype(float)) / max(dist.contact_fraction, 1e-300)
         if share > COVERAGE_WARN:
-            warnings.warn(
-                f"law: {100 * share:.1f} % of the low-slope contact is at pressures beyond "
-                f"the table's {law.max_pressure:.3g} MPa, where α_hs and Δτ_hs are held; "
-                f"extend the law to higher pressures", LawWarning, stacklevel=3)
+            w = LawWarning(f"law: {100 * share:.1f} % of the low-slope contact is at pressures "
+                           f"beyond the table's {law.max_pressure:.3g} MPa, where α_hs and "
+                           f"Δτ_hs are held; extend the law to higher pressures")
+            w.share = float(share)      # for callers that gather these (pipeline flash)
+            warnings.warn(w, stacklevel=3)
     return mu_hs, area

@@ -276,6 +276,15 @@ class _Problem:
         return self.t0 + self.rise(*self.state(temperature, rows), rows) - temperature
 
 
+def tread_rise(flash: FlashOptions) -> float:
+    """``t`` [K per mW/mm²]: the background's rise per unit mean flux over the tread
+    element's ``contact_time`` (0 without one; module docstring)."""
+    if flash.contact_time is None:
+        return 0.0
+    th = flash.thermal
+    return 4 / 3 * np.sqrt(th.diffusivity * flash.contact_time / np.pi) / th.conductivity_package
+
+
 def cascade_rise(heat: np.ndarray, area: np.ndarray, spot_rise: np.ndarray,
                  tread_rise: float = 0.0) -> np.ndarray:
     """``ΔT_i = Σ_{l ≤ i} (1/A_l − 1/A_{l−1}) Γ_l W_l + t W_1`` [K] (module docstring).
@@ -417,11 +426,7 @@ def _setup(psd, material, velocities, mean_pressure, nu, options, flash) -> _Pro
     law.log10_shift(t0)                                     # validity at T0
     spot = partial(disc_centre_temperature if psd.dimension == 2 else band_centre_temperature,
                    flash.spot_radius / psd.wavenumbers, thermal=flash.thermal)
-    tread = 0.0
-    if flash.contact_time is not None:
-        th = flash.thermal
-        tread = 4 / 3 * np.sqrt(th.diffusivity * flash.contact_time / np.pi) / (
-            th.conductivity_package)
+    tread = tread_rise(flash)
     tables = _tables(psd, material, v, float(nu), opts.angles, law, t0)
     return _Problem(psd, v, sigma0, float(nu), opts, law, t0, spot(v[:, None]), tread, tables,
                     spot)

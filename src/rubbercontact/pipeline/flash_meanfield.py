@@ -29,7 +29,6 @@ no rise and the run's own solve, bit for bit; so does a rubber whose shift is 1.
 
 from __future__ import annotations
 
-import re
 import warnings
 from collections.abc import Callable
 from dataclasses import dataclass
@@ -44,7 +43,7 @@ from ..materials import GeneralizedMaxwell
 from ..materials.shift import shift_law_from_dict
 from ..meanfield import PSD
 from ..meanfield import solve as solve_meanfield
-from ..meanfield.flash import HOTTEST, FlashOptions, cascade_rise
+from ..meanfield.flash import HOTTEST, FlashOptions, cascade_rise, tread_rise
 from ..meanfield.options import options_from_dict
 from ..models import registry
 from ..models.planning import RunPoint
@@ -112,8 +111,8 @@ def meanfield_hybrid_solver(setup: RunSetup, pressure: float, laws: LawSpeeds | 
             if not issubclass(w.category, LawWarning):
                 warnings.warn_explicit(w.message, w.category, w.filename, w.lineno)
                 continue
-            share = re.match(r"law: ([0-9.]+) %", str(w.message))
-            solve.beyond = max(solve.beyond, float(share.group(1)) if share else np.inf)
+            share = getattr(w.message, "share", None)       # weigh_law's coverage warning
+            solve.beyond = max(solve.beyond, np.inf if share is None else 100.0 * share)
         return res
 
     solve.beyond = 0.0          # the largest share [%] of a contact beyond the law's pressures
@@ -127,14 +126,9 @@ def contact_rise(result, velocity: float, pressure: float, flash: FlashOptions) 
     q, parts = result.friction_spectrum
     heat = np.asarray(parts, float) * pressure * velocity
     heat[-1] += result.friction_hs * pressure * velocity
-    th = flash.thermal
-    spots = band_centre_temperature(flash.spot_radius / q, velocity, th)
-    tread = 0.0
-    if flash.contact_time is not None:
-        tread = 4 / 3 * np.sqrt(th.diffusivity * flash.contact_time / np.pi) / (
-            th.conductivity_package)
+    spots = band_centre_temperature(flash.spot_radius / q, velocity, flash.thermal)
     return float(cascade_rise(heat, np.asarray(result.area.contact_fraction, float), spots,
-                              tread)[-1])
+                              tread_rise(flash))[-1])
 
 
 def meanfield_hybrid_flash(solve: Callable[[float], object], velocities: np.ndarray,
