@@ -29,7 +29,7 @@ and says it did (in :attr:`HeightMap.source`):
 from __future__ import annotations
 
 from dataclasses import dataclass, field
-from typing import Literal
+from typing import ClassVar, Literal
 
 import numpy as np
 
@@ -63,6 +63,8 @@ class HeightMap:
         Provenance (file, hash, unit, what was filled, detrended, periodized), plain data.
     """
 
+    #: a map z(y, x): what the solvers dispatch on (:mod:`~rubbercontact.roughness.protocol`)
+    dimension: ClassVar[int] = 2
     heights: np.ndarray
     lengths: tuple[float, float]
     filled: np.ndarray | None = None

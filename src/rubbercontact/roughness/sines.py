@@ -9,6 +9,7 @@ multiple of every other wavelength, which keeps the profile periodic.
 from __future__ import annotations
 
 from dataclasses import dataclass, field
+from typing import ClassVar
 
 import numpy as np
 
@@ -33,6 +34,8 @@ class SineSeries:
         ``φ_i`` [rad]; zeros when omitted.
     """
 
+    #: a profile z(x): what the solvers dispatch on (:mod:`~rubbercontact.roughness.protocol`)
+    dimension: ClassVar[int] = 1
     wavelengths: np.ndarray
     amplitudes: np.ndarray
     phases: np.ndarray | None = None
