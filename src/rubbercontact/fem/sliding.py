@@ -21,6 +21,7 @@ from .._validation import positive_scalar
 from ..errors import ConvergenceError, InputError
 from ..materials.maxwell import GeneralizedMaxwell
 from ..materials.protocol import check_prony
+from ..roughness.protocol import check_waves
 from ..roughness.sines import SineSeries
 from .constitutive import cauchy_from_pk2
 from .contact import face_contact_fraction, mean_separation, segment_penetration
@@ -73,9 +74,10 @@ def make_options(options: FemOptions | None = None, **changes) -> FemOptions:
 def check_test(surface, material, mean_pressure, velocity, options: FemOptions
                ) -> tuple[float, float]:
     """Check the inputs of one test; ``(p̄, v)`` as floats."""
-    if not isinstance(surface, SineSeries):
-        raise InputError(f"surface: expected a SineSeries, got {type(surface).__name__}")
-    if surface.size == 0 or surface.period <= 0:
+    # the cell is meshed by the shortest wavelength and its contact search bounds the
+    # surface's slope and curvature by the waves: what it needs is a profile of sine waves
+    check_waves(surface, analytic=True, needs="the FEM cell")
+    if surface.period <= 0:
         raise InputError(f"surface: period must be > 0 mm, got {surface.period} "
                          f"(empty SineSeries)")
     check_prony(material)

@@ -17,7 +17,7 @@ import numpy as np
 
 from .._validation import finite_array, positive_scalar
 from ..errors import InputError
-from ..roughness.sines import SineSeries
+from ..roughness.protocol import check_surface
 from . import kernels as kn
 from .options import COARSE_FACTOR, SolverOptions
 
@@ -40,7 +40,7 @@ class Grid:
     heights
         ``z`` [mm] on the grid (the mean of a sampled surface removed).
     slope
-        Exact ``∂z/∂x`` on the grid (analytic for a SineSeries, spectral otherwise).
+        Exact ``∂z/∂x`` on the grid (a profile's own ``sampled`` slope, spectral otherwise).
     x, y
         Coordinates [mm] (``y`` is ``None`` in 1D).
     """
@@ -237,24 +237,68 @@ def _commensurate(name: str, period: float, wavelengths: np.ndarray) -> None:
 
 
 def sample_surface(surface, period, n: int) -> Grid:
-    """Sample a SineSeries on ``n`` points, or check sampled heights; see ``solve_sliding``."""
-    if isinstance(surface, SineSeries):
-        if surface.size == 0:
-            raise InputError("surface: empty SineSeries")
-        if int(n) != n or n < MIN_POINTS:
-            raise InputError(f"n: number of grid points must be an integer >= {MIN_POINTS}, "
-                             f"got {n}")
-        n = int(n)
-        length = surface.period if period is None else positive_scalar("period", period,
-                                                                       unit="mm")
-        _commensurate("period", length, surface.wavelengths)
-        # need at least 4 points per shortest wavelength to resolve its slope
-        if n * surface.wavelengths[0] / length < 4:
-            raise InputError(f"n: {n} points over {length} mm give fewer than 4 points per "
-                             f"shortest wavelength {surface.wavelengths[0]} mm")
-        x = np.arange(n) * (length / n)
-        heights, slopes = surface.sampled(length, n)
-        return Grid((n,), (length,), heights, slopes, x, None)
+    """Sample a surface on ``n`` points, or check sampled heights; see ``solve_sliding``.
+
+    Dispatch on what the surface declares (:mod:`rubbercontact.roughness.protocol`), not
+    on its class: a profile (``dimension`` 1) is sampled by its own ``sampled``, a map
+    (``dimension`` 2) is taken on its grid; an array is heights.
+    """
+    if not hasattr(surface, "dimension") and (isinstance(surface, np.ndarray | list | tuple)
+                                              or hasattr(surface, "__array__")):
+        return _heights_grid(surface, period)
+    if check_surface(surface) == 2:
+        return _map_grid(surface, period)
+    if int(n) != n or n < MIN_POINTS:
+        raise InputError(f"n: number of grid points must be an integer >= {MIN_POINTS}, "
+                         f"got {n}")
+    n = int(n)
+    own = float(surface.period)
+    if not own > 0:
+        raise InputError(f"surface: its period must be > 0 mm, got {own} (an empty SineSeries?)")
+    length = own if period is None else positive_scalar("period", period, unit="mm")
+    # a surface that declares its waves is checked against each (the message names the
+    # offending ones) and must be resolved; otherwise against its period
+    waves = getattr(surface, "wavelengths", None)
+    waves = np.array([own]) if waves is None else np.asarray(waves, dtype=float)
+    _commensurate("period", length, waves)
+    # need at least 4 points per shortest wavelength to resolve its slope
+    if n * float(np.min(waves)) / length < 4:
+        raise InputError(f"n: {n} points over {length} mm give fewer than 4 points per "
+                         f"shortest wavelength {float(np.min(waves))} mm")
+    x = np.arange(n) * (length / n)
+    heights, slopes = surface.sampled(length, n)
+    heights = finite_array("surface.sampled heights", heights, ndim=1)
+    slopes = finite_array("surface.sampled slopes", slopes, ndim=1)
+    if heights.shape != (n,) or slopes.shape != (n,):
+        raise InputError(f"surface.sampled: expected heights and slopes of shape ({n},), got "
+                         f"{heights.shape} and {slopes.shape}")
+    return Grid((n,), (length,), heights, slopes, x, None)
+
+
+def _map_grid(surface, period) -> Grid:
+    """A map (``dimension`` 2) on its own grid; ``period`` None or its lengths."""
+    if getattr(surface, "periodic", True) is False:
+        raise InputError("surface: the half-space solve takes the map as one period; use "
+                         "map.periodized() first")
+    lengths = finite_array("surface.lengths", surface.lengths, ndim=1)
+    if lengths.size != 2 or np.any(lengths <= 0):
+        raise InputError(f"surface.lengths: expected (Ly, Lx) > 0 mm, got {surface.lengths}")
+    if period is not None and not _same_lengths(period, lengths):
+        raise InputError(f"period: a map's lengths are its own, (Ly, Lx) = "
+                         f"{tuple(lengths.tolist())} mm; pass None, got {period}")
+    z = finite_array("surface.heights", surface.heights, ndim=2, min_size=MIN_POINTS)
+    return _heights_grid(z, (float(lengths[0]), float(lengths[1])))
+
+
+def _same_lengths(period, lengths: np.ndarray) -> bool:
+    try:
+        return bool(np.array_equal(np.broadcast_to(np.asarray(period, dtype=float), 2), lengths))
+    except (TypeError, ValueError):
+        return False
+
+
+def _heights_grid(surface, period) -> Grid:
+    """Sampled heights ``(n,)`` or ``(ny, nx)`` over ``period`` (a map: scalar or (Ly, Lx))."""
     z = finite_array("surface", surface, ndim=(1, 2), min_size=MIN_POINTS)
     if min(z.shape) < MIN_POINTS:
         raise InputError(f"surface: needs at least {MIN_POINTS} points per axis, got {z.shape}")

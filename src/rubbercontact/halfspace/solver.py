@@ -193,13 +193,17 @@ def solve_sliding(surface, period, material: Material, velocity: float,
     Parameters
     ----------
     surface
-        :class:`~rubbercontact.roughness.SineSeries` (sampled on ``n`` points over ``period``),
-        or heights [mm]: a 1D profile ``(n,)`` or a 2D map ``(ny, nx)`` sliding along ``x``
-        (last axis). The mean height is removed.
+        A :class:`~rubbercontact.roughness.Surface`, dispatched on its declared
+        ``dimension``: a profile (e.g. a :class:`~rubbercontact.roughness.SineSeries`)
+        sampled by its ``sampled`` on ``n`` points over ``period``, or a map (e.g. a periodic
+        :class:`~rubbercontact.roughness.HeightMap`) on its own grid; or heights [mm]: a 1D
+        profile ``(n,)`` or a 2D map ``(ny, nx)`` sliding along ``x`` (last axis). The mean
+        height is removed.
     period
-        Periodic length [mm] along ``x`` (``None`` → the SineSeries' longest wavelength); must be
-        an integer multiple of every wavelength. For a 2D map a scalar (square pixels) or
-        ``(Ly, Lx)``.
+        Periodic length [mm] along ``x`` (``None`` → the profile's ``period``); must be an
+        integer multiple of it (of every wavelength, when the profile declares them). For
+        heights of a 2D map a scalar (square pixels) or ``(Ly, Lx)``; for a map surface
+        ``None`` (its ``lengths``).
     material
         Young's moduli: a :class:`~rubbercontact.materials.GeneralizedMaxwell` or any
         :class:`~rubbercontact.materials.Material` (``complex_modulus``, ``is_elastic``).
@@ -215,7 +219,7 @@ def solve_sliding(surface, period, material: Material, velocity: float,
         ``stiffness``); unset Lennard-Jones parameters are resolved from the surface's rms
         height and ``σ0``.
     n
-        Grid points for a SineSeries (ignored for sampled heights).
+        Grid points for a profile surface (ignored for maps and sampled heights).
     nu
         Poisson's ratio in ``E_r = E/(1 − ν²)``.
     tol

@@ -30,6 +30,7 @@ from ..halfspace.kernels import derivative_x
 from ..materials import GeneralizedMaxwell
 from ..roughness.maps import HeightMap, max_height
 from ..roughness.mapsplit import MapSplit
+from ..roughness.protocol import SurfaceMap, check_surface
 
 LAW_KINDS = ("hard-wall", "lennard-jones")
 
@@ -111,19 +112,20 @@ def lateral_friction(result: SlidingResult) -> float:
     return float(np.mean(result.pressure * zy)) / result.mean_pressure
 
 
-def solve_map(hmap: HeightMap, material: GeneralizedMaxwell, velocity: float,
+def solve_map(hmap: SurfaceMap, material: GeneralizedMaxwell, velocity: float,
               mean_pressure: float, law=None, *, nu: float = 0.5, tol: float = 1e-8,
               options: SolverOptions | None = None) -> SlidingResult:
     """The VHS on a periodic map: :func:`rubbercontact.halfspace.solve_sliding` on its
-    heights and lengths (sliding along x). Arguments as there."""
+    heights and lengths (sliding along x). Arguments as there; ``hmap`` a periodic
+    :class:`~rubbercontact.roughness.HeightMap` or any
+    :class:`~rubbercontact.roughness.SurfaceMap`."""
     from ..halfspace import solve_sliding
 
-    if not isinstance(hmap, HeightMap):
-        raise InputError(f"map: expected a HeightMap, got {type(hmap).__name__}")
-    if not hmap.periodic:
+    check_surface(hmap, what="map", dimensions=(2,), needs="solve_map")
+    if getattr(hmap, "periodic", True) is False:
         raise InputError("map: the half-space solve takes the map as one period; use "
                          "map.periodized() first")
-    return solve_sliding(hmap.heights, hmap.lengths, material, velocity, mean_pressure,
+    return solve_sliding(hmap, None, material, velocity, mean_pressure,
                          law=law, nu=nu, tol=tol, options=options)
 
 

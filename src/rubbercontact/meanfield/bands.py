@@ -22,7 +22,7 @@ import numpy as np
 from .._validation import positive_scalar
 from ..errors import InputError
 from ..materials.protocol import Material
-from ..roughness.sines import SineSeries
+from ..roughness.protocol import WaveProfile, check_waves
 from .strips import strip_contact
 
 __all__ = ["band_power", "contact_patches", "pressure_power", "strip_bands"]
@@ -104,7 +104,7 @@ def contact_patches(pressure: np.ndarray, period: float) -> np.ndarray:
     return (edges[1::2] - edges[::2]) * period / c.size
 
 
-def strip_bands(surface: SineSeries, material: Material, velocity: float,
+def strip_bands(surface: WaveProfile, material: Material, velocity: float,
                 mean_pressure: float, edges: np.ndarray, *, unit: bool = False,
                 nu: float = 0.5) -> np.ndarray:
     """The strip cascade's friction, or its pressure variance, in each wavenumber band.
@@ -120,7 +120,9 @@ def strip_bands(surface: SineSeries, material: Material, velocity: float,
     Parameters
     ----------
     surface
-        A sine series (the cascade's waves; phases play no part).
+        A sine series, or any profile declaring its waves
+        (:class:`~rubbercontact.roughness.WaveProfile`: the cascade's waves; phases play no
+        part).
     material
         The rubber (:class:`~rubbercontact.materials.Material`).
     velocity
@@ -138,8 +140,7 @@ def strip_bands(surface: SineSeries, material: Material, velocity: float,
     -------
     ndarray of shape ``(len(edges) − 1,)``.
     """
-    if not isinstance(surface, SineSeries):
-        raise InputError(f"surface: expected a SineSeries, got {type(surface).__name__}")
+    check_waves(surface, needs="the strip bands")
     p = positive_scalar("mean_pressure", mean_pressure, unit="MPa")
     speed = abs(float(velocity))
     if not speed > 0:

@@ -28,6 +28,7 @@ import numpy as np
 
 from .._validation import finite_array, positive_scalar
 from ..errors import InputError
+from ..roughness.protocol import WaveProfile, check_waves
 from ..roughness.sines import SineSeries
 from ..roughness.statistics import psd as profile_psd
 
@@ -180,13 +181,19 @@ class PSD:
 
     # -- constructors -------------------------------------------------------------------
     @classmethod
-    def from_sines(cls, surface: SineSeries) -> PSD:
+    def from_sines(cls, surface: WaveProfile) -> PSD:
         """The exact spectrum of a sine series: one node ``(q_i, Δ_i²/2)`` per wave (1D).
 
         Phases do not enter: the mean-field theory sees the surface's statistics only.
+        ``surface`` is a :class:`~rubbercontact.roughness.SineSeries` or any profile that
+        declares its waves (:class:`~rubbercontact.roughness.WaveProfile`), kept as a
+        SineSeries of them (:attr:`waves`, which :meth:`partition` splits).
         """
-        if not isinstance(surface, SineSeries):
-            raise InputError(f"surface: expected a SineSeries, got {type(surface).__name__}")
+        check_waves(surface, needs="PSD.from_sines")
+        # a SineSeries of the declared waves (and phases, if declared): partition() splits
+        # it; for a SineSeries an equal one (its arrays are already sorted and reduced)
+        surface = SineSeries(surface.wavelengths, surface.amplitudes,
+                             getattr(surface, "phases", None))
         if surface.size == 0 or not np.any(surface.amplitudes > 0):
             raise InputError("surface: no wave with a non-zero amplitude")
         order = np.argsort(surface.wavenumbers)

@@ -196,13 +196,12 @@ def check_waves(surface: object, *, what: str = "surface", analytic: bool = Fals
     InputError
         One line naming the missing members, or a map given for a profile.
     """
-    require_members(surface, _SURFACE, what=what, kind="a surface", hint=_HINT)
+    hint = "use rubbercontact.roughness.SineSeries or any object with these members"
+    require_members(surface, _SURFACE, what=what, kind="a surface", hint=hint)
     if surface.dimension != 1:
         raise InputError(f"{what}: {needs} needs a profile of sine waves (dimension 1), got "
                          f"dimension {surface.dimension!r}")
     members = {**_WAVES, **_ANALYTIC} if analytic else _WAVES
     require_members(surface, members, methods=_ANALYTIC_METHODS if analytic else (),
-                    what=what, kind=f"a profile of sine waves for {needs}",
-                    hint="use rubbercontact.roughness.SineSeries or any object with these "
-                         "members")
+                    what=what, kind=f"a profile of sine waves for {needs}", hint=hint)
     return surface
