@@ -68,14 +68,15 @@ def _run(cfg: dict) -> xr.Dataset:
     return rc.pipeline.run(cfg, law=_linear_law(cfg), progress=False)
 
 
-@pytest.mark.parametrize("conductivity, searched", [(INFINITE_K, False), (1e5, True)])
+@pytest.mark.parametrize("conductivity, searched", [(INFINITE_K, False), (3e5, True)])
 def test_hybrids_of_an_infinitely_conducting_rubber_are_their_isothermal_run(
         tmp_path, conductivity, searched):
     """No rise. At 1e12 W/(m·K) no speed is searched (the heat's bound is below the
-    tolerance: the run's own answer is taken); at 1e5 W/(m·K) (a rise below the search's
-    tolerance, a bound above it) the fastest speed is searched, and its search ends at
-    its isothermal solve, the run's own task's solve with the run's own law table, bit for
-    bit."""
+    tolerance: the run's own answer is taken); at 3e5 W/(m·K) (both scales' rises below
+    the search's tolerance, their bound above it) the fastest speed is searched, and its
+    search ends at its isothermal solve, the run's own task's solve with the run's own law
+    table, bit for bit. (At 1e5 W/(m·K) the high-slope spots, 1 % of the area at 1e4 mm/s,
+    still rise by 0.02 K: their Γ falls only as ln(D)/K at low Péclet number.)"""
     mat = {"preset": "sbr", "reference_temperature": 20.0, "shift": WLF,
            "thermal": {"conductivity": conductivity}}
     ds = _run(_config(tmp_path, material=mat))

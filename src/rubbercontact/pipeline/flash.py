@@ -14,14 +14,20 @@ run's true speeds:
   whole contact (:mod:`rubbercontact.thermal.contact`): its spots are hotter than their
   mean and each scale sees its own, which the mean-field flash resolves and this does not;
 * ``hybrid``, ``hybrid-windowed``: the same per realization with the hybrid's low-slope
-  solve, both scales at the contact's mean temperature — the half-space at ``T0 + T_c``,
-  the high-slope law read at ``a_T(T0 + T_c) v``, interpolated in ``ln v`` between its
-  tabulated speeds and clamped (and said) below the slowest (:mod:`.flash_hybrid`).
+  solve, each scale at its own temperature — the half-space (and the law's
+  load–separation, its interface) at the low-slope contact's mean ``T0 + T_c``, the
+  high-slope law's friction and real contact at its spots' ``T0 + T_c + ΔT_hs``, read at
+  ``a_T v`` interpolated in ``ln v`` between its tabulated speeds and clamped (and said)
+  below the slowest (:mod:`.flash_hybrid`, :mod:`.flash_scales`).
 
-* ``meanfield-hybrid``: per load, at each speed the contact temperature its own heat
-  gives, one for both scales — the mean-field solve at ``a_T(T0 + T_c) v``, the law read
-  there as for the hybrids — its rise the mean-field flash's cascade at the finest
-  low-slope spots (:mod:`.flash_meanfield`).
+* ``meanfield-hybrid``: per load, at each speed the temperature its own heat gives to its
+  finest low-slope spots, ``T0 + T_c`` (the mean-field flash's cascade), for the
+  mean-field solve; the law's share at the high-slope spots' ``T0 + T_c + ΔT_hs``, one
+  cascade level further (:mod:`.flash_meanfield`, :mod:`.flash_scales`).
+
+``ΔT_hs``, the high-slope spots' own flash on top of the low-slope contact, is one step of
+the mean-field cascade, solved with the law's friction it heats (:mod:`.flash_scales`;
+``FlashPlan.per_scale`` False: one temperature for both scales, as before).
 
 ``meanfield-strips`` and ``fem`` are not computed with the flash yet: the run says so in
 ``attrs["flash_note"]``, one line (and ``run --check``'s plan, and ``summary``).
@@ -29,9 +35,11 @@ run's true speeds:
 Variables added (``model, [temperature,] velocity, pressure``; NaN for the models without
 the flash): ``friction_flash``, ``contact_fraction_flash``, ``flash_temperature`` [K] (the
 rise of the finest contact spots above the run's temperature; ``vhs`` and the hybrids: of
-the contact's mean; ``meanfield-hybrid``: of its finest low-slope spots),
+the (low-slope) contact's mean; ``meanfield-hybrid``: of its finest low-slope spots),
 ``flash_heat_flux`` [mW/mm²] (the frictional heat into the rubber per nominal area,
-``μ σ0 v``; the half-space models: of the solved pressure); per
+``μ σ0 v``; the half-space models: of the solved pressure), ``flash_temperature_hs`` [K]
+(the hybrids and ``meanfield-hybrid``: the high-slope spots' rise, ``flash_temperature``
+plus ``ΔT_hs``; NaN for the others); per
 scale, ``flash_scale_temperature`` [K] on ``flash_wavenumber`` [rad/mm] (the
 ``meanfield`` spectrum's nodes), the rise of the contact spots seen at each magnification.
 """
@@ -48,15 +56,25 @@ import xarray as xr
 
 from ..errors import ConvergenceError, InputError
 from ..materials import GeneralizedMaxwell
+from ..materials.shift import shift_law_from_dict
 from ..materials.spec import load_thermal
 from ..meanfield import PSD, MeanFieldOptions
 from ..meanfield.flash import FlashOptions, flash_friction_curve
+from ..models import registry
 from ..thermal import FlashSearch, FlashSweep, ThermalProperties, flash_sweep
 from ..thermal.contact import start_pressure
 from ..thermal.kernel import rise_bound
-from .flash_hybrid import HYBRID_FLASH_MODELS, LawReads, hybrid_solver, law_speeds
+from .flash_hybrid import (
+    HYBRID_FLASH_MODELS,
+    SCALE_FLASH,
+    LawReads,
+    hybrid_scale,
+    hybrid_solver,
+    law_speeds,
+)
 from .flash_meanfield import MODEL as MEANFIELD_HYBRID
-from .flash_meanfield import meanfield_hybrid_flash, meanfield_hybrid_solver
+from .flash_meanfield import meanfield_hybrid_flash, meanfield_hybrid_solver, meanfield_scale
+from .flash_scales import ScaleSpots, spots_bound
 from .plan import meanfield_surfaces
 from .setup import RunSetup, task_material
 
@@ -74,6 +92,9 @@ VARIABLES = {
                                "temperature (vhs, hybrids: of the contact's mean; "
                                "meanfield-hybrid: of the finest low-slope spots)"),
     "flash_heat_flux": ("mW/mm^2", "frictional heat into the rubber per nominal area"),
+    "flash_temperature_hs": ("K", "rise of the high-slope contact spots above the run's "
+                                  "temperature (hybrids, meanfield-hybrid: flash_temperature "
+                                  "plus their own flash)"),
 }
 #: The per-scale variable, on ``flash_wavenumber`` besides the dims above.
 SCALE_VARIABLES = {
@@ -105,6 +126,10 @@ class FlashPlan:
         first of ``hybrid-windowed`` at ``hybrid``'s): the same roots to the search's
         tolerance in fewer solves (:func:`~rubbercontact.thermal.flash_sweep`'s
         ``guide``; ``benchmarks/flash_run.md``); False: each from its own lower speeds.
+    per_scale
+        The hybrids' high-slope law at its spots' own temperature (:mod:`.flash_scales`);
+        False: at the low-slope contact's, one temperature for both scales (the earlier
+        approximation, kept to compare with).
     """
 
     models: tuple[str, ...]
@@ -114,6 +139,7 @@ class FlashPlan:
     mean_field: MeanFieldOptions
     search: FlashSearch = FlashSearch(warm_start=True)
     guided: bool = True
+    per_scale: bool = True
 
     @property
     def note(self) -> str:
@@ -196,7 +222,8 @@ def add_flash(ds: xr.Dataset, setup: RunSetup, plan: FlashPlan | None,
                 iso = _isothermal(ds, m, it if temps is not None else None, ip)
                 guides[key] = _fill_halfspace(out, at, m, setup, float(p), temp, plan, acc,
                                               solver, guides.get(key) if plan.guided else None,
-                                              iso)
+                                              iso, _scale(setup, plan, m, float(p), laws,
+                                                          reads))
     hybrids = tuple(m for m in plan.models if m in (*HYBRID_FLASH_MODELS, MEANFIELD_HYBRID))
     if reads.note(hybrids):
         acc.notes.append(reads.note(hybrids))
@@ -249,9 +276,14 @@ def _fill_meanfield_hybrid(out: dict, at: tuple, setup: RunSetup, pressure: floa
         acc.failed(m, pressure, temperature, "no low-slope wave: the law's flat-interface "
                                              "solve, isothermal")
         return
+    scale = None
+    if setup.hs0.size and plan.per_scale:
+        spots = ScaleSpots.of_cell(setup.hs0.period, plan.options.spot_radius, plan.thermal,
+                                   plan.options.tolerance)
+        scale = meanfield_scale(pressure, laws, reads, spots, setup.material.shift)
     res = meanfield_hybrid_flash(solve, setup.speeds.velocities, pressure,
                                  setup.material.shift, temperature,
-                                 replace(plan.options, temperature=temperature))
+                                 replace(plan.options, temperature=temperature), scale)
     for speed, message in res.failures.items():
         acc.failed(m, pressure, temperature, f"{speed:g} mm/s: {message}")
     if solve.beyond > 0:
@@ -262,7 +294,8 @@ def _fill_meanfield_hybrid(out: dict, at: tuple, setup: RunSetup, pressure: floa
         acc.residual = max(acc.residual, float(np.nanmax(res.residual)))
     for key, values in (("friction_flash", res.friction),
                         ("contact_fraction_flash", res.contact_fraction),
-                        ("flash_temperature", res.rise), ("flash_heat_flux", res.heat_flux)):
+                        ("flash_temperature", res.rise), ("flash_heat_flux", res.heat_flux),
+                        ("flash_temperature_hs", res.rise_hs)):
         out[key][at] = values
 
 
@@ -302,43 +335,91 @@ def _isothermal(ds: xr.Dataset, model: str, it: int | None, ip: int) -> np.ndarr
     return np.stack([at("friction"), at("contact_fraction")])
 
 
+@dataclass(frozen=True)
+class _Scale:
+    """A hybrid's high-slope scale at its own temperature (:mod:`.flash_scales`).
+
+    Attributes
+    ----------
+    hook
+        ``scale(result, temperature, velocity)`` of :func:`.flash_hybrid.hybrid_scale`.
+    spots
+        Its spots.
+    """
+
+    hook: Callable
+    spots: ScaleSpots
+
+
+def _scale(setup: RunSetup, plan: FlashPlan, m: str, pressure: float, laws,
+           reads: LawReads) -> _Scale | None:
+    """The high-slope scale of hybrid ``m`` at ``pressure`` [MPa] (None: ``vhs``, or no
+    law)."""
+    if (not plan.per_scale or m not in HYBRID_FLASH_MODELS or laws is None
+            or setup.hs0.size == 0):
+        return None
+    spots = ScaleSpots.of_cell(setup.hs0.period, plan.options.spot_radius, plan.thermal,
+                               plan.search.tolerance)
+    windowed = registry.model_class(m).READINGS[m] == "windowed"
+    hook = hybrid_scale(pressure, laws, reads, float(setup.hs0.period) if windowed else None,
+                        spots, shift_law_from_dict(setup.material.shift))
+    return _Scale(hook, spots)
+
+
+def _cold(v: np.ndarray, isothermal: np.ndarray, pressure: float, setup: RunSetup,
+          plan: FlashPlan, scale: _Scale | None) -> tuple[np.ndarray, np.ndarray]:
+    """The speeds (mask) where the heat of the run's isothermal friction cannot raise the
+    surface by the search's tolerance anywhere, in any realization
+    (:func:`~rubbercontact.thermal.rise_bound`; with a high-slope scale, plus its spots'
+    bound :func:`~.flash_scales.spots_bound` on the isothermal real contact), and the
+    bounds [K]."""
+    def bound(speed, mu, area):
+        flux = abs(mu) * pressure * speed
+        extra = 0.0 if scale is None else spots_bound(flux, area, speed, scale.spots)
+        return rise_bound(flux, setup.period, plan.thermal) + extra
+
+    bounds = np.array([max(bound(speed, mu, a) for mu, a in zip(mus, areas, strict=True))
+                       for speed, mus, areas in zip(v, isothermal[0], isothermal[1],
+                                                    strict=True)])
+    return bounds <= plan.search.tolerance, bounds          # NaN (a failed task): searched
+
+
 def _fill_halfspace(out: dict, at: tuple, m: str, setup: RunSetup, pressure: float,
                     temperature: float | None, plan: FlashPlan, acc: _Tally,
                     solver: Callable[[int], Callable | None],
                     guide: FlashSweep | None = None,
-                    isothermal: np.ndarray | None = None) -> FlashSweep | None:
+                    isothermal: np.ndarray | None = None,
+                    scale: _Scale | None = None) -> FlashSweep | None:
     """The realizations' mean of one half-space flash μ(v) into ``out[...][at]`` (NaN at
     a speed where a realization failed); ``solver(realization)`` gives the realization's
-    solve of the reduced speed (None: nothing to solve, said in a note). Each
-    realization's search starts from the previous realization's roots (``guide`` for the
-    first: e.g. the other hybrid's; :func:`~rubbercontact.thermal.flash_sweep`); returns
-    the last sweep, to guide the next.
+    solve of the reduced speed (None: nothing to solve, said in a note); ``scale``: a
+    hybrid's high-slope scale at its own temperature. Each realization's search starts
+    from the previous realization's roots (``guide`` for the first: e.g. the other
+    hybrid's; :func:`~rubbercontact.thermal.flash_sweep`); returns the last sweep, to
+    guide the next.
 
     A speed where the heat of the run's own isothermal friction (``isothermal``, of
-    :func:`_isothermal`) cannot raise the surface by the search's tolerance anywhere, in
-    any realization (:func:`~rubbercontact.thermal.rise_bound`), is not searched: its
-    search would end at its first solve, the isothermal one, with no rise, and that is
-    the run's own task's solve; so it is taken from the run (μ, contact fraction; heat
-    ``μ σ0 v``; the bound counts as its residual)."""
+    :func:`_isothermal`) cannot raise the surface by the search's tolerance (:func:`_cold`)
+    is not searched: its search would end at its first solve, the isothermal one, with no
+    rise, and that is the run's own task's solve; so it is taken from the run (μ, contact
+    fraction; heat ``μ σ0 v``; the bound counts as its residual)."""
     v = setup.speeds.velocities
     cold = np.zeros(v.size, bool)
     if isothermal is not None:
-        bound = np.array([max(rise_bound(abs(mu) * pressure * speed, setup.period,
-                                         plan.thermal) for mu in row)
-                          for speed, row in zip(v, isothermal[0], strict=True)])
-        cold = bound <= plan.search.tolerance            # NaN (a failed task): searched
+        cold, bound = _cold(v, isothermal, pressure, setup, plan, scale)
         if cold.any():
             acc.residual = max(acc.residual, float(bound[cold].max()))
     hot = np.flatnonzero(~cold)
     order = hot[np.argsort(v[hot])]
     if guide is not None and not np.array_equal(guide.velocities, np.sort(v[hot])):
         guide = None
-    rows = np.full((len(setup.realizations), 4, v.size), np.nan)
+    rows = np.full((len(setup.realizations), len(_ROWS), v.size), np.nan)
     for ir in range(len(setup.realizations)):
         if cold.any():
             mu = isothermal[0][cold, ir]
+            zero = np.zeros(mu.size) if scale is not None else np.full(mu.size, np.nan)
             rows[ir, :, cold] = np.stack([mu, isothermal[1][cold, ir], np.zeros(mu.size),
-                                          mu * pressure * v[cold]], axis=-1)
+                                          mu * pressure * v[cold], zero], axis=-1)
         solve = solver(ir) if hot.size else None
         if solve is None:
             if hot.size:
@@ -346,23 +427,35 @@ def _fill_halfspace(out: dict, at: tuple, m: str, setup: RunSetup, pressure: flo
                                                      f"half-space contact to heat")
             continue
         sweep = flash_sweep(solve, v[hot], setup.material.shift, plan.thermal, temperature,
-                            plan.search, guide=guide)
+                            plan.search, guide=guide, scale=scale and scale.hook)
         guide = sweep if plan.guided else None
         acc.solves += sweep.solves
         for speed, message in sweep.failures.items():
             acc.failed(m, pressure, temperature, f"r={ir}, {speed:g} mm/s: {message}")
         for k, f in zip(order, sweep.flashes, strict=True):
-            if f is None:
-                continue
-            acc.residual = max(acc.residual, f.residual)
-            rows[ir, :, k] = (f.result.friction, f.result.contact_fraction,
-                              f.contact_temperature - f.background_temperature,
-                              f.heating.mean_heat_flux)
+            if f is not None:
+                rows[ir, :, k] = _row(f, acc)
     mean = rows.mean(axis=0)
-    for i, key in enumerate(("friction_flash", "contact_fraction_flash",
-                             "flash_temperature", "flash_heat_flux")):
+    for i, key in enumerate(_ROWS):
         out[key][at] = mean[i]
     return guide
+
+
+#: The variables of a half-space flash, in the order of :func:`_row`.
+_ROWS = ("friction_flash", "contact_fraction_flash", "flash_temperature", "flash_heat_flux",
+         "flash_temperature_hs")
+
+
+def _row(f, acc: _Tally) -> tuple:
+    """One speed's :data:`_ROWS` from its :class:`~rubbercontact.thermal.ContactFlash`
+    (the high-slope spots' rise NaN without a high-slope scale); its residuals tallied."""
+    rise = f.contact_temperature - f.background_temperature
+    acc.residual = max(acc.residual, f.residual)
+    hs = f.result.info.get(SCALE_FLASH) if isinstance(f.result.info, dict) else None
+    if hs is not None:
+        acc.residual = max(acc.residual, hs.residual)
+    return (f.result.friction, f.result.contact_fraction, rise, f.heating.mean_heat_flux,
+            np.nan if hs is None else rise + hs.rise)
 
 
 def _curve(psd: PSD, setup: RunSetup, velocities: np.ndarray, pressure: float,

@@ -21,18 +21,26 @@ the speed read is below the run's: below the law's slowest speed the law is read
 slowest one (clamped, not extrapolated) and ``attrs["flash_note"]`` says so, one line
 with the lowest speed reached.
 
+The high-slope scale at its own temperature
+------------------------------------------
+At each step of that search the high-slope scale's friction and real contact are re-read
+at the high-slope spots' temperature ``T0 + T_c + ΔT_hs`` (:func:`hybrid_scale`,
+:mod:`.flash_scales`): the law at ``a_T(T0 + T_c + ΔT_hs) v`` at the solve's low-slope
+pressure, as the model reads it (pointwise: at ``p(x)``; windowed: at ``p`` averaged over
+one high-slope period), ``ΔT_hs`` the flash of the high-slope spots (half-width a quarter
+of the law cell's period) on top of the low-slope contact, self-consistent with that
+friction. The heat of both (``μ = μ_ls + μ_hs(T_hs)``) is what heats the low-slope
+contact.
+
 The approximation
 -----------------
-One temperature per contact — its mean over the low-slope contact — for both scales, not
-one per scale: the high-slope asperities inside a low-slope contact patch are hotter than
-the patch's mean by their own flash, which this leaves out (the law is an isothermal FEM
-table; the mean-field flash, :mod:`rubbercontact.meanfield.flash`, resolves the rise per
-magnification). The heat is released at the surface where the low-slope pressure is. It
-holds where the low-slope contact dominates the heating (the high-slope spots' own flash,
-``~ μ σ_hs v √(a/(D v))/K`` over spots of half-width ``a``, small against the patch's);
-the ``meanfield`` model's per-scale rise (``flash_scale_temperature``) beside it shows how
-far the finest spots are above the mean. Between the law's speeds the interpolation
-error adds (:mod:`rubbercontact.hybrid.lawspeed`).
+One temperature for the low-slope contact — its mean — for the low-slope solve and for the
+law's load–separation, its interface (the pressure is not re-solved at ``T_hs``); the
+high-slope spots' own temperature by one mean-field step (:mod:`.flash_scales` says
+where that holds). The heat is released at the surface where the low-slope pressure is.
+The ``meanfield`` model's per-scale rise (``flash_scale_temperature``) beside it shows
+the cascade through every scale. Between the law's speeds the interpolation error adds
+(:mod:`rubbercontact.hybrid.lawspeed`).
 """
 
 from __future__ import annotations
@@ -44,10 +52,12 @@ import numpy as np
 
 from ..hybrid.lawspeed import LawSpeeds
 from ..materials import GeneralizedMaxwell
+from ..materials.shift import ShiftLaw
 from ..models import registry
 from ..models.planning import RunPoint
 from ..roughness import SineSeries
-from ..thermal.contact import CONTACT_SEPARATION, start_pressure
+from ..thermal.contact import CONTACT_SEPARATION, contact_mask, start_pressure
+from .flash_scales import HighSlopeTerms, ScaleSpots, scale_flash, shifted_reader
 from .setup import RunSetup, task_material
 
 #: The hybrids computed with the flash temperature.
@@ -93,10 +103,14 @@ class LawReads:
         if not self.clamped:
             return ""
         return (f"{', '.join(models)}: the high-slope law is tabulated from "
-                f"{self.slowest:g} mm/s; {self.clamped} of {self.reads} heated solves asked "
-                f"for it below (down to {self.lowest:.4g} mm/s, a factor "
+                f"{self.slowest:g} mm/s; {self.clamped} of {self.reads} reads by heated "
+                f"contacts asked for it below (down to {self.lowest:.4g} mm/s, a factor "
                 f"{self.slowest / self.lowest:.3g}) and read it at {self.slowest:g} mm/s "
                 f"(clamped, not extrapolated): add slower speeds for the law")
+
+    def at(self, laws: LawSpeeds) -> Callable[[float], dict]:
+        """``table(speed)`` of ``laws``, each read counted."""
+        return lambda speed: self.table(laws, speed)
 
 
 def law_speeds(tables: dict | None) -> LawSpeeds | None:
@@ -164,3 +178,43 @@ def _with_law_terms(res, table: dict, period: float, window: float | None, press
     mu_hs, area = windowed(res.pressure, period, float(window), table, pressure)
     return replace(res, friction=res.friction_ls + mu_hs, friction_hs=mu_hs,
                    contact_fraction=area, info=info)
+
+
+#: Key of a hybrid flash solve's ``info``: its :class:`~.flash_scales.ScaleFlash`.
+SCALE_FLASH = "scale_flash"
+
+
+def hybrid_scale(pressure: float, laws: LawSpeeds | None, reads: LawReads,
+                 window: float | None, spots: ScaleSpots, shift: ShiftLaw
+                 ) -> Callable[[object, float, float], object] | None:
+    """``scale(result, temperature, velocity)`` for :func:`~rubbercontact.thermal.flash_sweep`:
+    a hybrid's low-slope solve at ``pressure`` [MPa] with its high-slope terms at the
+    high-slope spots' own temperature (module docstring), the
+    :class:`~.flash_scales.ScaleFlash` in its ``info`` under :data:`SCALE_FLASH`; None
+    without a law. ``window`` [mm]: the windowed reading's (None: pointwise)."""
+    from ..hybrid.windowing import law_in_pressure, windowed_hs_terms
+
+    if laws is None:
+        return None
+
+    def scale(res, temperature: float, velocity: float):
+        p = np.asarray(res.pressure, float)
+        period = float((res.x[1] - res.x[0]) * res.x.size)
+
+        def read(table: dict) -> HighSlopeTerms:
+            if window is not None:
+                return HighSlopeTerms(*windowed_hs_terms(p, period, window, table, pressure))
+            sig, alpha, tau = law_in_pressure(table)
+            return HighSlopeTerms(float(np.mean(np.interp(p, sig, tau))) / pressure,
+                                  float(np.mean(np.interp(p, sig, alpha))))
+
+        low = HighSlopeTerms(float(res.friction_hs), float(res.contact_fraction))
+        flash = scale_flash(shifted_reader(read, reads.at(laws), low, float(res.velocity)),
+                            low, temperature, velocity, pressure,
+                            float(np.mean(contact_mask(res))), shift, spots)
+        return replace(res, friction=res.friction + (flash.terms.friction - low.friction),
+                       friction_hs=flash.terms.friction,
+                       contact_fraction=flash.terms.contact_fraction,
+                       info={**res.info, SCALE_FLASH: flash})
+
+    return scale

@@ -1,4 +1,5 @@
-r"""``meanfield-hybrid`` with the flash temperature: one contact temperature for both scales.
+r"""``meanfield-hybrid`` with the flash temperature: the low-slope scale at its finest spots'
+temperature, the high-slope law at its own spots'.
 
 What is computed
 ----------------
@@ -14,27 +15,32 @@ flash's cascade (:func:`rubbercontact.meanfield.flash.cascade_rise`, the spots o
 low-slope node, radius ``spot_radius/q``, sliding at ``v``): each node's ``w_j = μ_j σ0 v``
 and the law's ``μ_hs σ0 v``, released where the law acts, inside the finest low-slope
 spots; ``T_c`` is the rise of those finest spots — where the high-slope law is read — and
-the root of ``T_c = ΔT(T_c)`` is found by Brent's method to the flash's tolerance.
+the root of ``T_c = ΔT(T_c)`` is found by Brent's method to the flash's tolerance. At each
+step the law's share (``μ_hs``, the real contact) is re-read at the high-slope spots' own
+temperature ``T0 + T_c + ΔT_hs`` (:func:`meanfield_scale`, :mod:`.flash_scales`): the law at
+``a_T(T0 + T_c + ΔT_hs) v`` weighted by the solve's ``P(σ)``, ``ΔT_hs`` the flash of the
+high-slope spots inside the finest low-slope ones, self-consistent with that friction;
+its heat is the ``μ_hs σ0 v`` above.
 
 The approximation
 -----------------
-One temperature for every scale — the finest low-slope spots', the hottest of the
-low-slope nodes — where the ``meanfield`` model gives each node its own
+One temperature for every low-slope scale — the finest low-slope spots', the hottest of
+the low-slope nodes — where the ``meanfield`` model gives each node its own
 (:mod:`rubbercontact.meanfield.flash`): the coarse nodes are evaluated hotter than they
-are, which moves μ the way the flash does, by somewhat more. The high-slope asperities'
-own flash inside those spots is left out (the law is an isothermal FEM table), as for the
-hybrids (:mod:`.flash_hybrid`). The limits are exact: an infinitely conducting rubber has
-no rise and the run's own solve, bit for bit; so does a rubber whose shift is 1.
+are, which moves μ the way the flash does, by somewhat more. The high-slope scale one
+cascade level hotter, its law's load–separation (the low-slope solve's interface) at the
+low-slope temperature (:mod:`.flash_scales` says where that holds). The limits are exact:
+an infinitely conducting rubber has no rise and the run's own solve, bit for bit; so does
+a rubber whose shift is 1.
 """
 
 from __future__ import annotations
 
 import warnings
 from collections.abc import Callable
-from dataclasses import dataclass
+from dataclasses import dataclass, replace
 
 import numpy as np
-from scipy.optimize import brentq
 
 from ..errors import ConvergenceError
 from ..hybrid.lawspeed import LawSpeeds
@@ -43,12 +49,14 @@ from ..materials import GeneralizedMaxwell
 from ..materials.shift import shift_law_from_dict
 from ..meanfield import PSD
 from ..meanfield import solve as solve_meanfield
-from ..meanfield.flash import HOTTEST, FlashOptions, cascade_rise, tread_rise
+from ..meanfield.enriched import PressureLaw, weigh_law
+from ..meanfield.flash import FlashOptions, cascade_rise, tread_rise
 from ..meanfield.options import options_from_dict
 from ..models import registry
 from ..models.planning import RunPoint
 from ..thermal.spots import band_centre_temperature
-from .flash_hybrid import LawReads
+from .flash_hybrid import SCALE_FLASH, LawReads
+from .flash_scales import HighSlopeTerms, ScaleSpots, rise_root, scale_flash, shifted_reader
 from .setup import RunSetup, task_material
 
 #: The model.
@@ -68,7 +76,10 @@ class MeanFieldHybridFlash:
     heat_flux
         ``μ σ0 v`` [mW/mm²].
     residual
-        ``|ΔT(T_c) − T_c|`` [K].
+        ``|ΔT(T_c) − T_c|`` [K] (or the high-slope step's, if larger).
+    rise_hs
+        ``T_c + ΔT_hs`` [K]: the high-slope spots' rise above the run's temperature (NaN
+        without a ``scale``).
     failures
         ``{speed [mm/s]: message}``.
     """
@@ -78,6 +89,7 @@ class MeanFieldHybridFlash:
     rise: np.ndarray
     heat_flux: np.ndarray
     residual: np.ndarray
+    rise_hs: np.ndarray
     failures: dict
 
 
@@ -131,18 +143,51 @@ def contact_rise(result, velocity: float, pressure: float, flash: FlashOptions) 
                               tread_rise(flash))[-1])
 
 
+def meanfield_scale(pressure: float, laws: LawSpeeds | None, reads: LawReads,
+                    spots: ScaleSpots, shift) -> Callable[[object, float, float], object] | None:
+    """``scale(result, temperature, velocity)``: a mean-field solve at ``pressure`` [MPa]
+    with its law's share at the high-slope spots' own temperature (module docstring), the
+    :class:`~.flash_scales.ScaleFlash` in its ``inputs`` under
+    :data:`~.flash_hybrid.SCALE_FLASH`; None without a law."""
+    if laws is None:
+        return None
+    law = shift_law_from_dict(shift)
+
+    def scale(res, temperature: float, velocity: float):
+        dist = res.pressure_distribution
+
+        def read(table: dict) -> HighSlopeTerms:
+            with warnings.catch_warnings():      # the solve's own reading said it already
+                warnings.simplefilter("ignore", LawWarning)
+                return HighSlopeTerms(*weigh_law(dist, PressureLaw.from_table(table)))
+
+        low = HighSlopeTerms(float(res.friction_hs), float(res.contact_fraction))
+        speed = float(res.inputs["velocity"])
+        flash = scale_flash(shifted_reader(read, reads.at(laws), low, speed), low,
+                            temperature, velocity, pressure, float(res.contact_fraction_ls),
+                            law, spots)
+        return replace(res, friction=res.friction + (flash.terms.friction - low.friction),
+                       friction_hs=flash.terms.friction,
+                       contact_fraction=flash.terms.contact_fraction,
+                       inputs={**res.inputs, SCALE_FLASH: flash})
+
+    return scale
+
+
 def meanfield_hybrid_flash(solve: Callable[[float], object], velocities: np.ndarray,
                            pressure: float, shift, temperature: float | None,
-                           flash: FlashOptions) -> MeanFieldHybridFlash:
-    """The root ``T_c = ΔT(T_c)`` at each speed (module docstring): a speed whose heat at
-    ``T_c = 0`` raises the spots by no more than the tolerance keeps its isothermal solve;
-    otherwise the root is bracketed in ``[0, ΔT(0)]``, widened by doubling up to
-    :data:`~rubbercontact.meanfield.flash.HOTTEST` K, and found by Brent's method to
-    ``flash.tolerance`` [K]."""
+                           flash: FlashOptions,
+                           scale: Callable[[object, float, float], object] | None = None
+                           ) -> MeanFieldHybridFlash:
+    """The root ``T_c = ΔT(T_c)`` at each speed (module docstring) by
+    :func:`~.flash_scales.rise_root` to ``flash.tolerance`` [K]: a speed whose heat at
+    ``T_c = 0`` raises the spots by no more than the tolerance keeps its isothermal solve.
+    ``scale(result, temperature, velocity)``: the high-slope scale at its own temperature
+    (:func:`meanfield_scale`; None: at ``T0 + T_c``)."""
     law = shift_law_from_dict(shift)
     t0 = law.t_ref if temperature is None else float(temperature)
     v = np.asarray(velocities, float)
-    out = np.full((5, v.size), np.nan)
+    out = np.full((6, v.size), np.nan)
     failures: dict = {}
     for k, speed in enumerate(v):
         seen: dict = {}
@@ -150,25 +195,21 @@ def meanfield_hybrid_flash(solve: Callable[[float], object], velocities: np.ndar
         def excess(rise: float, speed: float = speed, seen: dict = seen) -> float:
             if rise not in seen:
                 res = solve(float(10.0 ** float(law.log10_shift(t0 + rise)) * speed))
+                if scale is not None:
+                    res = scale(res, t0 + rise, float(speed))
                 seen[rise] = (res, contact_rise(res, speed, pressure, flash) - rise)
             return seen[rise][1]
 
         try:
-            top = excess(0.0)
-            root = 0.0
-            if top > flash.tolerance:
-                hi = top
-                while excess(hi) > 0:
-                    if hi > HOTTEST:
-                        raise ConvergenceError(f"no contact temperature below {HOTTEST:g} K "
-                                               f"above the run's balances the heat")
-                    hi *= 2
-                root = brentq(excess, 0.0, hi, xtol=flash.tolerance)
+            root = rise_root(excess, flash.tolerance)
             resid = abs(excess(root))
         except ConvergenceError as exc:
             failures[float(speed)] = str(exc).splitlines()[0]
             continue
         res = seen[root][0]
+        hs = None if scale is None else res.inputs[SCALE_FLASH]
         out[:, k] = (res.friction, res.contact_fraction, root,
-                     res.friction * pressure * speed, resid)
+                     res.friction * pressure * speed,
+                     resid if hs is None else max(resid, hs.residual),
+                     np.nan if hs is None else root + hs.rise)
     return MeanFieldHybridFlash(*out, failures=failures)

@@ -32,10 +32,12 @@ the reduced speed ``a_T(T0 + T_c) v`` (by time–temperature superposition the r
   below the tolerance). The same roots to the tolerance (tested), in 2–4 solves instead
   of 4–10 where the contact heats (``benchmarks/flash.md``).
 
-A hybrid run passes a ``solve`` that evaluates its high-slope law at the same reduced
-speed. What this leaves out: the temperature varies over the contact
-and with depth, and each scale of a rough surface sees its own
-(:mod:`rubbercontact.meanfield.flash` resolves that per magnification); in full contact
+A hybrid run passes a ``solve`` of its low-slope scale at that reduced speed and a
+``scale`` that reads its high-slope law at the high-slope spots' own, hotter, temperature
+(:mod:`rubbercontact.pipeline.flash_scales`) before the heat is taken. What this leaves
+out: the temperature varies over the contact and with depth, and each scale of a rough
+surface sees its own (:mod:`rubbercontact.meanfield.flash` resolves that per
+magnification; the hybrids' ``scale`` one level of it); in full contact
 the rise averages to zero over the contact and the contact is at the background
 temperature.
 """
@@ -290,7 +292,9 @@ class ContactFlash:
 def flash_contact(solve: Callable[[float], object], velocity: float, shift: ShiftLaw | dict,
                   thermal: ThermalProperties | None = None, temperature: float | None = None,
                   tolerance: float = 1e-2, max_solves: int = 30,
-                  search: FlashSearch | None = None) -> ContactFlash:
+                  search: FlashSearch | None = None,
+                  scale: Callable[[object, float, float], object] | None = None
+                  ) -> ContactFlash:
     """The contact temperature and friction of a sliding contact, self-consistent.
 
     Parameters
@@ -314,6 +318,11 @@ def flash_contact(solve: Callable[[float], object], velocity: float, shift: Shif
         :class:`FlashSearch`'s, when ``search`` is None.
     search
         The search (default: the secant search with ``tolerance`` and ``max_solves``).
+    scale
+        ``scale(result, temperature, velocity) -> result``: a hybrid's finer scale at its
+        own temperature (:mod:`rubbercontact.pipeline.flash_scales`), applied to each
+        solve at the contact temperature ``temperature`` [°C] and the true ``velocity``
+        [mm/s] before its heat is taken (None: one temperature for the contact).
     """
     v = positive_scalar("velocity", velocity, unit="mm/s")
     law = shift_law_from_dict(shift)
@@ -339,6 +348,8 @@ def flash_contact(solve: Callable[[float], object], velocity: float, shift: Shif
             a_t = float(law.shift(t0 + rise))
             res = (solve(a_t * v, _nearest(seen, rise, a_t * v, search.start))
                    if search.warm_start else solve(a_t * v))
+            if scale is not None:
+                res = scale(res, t0 + rise, v)
             heat = contact_heating(res, v, thermal)
             seen[rise] = (res, heat, heat.contact_rise, a_t)
         return seen[rise][2] - rise

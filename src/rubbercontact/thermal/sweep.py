@@ -102,7 +102,8 @@ def guided_start(guide: ContactFlash | None, done: list[tuple[float, ContactFlas
 def flash_sweep(solve: Callable[[float], object], velocities, shift: ShiftLaw | dict,
                 thermal: ThermalProperties | None = None, temperature: float | None = None,
                 search: FlashSearch | None = None,
-                guide: FlashSweep | None = None) -> FlashSweep:
+                guide: FlashSweep | None = None,
+                scale: Callable[[object, float, float], object] | None = None) -> FlashSweep:
     """:func:`~.contact.flash_contact` at each speed, started from its neighbours.
 
     Parameters
@@ -119,6 +120,8 @@ def flash_sweep(solve: Callable[[float], object], velocities, shift: ShiftLaw | 
     guide
         The sweep of a similar contact over the same speeds (module docstring; None: each
         speed started from the lower ones).
+    scale
+        As for ``flash_contact`` (a hybrid's finer scale at its own temperature).
 
     Returns
     -------
@@ -141,7 +144,7 @@ def flash_sweep(solve: Callable[[float], object], velocities, shift: ShiftLaw | 
                      or predicted_start(done, float(speed), search.tolerance))
         try:
             out = flash_contact(solve, float(speed), shift, thermal, temperature,
-                                search=replace(search, start=start))
+                                search=replace(search, start=start), scale=scale)
         except ConvergenceError as exc:
             flashes.append(None)
             failures[float(speed)] = str(exc).splitlines()[0]
