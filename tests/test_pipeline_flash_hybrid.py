@@ -107,8 +107,9 @@ def test_with_temperatures_the_hybrids_read_the_law_at_their_reduced_speeds(tmp_
 
 def test_hybrids_of_a_temperature_independent_rubber_heat_but_keep_their_friction(tmp_path):
     """WLF with C1 = 1e-300: a_T = 1 exactly, so every solve is at the run's own speed,
-    with the run's own law table, whatever the rise; the rise is the heat's (growing with
-    the speed; at 1 mm/s below the search's tolerance, so 0)."""
+    with the run's own law table, whatever the rise — its high-slope spots' too, hotter
+    than the contact; the rise is the heat's (growing with the speed; at 1 mm/s below the
+    search's tolerance, so 0)."""
     mat = {"preset": "sbr", "reference_temperature": 20.0,
            "shift": {"law": "WLF", "c1": 1e-300, "c2": 101.6}}
     ds = _run(_config(tmp_path, material=mat))
@@ -117,6 +118,8 @@ def test_hybrids_of_a_temperature_independent_rubber_heat_but_keep_their_frictio
                                       ds["friction_mean"].sel(model=m))
         rise = ds["flash_temperature"].sel(model=m, pressure=0.3).values
         assert rise[0] < 1e-2 and np.all(np.diff(rise) > 0) and rise[-1] > 1.0
+        spots = ds["flash_temperature_hs"].sel(model=m, pressure=0.3).values
+        assert np.all(spots >= rise) and spots[-1] > rise[-1] + 1.0
     assert ds.attrs["flash_note"] == ""
 
 
