@@ -8,8 +8,9 @@ never the class, so a user's own surface works wherever it has them:
 * the half-space solver (:func:`rubbercontact.halfspace.solve_sliding`) samples a
   :class:`Profile` on its grid (``period``, ``sampled(length, n)``) and takes a
   :class:`SurfaceMap` on the map's own grid (``lengths``, ``heights``);
-* the sine-series tools of the mean-field theory (:meth:`rubbercontact.meanfield.PSD.
-  from_sines`, :func:`rubbercontact.meanfield.band_friction`) need the waves of a
+* the sine-series tools of the mean-field theory
+  (:meth:`rubbercontact.meanfield.PSD.from_sines`,
+  :func:`rubbercontact.meanfield.bands.strip_bands`) need the waves of a
   :class:`WaveProfile`, and the FEM cell (:func:`rubbercontact.fem.sliding_test`) its
   analytic heights, slopes and curvatures too: it meshes the cell by the shortest
   wavelength and bounds the surface's slope and curvature by ``Σ q_i Δ_i`` and
