@@ -268,9 +268,12 @@ def contact_solve(prob: Problem, idx: np.ndarray, rhs: np.ndarray, total: float,
         else:
             prob.matvecs += len(kernels)
             spec = kn.forward(work.reshape(prob.shape))
-            pc = weights[0] * kn.inverse(spec * kernels[0], prob.shape).ravel()[idc]
+            split = opts.split_inverse_fft_2d
+            pc = weights[0] * kn.inverse(spec * kernels[0], prob.shape, split=split,
+                                         scratch=True).ravel()[idc]
             for kern, wgt in zip(kernels[1:], weights[1:], strict=True):
-                pc += wgt * kn.inverse(spec * kern, prob.shape).ravel()[idc]
+                pc += wgt * kn.inverse(spec * kern, prob.shape, split=split,
+                                       scratch=True).ravel()[idc]
         work[idc] = 0.0
         if cont is None:
             out = pc

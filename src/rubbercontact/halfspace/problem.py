@@ -115,14 +115,15 @@ class Problem:
 
     def apply(self, kernel: np.ndarray, flat: np.ndarray) -> np.ndarray:
         self.matvecs += 1
-        return kn.apply_kernel(kernel, flat.reshape(self.shape)).ravel()
+        return kn.apply_kernel(kernel, flat.reshape(self.shape),
+                               split=self.options.split_inverse_fft_2d).ravel()
 
     def apply_single(self, kernel: np.ndarray, flat: np.ndarray) -> np.ndarray:
         """:meth:`apply` in single precision: float32 field, ``kernel`` complex64 or float32
         (:func:`~.kernels.single`); one FFT pair in ``matvecs``, float32 result."""
         self.matvecs += 1
-        return kn.apply_kernel(kernel, flat.reshape(self.shape).astype(np.float32, copy=False)
-                               ).ravel()
+        return kn.apply_kernel(kernel, flat.reshape(self.shape).astype(np.float32, copy=False),
+                               split=self.options.split_inverse_fft_2d).ravel()
 
     def compliance_single(self) -> np.ndarray:
         """``M`` in single precision (cached)."""
