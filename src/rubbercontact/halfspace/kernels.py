@@ -90,7 +90,11 @@ def response_kernel(material: Material, shape: tuple[int, ...],
     Returned array is complex (real for an elastic material); entry ``q = 0`` is 0.
     """
     qabs, qx = wavevectors(shape, lengths)
-    er = np.asarray(material.complex_modulus(qx * velocity), dtype=complex) / (1.0 - nu**2)
+    # E depends on q_x alone: on a map it is evaluated once per column and broadcast (the
+    # same numbers; a branch sum per grid point took 0.5 s of a 1024² solve)
+    er = np.broadcast_to(np.asarray(material.complex_modulus(qx[(0,) * (qx.ndim - 1)]
+                                                             * velocity), dtype=complex),
+                         qx.shape) / (1.0 - nu**2)
     kernel = np.zeros(qabs.shape, dtype=complex)
     nz = qabs > 0
     kernel[nz] = 2.0 / (qabs[nz] * er[nz])
