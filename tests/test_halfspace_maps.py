@@ -139,21 +139,23 @@ def test_refine_is_bilinear_periodic_and_keeps_the_load():
 
 
 def test_single_precision_contact_solve_meets_the_double_tolerance(rough):
-    # the refined single-precision solve stops on the double-precision residual
+    # the refined single-precision solve stops on the double-precision residual, with its
+    # Krylov basis in float32 (options.single_krylov_2d) or float64
     n = rough.heights.size
     comp = kn.response_kernel(MAT, rough.heights.shape, rough.lengths, 10.0)
     z = rough.heights.ravel()
     idx = np.flatnonzero(z > np.quantile(z, 0.9))
     results = {}
-    for single in (True, False):
+    for single, krylov32 in ((True, True), (True, False), (False, False)):
         prob = Problem(rough.heights.shape, rough.lengths, z - z.mean(), np.zeros(n), comp, 0.3,
-                       SolverOptions(single_precision_2d=single))
-        results[single] = contact_solve(prob, idx, z[idx], 0.3 * n, prob.preconditioner(),
-                                        rtol=1e-10)
-    fast, ref = results[True], results[False]
-    assert fast.residual <= 1e-10
-    assert np.linalg.norm(fast.x - ref.x) / np.linalg.norm(ref.x) < 1e-8
-    assert fast.multiplier == pytest.approx(ref.multiplier, rel=1e-8)
+                       SolverOptions(single_precision_2d=single, single_krylov_2d=krylov32))
+        results[single, krylov32] = contact_solve(prob, idx, z[idx], 0.3 * n,
+                                                  prob.preconditioner(), rtol=1e-10)
+    ref = results[False, False]
+    for fast in (results[True, True], results[True, False]):
+        assert fast.residual <= 1e-10
+        assert np.linalg.norm(fast.x - ref.x) / np.linalg.norm(ref.x) < 1e-8
+        assert fast.multiplier == pytest.approx(ref.multiplier, rel=1e-8)
 
 
 def test_single_precision_is_off_on_small_maps():

@@ -27,8 +27,14 @@ class GmresResult:
 
 def gmres(matvec: Callable[[np.ndarray], np.ndarray], psolve: Callable[[np.ndarray], np.ndarray],
           b: np.ndarray, x0: np.ndarray | None = None, rtol: float = 1e-10, restart: int = 40,
-          maxiter: int = 400) -> GmresResult:
-    """Solve ``A x = b`` with right preconditioning ``A P y = b``, ``x = P y``."""
+          maxiter: int = 400, basis_dtype: type = np.float64) -> GmresResult:
+    """Solve ``A x = b`` with right preconditioning ``A P y = b``, ``x = P y``.
+
+    ``basis_dtype``: the precision of the Krylov vectors and their orthogonalisation
+    (``np.float32`` when the operator itself rounds to single precision: half the memory
+    traffic of the Gram-Schmidt passes, which move the whole basis twice per iteration);
+    the Hessenberg matrix, the rotations and ``x`` stay float64.
+    """
     bnorm = float(np.linalg.norm(b))
     x = np.zeros_like(b) if x0 is None else x0.copy()
     if bnorm == 0.0:
@@ -38,8 +44,8 @@ def gmres(matvec: Callable[[np.ndarray], np.ndarray], psolve: Callable[[np.ndarr
     its = 0
     while beta > rtol * bnorm and its < maxiter:
         m = min(restart, maxiter - its)
-        v = np.empty((m + 1, b.size))
-        z = np.empty((m, b.size))
+        v = np.empty((m + 1, b.size), basis_dtype)
+        z = np.empty((m, b.size), basis_dtype)
         h = np.zeros((m + 1, m))
         cs = np.zeros(m)
         sn = np.zeros(m)
@@ -49,7 +55,7 @@ def gmres(matvec: Callable[[np.ndarray], np.ndarray], psolve: Callable[[np.ndarr
         k = 0
         for k in range(m):
             z[k] = psolve(v[k])
-            w = matvec(z[k])
+            w = matvec(z[k]).astype(basis_dtype, copy=False)
             its += 1
             # classical Gram-Schmidt with one reorthogonalisation (CGS2): as stable as
             # modified Gram-Schmidt, but two matrix-vector products instead of 2(k+1)

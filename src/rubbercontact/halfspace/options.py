@@ -84,6 +84,11 @@ class SolverOptions:
     multi_shift_2d : bool, default False
         Maps: ``multi_shift`` also on maps. Off by default: on the self-affine maps of
         ``benchmarks/maps.md`` it saved no GMRES iterations and doubled their FFTs.
+    single_krylov_2d : bool, default True
+        With ``single_precision_2d``: the GMRES iterations of a single-precision cycle keep
+        their Krylov basis in float32 as well (their operator rounds to float32 and each
+        cycle stops at ``1e-5`` at most, so nothing is lost; the double-precision residual
+        still ends the solve); ``False``: a float64 basis.
     soft_law_preconditioner_2d : bool, default True
         Maps of at least 256² points: contact-set systems of which at least a tenth of the
         rows carry a local compliance ``c`` above the diagonal of ``M`` (a soft law) are
@@ -151,6 +156,7 @@ class SolverOptions:
     wall_soft_moving_rtol_2d: float | None = 5e-2
     newton_forcing_target_2d: bool = True
     split_inverse_fft_2d: bool = True
+    single_krylov_2d: bool = True
 
     def __post_init__(self) -> None:
         for f in fields(self):
