@@ -87,10 +87,12 @@ QUICK = {
     "asphalt": {"realizations": 3, "halfspace": {"n": 8192},
                 "fem": {"mesh": [120, 23], "grading": 8.0},
                 "law": {"pressures": LAW_PRESSURES[1:], "extend": False}},
-    # the CAPTIF law cell (0.5 mm) on the mesh and law its section was rendered with (60 x 45,
-    # up to 3 MPa, extrapolated beyond); the example itself now takes the automatic mesh and
-    # extends its law (re-validating CAPTIF with them is open)
-    "captif": {"realizations": 3, "halfspace": {"n": 8192}, "fem": {"mesh": [60, 45]},
+    # the CAPTIF law cell (0.5 mm) on the mesh, crests and law its section was rendered with
+    # (60 x 45, crests as fitted, up to 3 MPa, extrapolated beyond); the example itself now
+    # takes the automatic mesh, rounds its crests to the sampling and extends its law
+    # (re-validating CAPTIF with them is open)
+    "captif": {"realizations": 3, "halfspace": {"n": 8192},
+               "fem": {"mesh": [60, 45], "crest_radius": "none"},
                "law": {"pressures": [0.1, 0.3, 1.0, 3.0], "extend": False}},
 }
 #: Realizations of the cheap models behind section 3's phase-averaged rows: the study's

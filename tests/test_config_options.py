@@ -30,7 +30,10 @@ BASE = {"surface": {"preset": "section3"}, "velocities": [10.0], "loads": {"pres
 #: Intended differences, each with its reason (not silently allowed).
 KNOWN = {("FemConfig", "mesh"): "a run's law cell follows its surface ('auto', issue 41); "
                                 "the library's FemOptions keeps an explicit default, so a "
-                                "script's results and cache keys stay what they were"}
+                                "script's results and cache keys stay what they were",
+         ("FemConfig", "crest_radius"): "a run's law cell of a measured road rounds its crests "
+                                        "to the profiles' sampling ('sampling', issue 41); "
+                                        "the library's FemOptions takes the surface as given"}
 
 
 def _defaults(cls) -> dict:
@@ -62,6 +65,22 @@ def test_every_fem_option_is_reachable_from_a_config():
     cfg = rc.config.parse_config({**BASE, "fem": {"numerics": changed}})
     opts = cfg.fem.options(mat)
     assert {k: getattr(opts, k) for k in changed} == changed
+
+
+def test_the_law_cell_rounds_crests_to_the_sampling_of_measured_profiles_only():
+    mat = rc.materials.sbr()
+    fem = rc.config.parse_config(BASE).fem
+    assert fem.crest_radius == "sampling"
+    assert fem.with_sampling(None).options(mat).crest_radius is None      # a sine table
+    measured = fem.with_sampling(0.0375)
+    assert measured.options(mat).crest_radius == 0.0375
+    assert measured.options(mat, full=True).crest_radius is None          # the full FEM
+    given = rc.config.parse_config({**BASE, "fem": {"crest_radius": 0.02}}).fem
+    assert given.with_sampling(0.0375).options(mat).crest_radius == 0.02
+    for bad in (-0.01, "sharp"):
+        with pytest.raises(InputError, match="crest_radius") as err:
+            rc.config.parse_config({**BASE, "fem": {"crest_radius": bad}})
+        assert "\n" not in str(err.value)
 
 
 @pytest.mark.parametrize("numerics, match", [

@@ -63,6 +63,13 @@ class FemConfig(_Strict):
         None, description="elements (nx, ny) of the full-surface FEM model (default: mesh if "
                           "given, else 120 x 90)")
     height_ratio: PositiveFloat = option_field(FemOptions, "height_ratio")
+    crest_radius: PositiveFloat | Literal["sampling", "none"] = Field(
+        "sampling", description="law cell: round the high-slope band's crests to this radius "
+                                "[mm] before the FEM (a steep sine band's crests are sharper "
+                                "than a measured profile resolves); 'sampling': the measured "
+                                "profiles' sampling interval (none for a sine table or "
+                                "preset); 'none': the band as fitted "
+                                "(docs/validation/steep_cells.md)")
     periods: int = option_field(TransientOptions, "periods", ge=1, le=100,
                                 prefix="transient: ")
     steps_per_period: int | None = option_field(TransientOptions, "steps_per_period", ge=4,
@@ -166,6 +173,13 @@ class FemConfig(_Strict):
             return tuple(self.full_mesh)
         return (120, 90) if self.mesh == "auto" else tuple(self.mesh)
 
+    def with_sampling(self, dx: float | None) -> FemConfig:
+        """This table with ``crest_radius = "sampling"`` made the surface's sampling
+        interval ``dx`` [mm] (``"none"`` when the surface was not measured)."""
+        if self.crest_radius != "sampling":
+            return self
+        return self.model_copy(update={"crest_radius": "none" if dx is None else float(dx)})
+
     def options(self, material, full: bool = False):
         """The :class:`~rubbercontact.fem.FemOptions` of the law cell, or of the full-surface
         model (``full=True``), for ``material`` (whose retardation time sizes
@@ -186,5 +200,7 @@ class FemConfig(_Strict):
             grading=self.full_grading if full else self.grading,
             contact_points=self.contact_points, history_order=self.history_order,
             viscous_model=self.viscous_model, solver=self.solver,
+            crest_radius=(self.crest_radius if isinstance(self.crest_radius, float) and not full
+                          else None),
             steady=SteadyOptions(**self.steady), transient=transient, **self.numerics)
 

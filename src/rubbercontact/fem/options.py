@@ -243,6 +243,12 @@ class FemOptions:
         Newton iterations per transient step (the steady solver's are in ``steady``).
     solver
         ``"steady"`` (default) or ``"transient"`` (:data:`SOLVERS`).
+    crest_radius
+        Round the surface's crests to at least this radius [mm] before the test
+        (:func:`~rubbercontact.roughness.crests.round_crests`; None: the surface as given).
+        A run's law cell of a measured road takes the profile's sampling interval: a
+        sine band's crests are sharper than the measurement resolves, and the rubber
+        crushed on them stops Newton (docs/validation/steep_cells.md).
     steady, transient
         The controls of each solver.
     """
@@ -264,6 +270,7 @@ class FemOptions:
     newton_tol: float = 1e-6
     max_newton: int = 25
     solver: str = "steady"
+    crest_radius: float | None = None
     steady: SteadyOptions = field(default_factory=SteadyOptions)
     transient: TransientOptions = field(default_factory=TransientOptions)
 
@@ -298,6 +305,8 @@ class FemOptions:
                              f"{self.viscous_model!r}")
         positive_scalar("newton_tol", self.newton_tol)
         _integer("max_newton", self.max_newton, 1)
+        if self.crest_radius is not None:
+            positive_scalar("crest_radius", self.crest_radius, unit="mm")
         if self.solver not in SOLVERS:
             raise InputError(f"solver: must be one of {', '.join(SOLVERS)}, got {self.solver!r}")
         if isinstance(self.steady, dict):
@@ -348,6 +357,9 @@ class FemOptions:
         # the results computed before it existed)
         if out["steady"]["rescue"] == SteadyOptions.rescue:
             del out["steady"]["rescue"]
+        # and the surface as given (crests not rounded)
+        if out["crest_radius"] is None:
+            del out["crest_radius"]
         return out
 
     @classmethod

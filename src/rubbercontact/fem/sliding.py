@@ -21,6 +21,7 @@ from .._validation import positive_scalar
 from ..errors import ConvergenceError, InputError
 from ..materials.maxwell import GeneralizedMaxwell
 from ..materials.protocol import check_prony
+from ..roughness.crests import round_crests
 from ..roughness.protocol import check_waves
 from ..roughness.sines import SineSeries
 from .constitutive import cauchy_from_pk2
@@ -152,6 +153,8 @@ def sliding_test(surface: SineSeries, material: GeneralizedMaxwell, mean_pressur
         changes["solver"] = solver
     opts = make_options(options, **changes)
     p, v = check_test(surface, material, mean_pressure, velocity, opts)
+    if opts.crest_radius is not None:
+        surface = round_crests(surface, opts.crest_radius)
     refine, opts = opts.auto, opts.resolved(surface)
     if opts.solver == "transient":
         return TransientTest(surface, material, p, v, opts, progress).run()

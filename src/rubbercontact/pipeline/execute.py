@@ -96,6 +96,7 @@ def run(config: RunConfig | dict | str | Path, *, runner: Runner | None = None,
     t_start = time.perf_counter()
     timings: dict[str, float] = {}
     setup = resolve(cfg)                       # every config-level check, before any task
+    cfg = setup.config                         # with what the surface resolved (crest radius)
     flash = plan_flash(setup)                  # None unless [friction.flash_temperature]
     runner = runner or make_runner(cfg, progress, retry_failed)
     material = GeneralizedMaxwell(**task_material(setup.material))   # the series at T_ref
@@ -246,6 +247,13 @@ def _describe(ds: xr.Dataset, setup: RunSetup, timings: dict, per_model_time: di
         "model_cpu_time_s": json.dumps(per_model_time),
         "results_format": RESULTS_FORMAT,
     })
+    radius = cfg.fem.crest_radius
+    if setup.needs_law and cfg.law.file is None and isinstance(radius, float):
+        ds.attrs["law_cell_note"] = (
+            f"law cell: the high-slope crests rounded to {radius:.3g} mm"
+            + (", the profiles' sampling interval"
+               if radius == setup.surface.info.get("dx_mm") else "")
+            + " (fem.crest_radius; docs/validation/steep_cells.md)")
     return ds
 
 

@@ -90,6 +90,8 @@ def resolve(cfg: RunConfig) -> RunSetup:
                            ("law.pressures", cfg.law.pressures)):
         check_pressures(pressures or [], material, key)
     surface = build_surface(cfg.surface)
+    # the law cell's crests rounded to what the measurement resolves (fem.crest_radius)
+    cfg = cfg.model_copy(update={"fem": cfg.fem.with_sampling(surface.info.get("dx_mm"))})
     realizations = surface.series.realizations(cfg.realizations, seed=cfg.seed)
     parts = [Parts(*r.partition(cfg.surface.m2_threshold)) for r in realizations]
     setup = RunSetup(config=cfg, material=material, surface=surface,

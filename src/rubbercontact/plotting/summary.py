@@ -45,7 +45,8 @@ def summary_table(ds: xr.Dataset) -> str:
         for v in ds["velocity"].values:
             lines += _per_speed(ds, v)
     coverage = [f"law: {ds.attrs['law_coverage']}"] if ds.attrs.get("law_coverage") else []
-    return "\n".join(lines + coverage + _validity(ds))
+    cell = [ds.attrs["law_cell_note"]] if ds.attrs.get("law_cell_note") else []
+    return "\n".join(lines + cell + coverage + _validity(ds))
 
 
 def _validity(ds: xr.Dataset) -> list[str]:
