@@ -216,3 +216,33 @@ def test_a_refined_neighbour_starts_the_next_point_on_its_mesh():
     assert [r.mesh[0] for r in out] == [80, 80] and all(r.stats.refined for r in out)
     assert "neighbour's refined mesh" in out[1].stats.tried[0]
     assert "from the neighbour" in " ".join(out[1].stats.tried)
+
+
+#: The law cell of examples/captif_road.toml exactly (its run's ``hs0``: both stations'
+#: high-slope waves, translated to zero phase).
+CAPTIF_LAW_CELL = rc.roughness.SineSeries([0.25, 0.5],
+                                          [0.12730956250957495, 0.12080265476330462],
+                                          [0.0, 3.673565245973281])
+
+
+@pytest.mark.slow
+def test_a_refinement_whose_plain_repair_fails_is_repaired_not_pressed_again():
+    # captif_road's 1 MPa / 10 mm/s law point: its narrowest patch on 128 x 16 is about a
+    # column, so it is re-solved on 256 x 19, nested from 128 x 19. The plain Newton repair
+    # of the prolonged state stalls at its first iteration there; the repair homotopy
+    # carries it, and the fine mesh is not pressed from the start. The answer is the
+    # fine mesh's own: the direct press on the same 256 x 19 cell (no nested iteration),
+    # to the solver's tolerance (1e-6 of the load; measured 9e-7 relative in μ).
+    mat = rc.materials.sbr()
+    out = rc.fem.steady_sliding(CAPTIF_LAW_CELL, mat, 1.0, 10.0, mesh="auto",
+                                columns_per_wave=64, fallback=False)
+    assert out.stats.refined and out.mesh == (256, 19), out.stats.tried
+    assert any(t.startswith("repair 256x19") and t.endswith("λ = 1")
+               for t in out.stats.tried), out.stats.tried
+    assert not any(t.startswith("press 256x19") for t in out.stats.tried), out.stats.tried
+    m = auto_mesh(CAPTIF_LAW_CELL, FemOptions().height_ratio, 128)
+    direct = rc.fem.steady_sliding(CAPTIF_LAW_CELL, mat, 1.0, 10.0, mesh=(m.nx, m.ny),
+                                   grading=m.grading, coarse_elements=0, fallback=False)
+    assert out.friction == pytest.approx(direct.friction, rel=1e-5)
+    assert out.contact_fraction == pytest.approx(direct.contact_fraction, rel=1e-5)
+    assert out.mean_separation == pytest.approx(direct.mean_separation, rel=1e-5)
