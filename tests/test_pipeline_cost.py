@@ -23,7 +23,9 @@ from rubbercontact.pipeline.cost import (
     estimate_cost,
     fem_point_seconds,
     halfspace_solve_seconds,
+    law_mesh,
     law_point_seconds,
+    law_refined_mesh,
 )
 from rubbercontact.pipeline.lawstage import law_pressures
 from rubbercontact.pipeline.plan import model_tasks
@@ -115,10 +117,31 @@ def test_an_automatic_mesh_budgets_the_refined_points():
     setup, stage = _law_stage(cfg)
     mesh = tuple(int(n) for n in stage.name.split("(")[1].split(" (")[0].split(" x "))
     e_inf = setup.material.equilibrium_modulus
+    fine = law_refined_mesh(setup)
     expect = [fem_point_seconds(mesh, "steady", p, e_inf)
-              + AUTO_REFINED_SHARE * fem_point_seconds((2 * mesh[0], mesh[1]), "steady", p,
-                                                       e_inf) for p in (0.1, 0.5, 2.0)]
+              + AUTO_REFINED_SHARE * fem_point_seconds(fine, "steady", p, e_inf)
+              for p in (0.1, 0.5, 2.0)]
     assert stage.total_s == pytest.approx(2 * sum(expect))
+
+
+@pytest.mark.parametrize("columns", [16, 64])
+def test_the_refined_points_are_priced_on_the_mesh_the_solver_refines_to(columns):
+    # The budget of a re-solved point is the FEM's own refined mesh (fem.sliding's
+    # _doubled): nx doubled and the rows of the rule for twice the columns per wave, which
+    # keeps the face rows' aspect and so has more rows than the first mesh.
+    from rubbercontact.fem.sliding import _doubled
+
+    cfg = {**CONFIG, "fem": {"full_mesh": [64, 48], "realizations": 2,
+                             "columns_per_wave": columns}}
+    setup = resolve(parse_config(cfg))
+    first = setup.config.fem.options(setup.material).resolved(setup.hs0)
+    fine = law_refined_mesh(setup)
+    assert fine == tuple(_doubled(setup.hs0, first).mesh)
+    assert fine[0] == 2 * law_mesh(setup)[0] and fine[1] > law_mesh(setup)[1]
+    assert law_point_seconds(setup, 1.0) == pytest.approx(
+        fem_point_seconds(law_mesh(setup), "steady", 1.0, setup.material.equilibrium_modulus)
+        + AUTO_REFINED_SHARE * fem_point_seconds(fine, "steady", 1.0,
+                                                 setup.material.equilibrium_modulus))
 
 
 def test_wall_time_runs_the_tasks_in_rounds_of_the_workers():

@@ -99,6 +99,15 @@ def auto_mesh(surface: SineSeries, height_ratio: float, columns_per_wave: int) -
     return AutoMesh(nx, ny, grading)
 
 
+def refined_mesh(surface: SineSeries, height_ratio: float, columns_per_wave: int
+                 ) -> AutoMesh:
+    """The mesh a test on the automatic mesh of ``columns_per_wave`` is re-solved on when
+    its narrowest patch is too narrow: the rule's mesh for twice the columns per wave
+    (``nx`` doubled; rows and grading the rule's for it, so the face rows keep their
+    aspect, with at least as many rows as the first mesh)."""
+    return auto_mesh(surface, height_ratio, 2 * columns_per_wave)
+
+
 def patch_widths(x: np.ndarray, gap: np.ndarray, width: float) -> np.ndarray:
     """Widths [mm] of the contact patches of a periodic face, each abscissa once.
 

@@ -27,7 +27,7 @@ from ..roughness.sines import SineSeries
 from .constitutive import cauchy_from_pk2
 from .contact import face_contact_fraction, mean_separation, segment_penetration
 from .options import RESCUE_NEWTON, FemOptions, SteadyOptions, TransientOptions
-from .resolution import auto_mesh, narrowest_patch, under_resolved_message
+from .resolution import narrowest_patch, refined_mesh, under_resolved_message
 from .result import (
     BULK_SHEAR_LIMIT,
     SEGMENT_PENETRATION_LIMIT,
@@ -167,7 +167,7 @@ def _doubled(surface, opts: FemOptions) -> FemOptions:
     """The resolved automatic ``opts`` on the rule's mesh for twice the columns per wave
     (``nx`` doubled, rows and grading the rule's for it: the face rows keep their aspect),
     the nested iteration still starting at the old ``nx``."""
-    m = auto_mesh(surface, opts.height_ratio, 2 * opts.columns_per_wave)
+    m = refined_mesh(surface, opts.height_ratio, opts.columns_per_wave)
     return opts.with_(mesh=(m.nx, m.ny), grading=m.grading)
 
 

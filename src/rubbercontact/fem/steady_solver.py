@@ -176,13 +176,12 @@ def _refine(coarse: CellSetup, U: np.ndarray, fine: CellSetup, options: FemOptio
     # J varies inside a coarse element): relax the interior with the face and the plate
     # held, then release them. The relaxation is a Newton homotopy from the interpolated
     # state, like the release below: its first step (λ = 1) is the plain Newton, and where
-    # that fails (on a steep cell its line search can stall at the first iteration, the
-    # full and half steps inverting elements at the face) it walks the residual down in
-    # steps instead of releasing from an unrepaired state (measured on
-    # examples/captif_road.toml's 1 MPa /
-    # 10 mm/s cell, 128 x 19 -> 256 x 19: the plain repair and the release failed after
+    # that fails (on a steep cell its line search stalls: the long steps invert elements,
+    # the short ones do not lower the merit) it walks the residual down in steps instead
+    # of releasing from an unrepaired state. Measured on examples/captif_road.toml's 1 MPa
+    # / 10 mm/s cell, 128 x 19 -> 256 x 19: the plain repair and the release failed after
     # 187 Newton iterations and the fine mesh was pressed from the start, 719 in the whole
-    # test; the homotopy repairs in 4 steps and releases in 2, 104 Newton, 301 in all).
+    # test; the homotopy repairs in 4 steps and releases in 2, 104 Newton, 301 in all.
     held = np.concatenate([m.bx, m.by, [m.plate, m.plate_x]])
     holding = cell.holding(held)
     start = holding.evaluate(V, 0.0, fine.load, "top").r
