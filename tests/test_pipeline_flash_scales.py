@@ -21,6 +21,7 @@ from test_pipeline_flash_hybrid import HYBRIDS, WLF, _config, _linear_law
 import rubbercontact as rc
 from rubbercontact.hybrid.lawspeed import LawSpeeds
 from rubbercontact.hybrid.lawtable import law_at_velocity
+from rubbercontact.hybrid.windowing import windowed_hs_terms
 from rubbercontact.pipeline import flash as pipeline_flash
 from rubbercontact.pipeline.flash_hybrid import (
     SCALE_FLASH,
@@ -30,6 +31,7 @@ from rubbercontact.pipeline.flash_hybrid import (
 )
 from rubbercontact.pipeline.flash_scales import (
     HighSlopeTerms,
+    LawInPressure,
     ScaleSpots,
     scale_flash,
     scale_rise,
@@ -113,9 +115,26 @@ def test_limits_keep_the_solves_own_terms_bit_for_bit():
     out = scale_flash(lambda u: idle, idle, 20.0, 1e4, 0.3, 0.3, law, ScaleSpots(0.03, SBR))
     assert out.rise == 0.0 and out.terms is idle
     # shifted_reader: a law the same at both speeds moves nothing, its reading aside
-    tables = {1.0: {"k": 1}, 10.0: {"k": 1}}
-    reader = shifted_reader(lambda t: HighSlopeTerms(0.7 * t["k"], 0.3), tables.get, low, 1.0)
+    reader = shifted_reader(lambda u: HighSlopeTerms(0.7, 0.3), low, 1.0)
     assert reader(10.0) == low
+
+
+def test_the_law_in_pressure_is_blended_at_fixed_pressure(hand_made_law):
+    """At a tabulated speed the reading is the table's through its own interpolant (the
+    windowed hybrid's, exactly); Δτ doubled at the faster speed: √2 Δτ halfway in ln v at
+    every pressure (1e-12), the contact fraction unchanged; below the slowest speed the
+    slowest table, the read counted as clamped."""
+    a = hand_made_law(41)
+    b = {**a, "shear_stress": [2.0 * t for t in a["shear_stress"]]}
+    reads = LawReads()
+    law = LawInPressure(LawSpeeds({1.0: a, 100.0: b}), reads)
+    p = np.linspace(0.0, 12.0, 257)             # beyond the table's 10 MPa: held
+    read = law.reader(p, np.mean, 2.0)
+    at_a, mid = read(1.0), read(10.0)
+    assert at_a.friction == windowed_hs_terms(p, 1.0, 1.0 / 257, a, 2.0)[0]
+    assert mid.friction == pytest.approx(np.sqrt(2.0) * at_a.friction, rel=1e-12)
+    assert mid.contact_fraction == pytest.approx(at_a.contact_fraction, rel=1e-12)
+    assert read(0.1) == at_a and reads.clamped == 1 and reads.reads == 3
 
 
 def _hot_solve(tmp_path, speed: float):

@@ -91,6 +91,28 @@ class LawAtSpeed:
         return not np.isclose(self.read_at, self.speed, rtol=SPEED_RTOL, atol=0.0)
 
 
+@dataclass(frozen=True)
+class SpeedBracket:
+    """Where a speed falls among the tabulated ones (:meth:`LawSpeeds.where`).
+
+    Attributes
+    ----------
+    speed, read_at, lower, upper, weight
+        As :class:`LawAtSpeed`'s.
+    """
+
+    speed: float
+    read_at: float
+    lower: float
+    upper: float
+    weight: float
+
+    @property
+    def clamped(self) -> bool:
+        """Whether ``speed`` lies outside the tabulated speeds (read at the nearest end)."""
+        return not np.isclose(self.read_at, self.speed, rtol=SPEED_RTOL, atol=0.0)
+
+
 class LawSpeeds:
     """A law tabulated at several speeds, read at any speed (module docstring).
 
@@ -109,6 +131,7 @@ class LawSpeeds:
         self.speeds = speeds
         self._tables = {float(v): tables[v] for v in tables}
         self._laws: dict[float, object] = {}
+        self._pairs: dict[tuple[float, float], _Pair] = {}
 
     def _law(self, speed: float):
         """The interpolant of the table at a tabulated ``speed``, built once."""
@@ -122,9 +145,9 @@ class LawSpeeds:
         """The table at a tabulated ``speed`` [mm/s]."""
         return self._tables[float(speed)]
 
-    def at(self, speed: float) -> LawAtSpeed:
-        """The law at ``speed`` [mm/s] > 0: a tabulated table, the interpolation between
-        the two around it, or the nearest end's table (``clamped``)."""
+    def where(self, speed: float) -> SpeedBracket:
+        """Where ``speed`` [mm/s] > 0 falls: at a tabulated speed, between two (their
+        weight), or outside (``clamped`` to the nearest end)."""
         v = float(speed)
         if not (np.isfinite(v) and v > 0):
             raise InputError(f"speed: expected a finite speed > 0 mm/s, got {speed!r}")
@@ -132,15 +155,27 @@ class LawSpeeds:
         near = np.flatnonzero(np.isclose(s, v, rtol=SPEED_RTOL, atol=0.0))
         if near.size:
             at = float(s[near[0]])
-            return LawAtSpeed(self.table(at), v, v, at, at, 0.0)
+            return SpeedBracket(v, v, at, at, 0.0)
         if v < s[0] or v > s[-1]:
             end = float(s[0] if v < s[0] else s[-1])
-            return LawAtSpeed(self.table(end), v, end, end, end, 0.0)
+            return SpeedBracket(v, end, end, end, 0.0)
         k = int(np.searchsorted(s, v))
         lo, hi = float(s[k - 1]), float(s[k])
-        w = float(np.log(v / lo) / np.log(hi / lo))
-        table = blend_tables(self.table(lo), self.table(hi), w, (self._law(lo), self._law(hi)))
-        return LawAtSpeed(table, v, v, lo, hi, w)
+        return SpeedBracket(v, v, lo, hi, float(np.log(v / lo) / np.log(hi / lo)))
+
+    def at(self, speed: float) -> LawAtSpeed:
+        """The law at ``speed`` [mm/s] > 0: a tabulated table, the interpolation between
+        the two around it, or the nearest end's table (``clamped``)."""
+        b = self.where(speed)
+        lo, hi = b.lower, b.upper
+        if lo == hi:
+            table = self.table(lo)
+        else:
+            if (lo, hi) not in self._pairs:  # the same for every weight between them
+                self._pairs[lo, hi] = _pair(self.table(lo), self.table(hi),
+                                            (self._law(lo), self._law(hi)))
+            table = _blend(self._pairs[lo, hi], b.weight)
+        return LawAtSpeed(table, b.speed, b.read_at, lo, hi, b.weight)
 
 
 def _in_pressure(table: dict, nodes: np.ndarray, law=None) -> dict:
@@ -194,23 +229,50 @@ def blend_tables(a: dict, b: dict, weight: float, laws: tuple | None = None) -> 
     w = float(weight)
     if not 0.0 <= w <= 1.0:
         raise InputError(f"weight: expected a number in [0, 1], got {weight!r}")
+    return _blend(_pair(a, b, laws), w)
+
+
+@dataclass(frozen=True)
+class _Pair:
+    """Two tables read at the union of their pressures (what a blend of any weight needs).
+
+    Attributes
+    ----------
+    nodes
+        The union of their pressures > 0 [MPa], ascending.
+    a, b
+        Each table's ``separation``, ``contact_fraction``, ``shear_stress`` at ``nodes``.
+    anchor
+        The zero-load anchor's separation [mm] (None: a table without one).
+    """
+
+    nodes: np.ndarray
+    a: dict
+    b: dict
+    anchor: float | None
+
+
+def _pair(a: dict, b: dict, laws: tuple | None) -> _Pair:
     nodes = np.unique(np.concatenate([np.asarray(t["pressure"], float) for t in (a, b)]))
     nodes = nodes[nodes > 0]
     la, lb = laws if laws is not None else (None, None)
-    ra, rb = _in_pressure(a, nodes, la), _in_pressure(b, nodes, lb)
-    mixed = {k: _mix(ra[k], rb[k], w) for k in ra}
-    order = np.argsort(-nodes)                               # separation ascending
+    anchors = [_anchor(t) for t in (a, b)]
+    return _Pair(nodes, _in_pressure(a, nodes, la), _in_pressure(b, nodes, lb),
+                 max(anchors) if all(u is not None for u in anchors) else None)
+
+
+def _blend(pair: _Pair, w: float) -> dict:
+    """The blend of weight ``w`` of a :class:`_Pair`, as plain data."""
+    mixed = {k: _mix(pair.a[k], pair.b[k], w) for k in pair.a}
+    order = np.argsort(-pair.nodes)                          # separation ascending
     out = {"separation": mixed["separation"][order].tolist(),
-           "pressure": nodes[order].tolist(),
+           "pressure": pair.nodes[order].tolist(),
            "contact_fraction": mixed["contact_fraction"][order].tolist(),
            "shear_stress": mixed["shear_stress"][order].tolist()}
-    anchors = [_anchor(t) for t in (a, b)]
-    if all(u is not None for u in anchors):
-        u0 = max(anchors)
-        if u0 > out["separation"][-1]:
-            for k, val in (("separation", u0), ("pressure", 0.0), ("contact_fraction", 0.0),
-                           ("shear_stress", 0.0)):
-                out[k].append(val)
+    if pair.anchor is not None and pair.anchor > out["separation"][-1]:
+        for k, val in (("separation", pair.anchor), ("pressure", 0.0),
+                       ("contact_fraction", 0.0), ("shear_stress", 0.0)):
+            out[k].append(val)
     return out
 
 

@@ -50,14 +50,20 @@ from dataclasses import dataclass, replace
 
 import numpy as np
 
-from ..hybrid.lawspeed import LawSpeeds
+from ..hybrid.lawspeed import LawAtSpeed, LawSpeeds, SpeedBracket
 from ..materials import GeneralizedMaxwell
 from ..materials.shift import ShiftLaw
 from ..models import registry
 from ..models.planning import RunPoint
 from ..roughness import SineSeries
 from ..thermal.contact import CONTACT_SEPARATION, contact_mask, start_pressure
-from .flash_scales import HighSlopeTerms, ScaleSpots, scale_flash, shifted_reader
+from .flash_scales import (
+    HighSlopeTerms,
+    LawInPressure,
+    ScaleSpots,
+    scale_flash,
+    shifted_reader,
+)
 from .setup import RunSetup, task_material
 
 #: The hybrids computed with the flash temperature.
@@ -89,14 +95,23 @@ class LawReads:
         """The law's table at ``speed`` (None without a law), the read counted."""
         if laws is None:
             return None
+        read = laws.at(speed)
+        self.count(laws, read)
+        return read.table
+
+    def where(self, laws: LawSpeeds, speed: float) -> SpeedBracket:
+        """Where ``speed`` falls among the law's speeds, the read counted."""
+        return self.count(laws, laws.where(speed))
+
+    def count(self, laws: LawSpeeds, read: SpeedBracket | LawAtSpeed):
+        """``read`` (of ``laws``), counted (clamped or not)."""
         if self.slowest is None:
             self.slowest = float(laws.speeds[0])
-        read = laws.at(speed)
         self.reads += 1
         if read.clamped:
             self.clamped += 1
-            self.lowest = min(self.lowest, speed)
-        return read.table
+            self.lowest = min(self.lowest, read.speed)
+        return read
 
     def note(self, models: tuple[str, ...]) -> str:
         """One line on the clamped reads ("" when none)."""
@@ -107,11 +122,6 @@ class LawReads:
                 f"contacts asked for it below (down to {self.lowest:.4g} mm/s, a factor "
                 f"{self.slowest / self.lowest:.3g}) and read it at {self.slowest:g} mm/s "
                 f"(clamped, not extrapolated): add slower speeds for the law")
-
-    def at(self, laws: LawSpeeds) -> Callable[[float], dict]:
-        """``table(speed)`` of ``laws``, each read counted."""
-        return lambda speed: self.table(laws, speed)
-
 
 def law_speeds(tables: dict | None) -> LawSpeeds | None:
     """The run's law tables (:attr:`~.lawstage.LawStage.tables`) read at any speed, or
@@ -192,24 +202,20 @@ def hybrid_scale(pressure: float, laws: LawSpeeds | None, reads: LawReads,
     high-slope spots' own temperature (module docstring), the
     :class:`~.flash_scales.ScaleFlash` in its ``info`` under :data:`SCALE_FLASH`; None
     without a law. ``window`` [mm]: the windowed reading's (None: pointwise)."""
-    from ..hybrid.windowing import law_in_pressure, windowed_hs_terms
+    from ..hybrid.windowing import window_average
 
     if laws is None:
         return None
+    law = LawInPressure(laws, reads)
 
     def scale(res, temperature: float, velocity: float):
-        p = np.asarray(res.pressure, float)
-        period = float((res.x[1] - res.x[0]) * res.x.size)
-
-        def read(table: dict) -> HighSlopeTerms:
-            if window is not None:
-                return HighSlopeTerms(*windowed_hs_terms(p, period, window, table, pressure))
-            sig, alpha, tau = law_in_pressure(table)
-            return HighSlopeTerms(float(np.mean(np.interp(p, sig, tau))) / pressure,
-                                  float(np.mean(np.interp(p, sig, alpha))))
-
+        p = np.asarray(res.pressure, float).ravel()
+        if window is not None:              # the windowed reading (hybrid.windowing)
+            period = float((res.x[1] - res.x[0]) * res.x.size)
+            p = np.maximum(window_average(p, period, window), 0.0)
+        read = law.reader(p, np.mean, pressure)
         low = HighSlopeTerms(float(res.friction_hs), float(res.contact_fraction))
-        flash = scale_flash(shifted_reader(read, reads.at(laws), low, float(res.velocity)),
+        flash = scale_flash(shifted_reader(read, low, float(res.velocity)),
                             low, temperature, velocity, pressure,
                             float(np.mean(contact_mask(res))), shift, spots)
         return replace(res, friction=res.friction + (flash.terms.friction - low.friction),

@@ -49,14 +49,20 @@ from ..materials import GeneralizedMaxwell
 from ..materials.shift import shift_law_from_dict
 from ..meanfield import PSD
 from ..meanfield import solve as solve_meanfield
-from ..meanfield.enriched import PressureLaw, weigh_law
 from ..meanfield.flash import FlashOptions, cascade_rise, tread_rise
 from ..meanfield.options import options_from_dict
 from ..models import registry
 from ..models.planning import RunPoint
 from ..thermal.spots import band_centre_temperature
 from .flash_hybrid import SCALE_FLASH, LawReads
-from .flash_scales import HighSlopeTerms, ScaleSpots, rise_root, scale_flash, shifted_reader
+from .flash_scales import (
+    HighSlopeTerms,
+    LawInPressure,
+    ScaleSpots,
+    rise_root,
+    scale_flash,
+    shifted_reader,
+)
 from .setup import RunSetup, task_material
 
 #: The model.
@@ -152,18 +158,14 @@ def meanfield_scale(pressure: float, laws: LawSpeeds | None, reads: LawReads,
     if laws is None:
         return None
     law = shift_law_from_dict(shift)
+    reading = LawInPressure(laws, reads)
 
     def scale(res, temperature: float, velocity: float):
         dist = res.pressure_distribution
-
-        def read(table: dict) -> HighSlopeTerms:
-            with warnings.catch_warnings():      # the solve's own reading said it already
-                warnings.simplefilter("ignore", LawWarning)
-                return HighSlopeTerms(*weigh_law(dist, PressureLaw.from_table(table)))
-
+        read = reading.reader(dist.sigma, dist.expect, pressure)   # weigh_law's reading
         low = HighSlopeTerms(float(res.friction_hs), float(res.contact_fraction))
         speed = float(res.inputs["velocity"])
-        flash = scale_flash(shifted_reader(read, reads.at(laws), low, speed), low,
+        flash = scale_flash(shifted_reader(read, low, speed), low,
                             temperature, velocity, pressure, float(res.contact_fraction_ls),
                             law, spots)
         return replace(res, friction=res.friction + (flash.terms.friction - low.friction),

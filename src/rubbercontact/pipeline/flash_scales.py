@@ -184,25 +184,90 @@ def rise_root(excess: Callable[[float], float], tolerance: float) -> float:
     return float(brentq(excess, 0.0, hi, xtol=tolerance))
 
 
-def shifted_reader(read: Callable[[dict], HighSlopeTerms], table_at: Callable[[float], dict],
-                   low: HighSlopeTerms, low_speed: float
-                   ) -> Callable[[float], HighSlopeTerms]:
+def shifted_reader(read: Callable[[float], HighSlopeTerms], low: HighSlopeTerms,
+                   low_speed: float) -> Callable[[float], HighSlopeTerms]:
     """``reader(speed)``: ``low`` (the solve's own terms, read at ``low_speed`` [mm/s])
-    moved by ``read(table_at(speed)) − read(table_at(low_speed))`` — the change of the
-    law's reading at the solve's pressure — so that a law the same at both speeds gives
-    ``low`` bit for bit (module docstring). ``read`` is the model's reading of a law table
-    at its solved pressure; the contact fraction is kept in [0, 1]."""
+    moved by ``read(speed) − read(low_speed)`` — the change of the law's reading at the
+    solve's pressure (:meth:`LawInPressure.reader`) — so that a law the same at both
+    speeds gives ``low`` bit for bit (module docstring); the contact fraction is kept in
+    [0, 1]."""
     base: list[HighSlopeTerms] = []
 
     def reader(speed: float) -> HighSlopeTerms:
         if not base:
-            base.append(read(table_at(low_speed)))
-        now = read(table_at(speed))
+            base.append(read(low_speed))
+        now = read(speed)
         area = low.contact_fraction + (now.contact_fraction - base[0].contact_fraction)
         return HighSlopeTerms(low.friction + (now.friction - base[0].friction),
                               float(np.clip(area, 0.0, 1.0)))
 
     return reader
+
+
+class LawInPressure:
+    """The high-slope law's ``α_hs``, ``Δτ_hs`` at given local pressures, at any speed.
+
+    Each tabulated table is read once as a function of the pressure through its own
+    interpolant (:func:`~rubbercontact.hybrid.windowing.law_in_pressure`, as the windowed
+    hybrid and ``meanfield-hybrid`` read it); between two tabulated speeds, at fixed
+    pressure, ``α`` and ``Δτ`` are blended as the law is
+    (:mod:`rubbercontact.hybrid.lawspeed`: geometrically in
+    ``w = ln(v/v_a)/ln(v_b/v_a)`` where both are > 0, else linearly), here at the solve's
+    own pressures rather than at the tables' pressures: the same rule without a table
+    rebuilt per speed (microseconds a read against 2–4 ms). Outside the tabulated speeds
+    the nearest end is read; every read is counted in ``reads``
+    (:class:`~.flash_hybrid.LawReads`, for the run's note).
+
+    Parameters
+    ----------
+    laws
+        The law at its tabulated speeds (:class:`~rubbercontact.hybrid.lawspeed.LawSpeeds`).
+    reads
+        The run's :class:`~.flash_hybrid.LawReads`.
+    """
+
+    def __init__(self, laws, reads) -> None:
+        self._laws, self._reads = laws, reads
+        self._curves: dict[float, tuple[np.ndarray, ...]] = {}
+
+    def _curve(self, speed: float) -> tuple[np.ndarray, ...]:
+        """``(σ, α, Δτ)`` of the table at a tabulated ``speed``, ascending in ``σ``."""
+        from ..hybrid.windowing import law_in_pressure
+
+        if speed not in self._curves:
+            self._curves[speed] = law_in_pressure(self._laws.table(speed))
+        return self._curves[speed]
+
+    def reader(self, sigma: np.ndarray, mean: Callable[[np.ndarray], float],
+               mean_pressure: float) -> Callable[[float], HighSlopeTerms]:
+        """``read(speed)``: ``μ_hs = mean(Δτ(σ))/σ0`` and ``A_hs = mean(α(σ))`` with the
+        law at ``speed`` [mm/s], at the local pressures ``sigma`` [MPa] (``mean``: the
+        model's average over them, e.g. ``np.mean`` over a grid)."""
+        at: dict[float, tuple[np.ndarray, np.ndarray]] = {}
+
+        def values(speed: float) -> tuple[np.ndarray, np.ndarray]:
+            if speed not in at:
+                sig, alpha, tau = self._curve(speed)
+                at[speed] = (np.interp(sigma, sig, alpha), np.interp(sigma, sig, tau))
+            return at[speed]
+
+        def read(speed: float) -> HighSlopeTerms:
+            where = self._reads.where(self._laws, speed)
+            alpha, tau = values(where.lower)
+            if where.upper != where.lower:
+                hi = values(where.upper)
+                alpha, tau = (_mix(alpha, hi[0], where.weight), _mix(tau, hi[1], where.weight))
+            return HighSlopeTerms(float(mean(tau)) / mean_pressure, float(mean(alpha)))
+
+        return read
+
+
+def _mix(a: np.ndarray, b: np.ndarray, w: float) -> np.ndarray:
+    """``a^(1−w) b^w`` where both are > 0, ``(1 − w) a + w b`` elsewhere."""
+    both = (a > 0) & (b > 0)
+    with np.errstate(divide="ignore", invalid="ignore"):
+        geo = np.exp((1.0 - w) * np.log(a) + w * np.log(b))
+    return np.where(both, geo, (1.0 - w) * a + w * b)
 
 
 def scale_flash(reader: Callable[[float], HighSlopeTerms], low: HighSlopeTerms,
