@@ -18,6 +18,7 @@ PARTS = [("halfspace.md", "Half-space (BEM) solver"),
          ("strips.md", "Mean-field strip cascade, against a baseline"),
          ("flash.md", "Mean-field flash temperature"),
          ("flash_run.md", "Flash temperature in a run, against the isothermal run"),
+         ("flash_scales.md", "The hybrids' flash: each scale at its own temperature"),
          ("maps.md", "Areal maps: the 2D models")]
 
 
