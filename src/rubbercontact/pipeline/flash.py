@@ -186,8 +186,8 @@ def add_flash(ds: xr.Dataset, setup: RunSetup, plan: FlashPlan | None,
               tables: dict | None = None) -> tuple[xr.Dataset, float]:
     """``ds`` with the flash variables (module docstring) and their provenance in
     ``attrs`` (``flash_thermal``, ``flash_options``, ``flash_note``, ``flash_residual_K``,
-    ``flash_halfspace_solves``), and the wall time [s]; ``ds`` unchanged (and 0 s) when
-    ``plan`` is None. ``tables``: the law at each computed speed
+    ``flash_halfspace_solves``, ``flash_per_scale``), and the wall time [s]; ``ds``
+    unchanged (and 0 s) when ``plan`` is None. ``tables``: the law at each computed speed
     (:attr:`~.lawstage.LawStage.tables`; None without a law), for the hybrids."""
     if plan is None:
         return ds, 0.0
@@ -483,6 +483,7 @@ def _with_variables(ds: xr.Dataset, out: dict, nodes: np.ndarray, with_temperatu
                      "flash_options": json.dumps(options, default=float),
                      "flash_models": json.dumps(list(plan.models)),
                      "flash_halfspace_search": json.dumps(asdict(plan.search), default=float),
+                     "flash_per_scale": int(plan.per_scale),
                      "flash_note": "; ".join(notes),
                      "flash_residual_K": residual})
     return ds

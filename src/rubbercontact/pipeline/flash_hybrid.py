@@ -10,12 +10,12 @@ model reads the law) and its low-slope pressure ``p`` diffuses into the rubber m
 the true speed ``v``; ``T_c`` is its mean rise over the low-slope contact, the points where
 the high-slope law carries load (separation below the law's zero-load anchor, the
 high-slope peak); and the solve is repeated at the reduced speed ``a_T(T0 + T_c) v`` —
-*both* scales: the low-slope solve with the rubber at ``T0 + T_c`` (the reference rubber
-at ``a_T v``) and the high-slope law read at ``a_T(T0 + T_c) v`` — until ``T_c`` is the rise
-its own friction gives.
+the low-slope solve with the rubber at ``T0 + T_c`` (the reference rubber at ``a_T v``),
+its interface the law at that speed — until ``T_c`` is the rise its own friction gives,
+the high-slope terms of that friction at their own temperature (below).
 
-The law is an FEM table at the run's (reduced) speeds; at ``a_T(T0 + T_c) v``, between
-them, it is interpolated linearly in ``ln v`` at fixed pressure
+The law is an FEM table at the run's (reduced) speeds; at a reduced speed between them
+it is interpolated linearly in ``ln v`` at fixed pressure
 (:mod:`rubbercontact.hybrid.lawspeed`). A heated contact is slower than a cold one, so
 the speed read is below the run's: below the law's slowest speed the law is read at its
 slowest one (clamped, not extrapolated) and ``attrs["flash_note"]`` says so, one line

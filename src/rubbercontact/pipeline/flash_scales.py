@@ -32,10 +32,11 @@ Which variant, and where it holds
 Persson's (J. Phys.: Condens. Matter 18, 7789, 2006) per-magnification cascade, each scale
 at its own temperature, the heat of the finer scales released in the spots of the
 coarser, in the form of :mod:`rubbercontact.meanfield.flash` (the exact moving source for
-the diffusion step, the run's temperature as the background as in Fortunato et al. 2015
-without ``contact_time``): the low-slope step is the Fourier solution of the solved contact
-(hybrids) or the cascade of the low-slope nodes (``meanfield-hybrid``), the high-slope
-scale one level more. Left out:
+the diffusion step; the background that of the low-slope step: the run's temperature,
+with ``meanfield-hybrid``'s ``contact_time`` heating in the simplest form of Fortunato et
+al., J. Phys.: Condens. Matter 27, 175008, 2015): the low-slope step is the Fourier
+solution of the solved contact (hybrids) or the cascade of the low-slope nodes
+(``meanfield-hybrid``), the high-slope scale one level more. Left out:
 
 * the law's load–separation ``σ_hs(ū)``, the low-slope solve's interface, stays at
   ``T_ls``: the low-slope pressure is held while the high-slope friction and contact follow
