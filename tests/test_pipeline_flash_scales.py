@@ -82,6 +82,14 @@ def test_the_high_slope_rise_is_the_band_source_of_its_spots(speed, closed, rtol
     assert scale_rise(HighSlopeTerms(0.2, 0.25), 0.25, out.spot_rise, 0.3, speed) == 0.0
 
 
+def test_bad_spots_are_one_line():
+    for kw, word in (({"half_width": -1.0}, "half_width"), ({"tolerance": 0.0}, "tolerance"),
+                     ({"thermal": {"conductivity": 0.25}}, "thermal")):
+        with pytest.raises(rc.errors.InputError, match=word) as err:
+            ScaleSpots(**{"half_width": 0.03, "thermal": SBR, **kw})
+        assert "\n" not in str(err.value)
+
+
 def test_the_self_consistent_rise_is_lambert_w():
     """μ_hs = μ0 (u/v)^m (the law's friction a power of the reduced speed), A fixed, the
     exponential shift log10 a_T = −sΔT (WLF with C2 = 1e10 K: exponential to kΔT²/C2 <

@@ -62,7 +62,8 @@ from dataclasses import dataclass
 import numpy as np
 from scipy.optimize import brentq
 
-from ..errors import ConvergenceError
+from .._validation import positive_scalar
+from ..errors import ConvergenceError, InputError
 from ..materials.shift import ShiftLaw
 from ..meanfield.flash import HOTTEST, cascade_rise
 from ..thermal.properties import ThermalProperties
@@ -102,6 +103,13 @@ class ScaleSpots:
     half_width: float
     thermal: ThermalProperties
     tolerance: float = 1e-2
+
+    def __post_init__(self) -> None:
+        positive_scalar("half_width", self.half_width, unit="mm")
+        positive_scalar("tolerance", self.tolerance, unit="K")
+        if not isinstance(self.thermal, ThermalProperties):
+            raise InputError(f"thermal: expected ThermalProperties, got "
+                             f"{type(self.thermal).__name__}")
 
     @classmethod
     def of_cell(cls, period: float, spot_radius: float, thermal: ThermalProperties,
