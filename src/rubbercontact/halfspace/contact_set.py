@@ -315,9 +315,8 @@ def contact_solve(prob: Problem, idx: np.ndarray, rhs: np.ndarray, total: float,
 #: Maps: the soft-law preconditioner is used when at least this fraction of the set's rows
 #: has a local compliance ``c`` above the diagonal ``m_d`` of ``M`` (a soft law's rows).
 _SOFT_MIN_FRACTION = 0.1
-#: Its shifts span ``c`` from this quantile of the positive ``c`` (at least
-#: ``_SOFT_LOWEST × m_d``) to the largest ``c``.
-_SOFT_LOW_QUANTILE = 0.02
+#: Its shifts span ``c`` from a quantile of the positive ``c``
+#: (``options.soft_law_low_quantile_2d``, at least ``_SOFT_LOWEST × m_d``) to the largest.
 _SOFT_LOWEST = 1e-3
 _SOFT_SHIFTS = 3
 
@@ -352,7 +351,8 @@ def _soft_law_shifts(prob: Problem, c: np.ndarray | None, complex_kernel: bool,
     if np.count_nonzero(c > m_diag) < _SOFT_MIN_FRACTION * c.size:
         return None
     positive = c[c > 0]
-    lo = max(float(np.quantile(positive, _SOFT_LOW_QUANTILE)), _SOFT_LOWEST * m_diag)
+    lo = max(float(np.quantile(positive, opts.soft_law_low_quantile_2d)),
+             _SOFT_LOWEST * m_diag)
     hi = float(c.max())
     if hi <= 1.01 * lo:   # one local compliance: its kernel alone (no interpolation)
         return [kn.stiffness_kernel(prob.compliance, hi, hermitian=not complex_kernel)], None
