@@ -12,7 +12,7 @@ time on one core; the machine's load is printed with the figures. ``--speeds``: 
 speeds (1e-4 … 1e3 mm/s) on the 512² map, each model in turn, with the total wall time
 (issue 42's target: ≤ 10 min for the three models on the 2-core machine). ``--bem``: the 2D
 half-space solver against its previous path (``PREVIOUS`` options, bitwise the code before
-the 2D speed-ups) and against the defaults of commit 2de76b6 (``ROUND_BEFORE``) in one
+the 2D speed-ups) and against the defaults of commit e729684 (``ROUND_BEFORE``) in one
 run, interleaved: viscoelastic solves with tabulated laws on 1024²,
 the hard wall and the Lennard-Jones wall on 512², and the elastic hard wall on 512² against
 Tamaas at equal accuracy (√10 tolerance ladders, then medians of 7 interleaved solves); it
@@ -119,14 +119,14 @@ def table(rows: list[dict]) -> str:
 #: GMRES, the multi-shift preconditioner on maps, the plain Newton at the end of a wall +
 #: soft law): bitwise the results of the code before commit 9a375d4.
 PREVIOUS = SolverOptions(coarse_min_side_2d=None, single_precision_2d=False, multi_shift_2d=True,
+                          split_inverse_fft_2d=False,
                           wall_soft_mixed_newton_2d=False, soft_law_preconditioner_2d=False,
                           newton_forcing_target_2d=False, wall_soft_linear_rtol_2d=1e-3)
-#: The defaults of commit 2de76b6 (the 22:38 UTC run): the hard wall + soft law steps on
-#: three shifts and to 1e-2 throughout, its coarser grids to ``tol``, the final Newton's
-#: first step on the geometric-mean tangent (bitwise its results: the float32 work grid
-#: of 6f830f7 rounds as the conversion it replaced).
-ROUND_BEFORE = SolverOptions(wall_soft_shifts_2d=3, wall_soft_coarse_tol_2d=None,
-                             wall_soft_moving_rtol_2d=None, wall_soft_first_tangent_2d=False)
+#: The defaults of commit e729684 (the code of the 2026-12-04 04:22 UTC run): scipy's
+#: irfftn for the inverse transforms, a float64 Krylov basis in the single-precision GMRES
+#: cycles (bitwise its results; the response kernel's once-per-column E(ω) of 020e635 has
+#: no switch: the same numbers, 0.5 s less set-up on 1024² in both columns).
+ROUND_BEFORE = SolverOptions(split_inverse_fft_2d=False, single_krylov_2d=False)
 #: The three solvers of ``--bem``, interleaved in one run.
 BEM_VARIANTS = {"previous": PREVIOUS, "before": ROUND_BEFORE, "current": None}
 BEM_HEADING = "## 2D BEM: the previous solver against the current one"
@@ -244,9 +244,9 @@ def bem_markdown(visco: list[dict], elastic: dict | None, info: str) -> str:
              "Viscoelastic (SBR, 10 mm/s, 0.3 MPa, the map of the table above), three solvers "
              "interleaved in one process, medians of `runs`: `previous` the solver before the "
              "2D speed-ups (`PREVIOUS` options: bitwise its results), `before` the defaults "
-             "of commit 2de76b6 (`ROUND_BEFORE`: the hard wall + soft law steps on three "
-             "shifts and to 1e-2 throughout, its coarser grids to `tol`, the final Newton's "
-             "first step on the geometric-mean tangent), `current` the defaults. CPU time "
+             "of commit e729684 (`ROUND_BEFORE`: scipy's irfftn, a float64 Krylov basis in "
+             "the single-precision GMRES cycles; the response kernel's once-per-column "
+             "E(ω), which has no switch, in both), `current` the defaults. CPU time "
              "of the process (the machine is shared: the steadier figure), wall time in "
              "brackets; FFT pairs of any precision on all grids (a multi-shift "
              "preconditioner application counts as its number of shifts); Δ the largest "
