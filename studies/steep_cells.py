@@ -58,6 +58,10 @@ CONTACTS = {"penalty": {"contact": "penalty"}, "barrier": {"contact": "barrier"}
 #: mesh the surface sets (``mesh = "auto"``), penalty contact rescued by the barrier — and
 #: no transient fallback, so the table shows how often the fallback would still run.
 DEFAULTS = {"mesh": "auto"}
+#: Part ``rounded``: the same with the crests rounded to the CAPTIF profiles' sampling
+#: interval, as a run's law cell of a measured road now has it (``fem.crest_radius``).
+CREST_RADIUS = 0.0375
+ROUNDED = {**DEFAULTS, "crest_radius": CREST_RADIUS}
 #: Part ``settle``: steady = settled transient at the issue's two steep points, on the
 #: defaults' mesh; the transient slides SETTLE_TIMES of the SBR's longest retardation time
 #: from the steady solution's surface offset.
@@ -149,14 +153,19 @@ def report(rows: list[dict], surfaces: dict) -> str:
                                    surfaces)]
     lines += ["", *settle_report([r for r in rows if r.get("part") == "settle"])]
     lines += ["", *strain_report([r for r in rows if r.get("part") == "strain"])]
+    rounded = [r for r in rows if r.get("part") == "rounded"]
+    lines += ["", *defaults_report(rounded, surfaces, "rounded")]
+    if rounded:
+        lines += [render("steep_cells", "rounded_footer")]
     return "\n".join(lines) + "\n"
 
 
-def defaults_report(rows: list[dict], surfaces: dict) -> list[str]:
-    """Part ``defaults``: the law grid with the library's defaults, per cell."""
+def defaults_report(rows: list[dict], surfaces: dict, block: str = "defaults") -> list[str]:
+    """Part ``defaults`` (or ``rounded``): the law grid with the library's defaults (and the
+    crests rounded), per cell."""
     if not rows:
         return []
-    lines = [render("steep_cells", "defaults"), ""]
+    lines = [render("steep_cells", block), ""]
     for name in surfaces:
         mine = [r for r in rows if r["cell"] == name]
         if not mine:
@@ -230,20 +239,23 @@ def run_contact(path: Path, surfaces: dict, done: set) -> None:
             append_row(path, {**row, "part": "contact", "contact": contact})
 
 
-def run_defaults(path: Path, surfaces: dict, only: str | None, done: set) -> None:
-    """Part ``defaults`` (resumable): every grid point with the library's defaults, the
-    transient fallback off; the row records the mesh the surface set."""
+def run_defaults(path: Path, surfaces: dict, only: str | None, done: set,
+                 part: str = "defaults") -> None:
+    """Part ``defaults`` or ``rounded`` (resumable): every grid point with the library's
+    defaults (``rounded``: and the crests rounded), the transient fallback off; the row
+    records the mesh the surface set."""
     from rubbercontact.fem.options import FemOptions
 
+    options = ROUNDED if part == "rounded" else DEFAULTS
     for name, surf in surfaces.items():
         if only is not None and name != only:
             continue
-        mesh = FemOptions(**DEFAULTS).resolved(surf).mesh
+        mesh = FemOptions(**options).resolved(surf).mesh
         for v in VELOCITIES:
             for p in PRESSURES:
                 if (name, p, v) not in done:
-                    row = run_point(name, surf, p, v, False, **DEFAULTS)
-                    append_row(path, {**row, "part": "defaults",
+                    row = run_point(name, surf, p, v, False, **options)
+                    append_row(path, {**row, "part": part,
                                       "mesh": f"{mesh[0]} x {mesh[1]} (auto)"})
 
 
@@ -315,14 +327,16 @@ def main(argv: list[str] | None = None) -> int:
     ap.add_argument("--report-only", action="store_true")
     ap.add_argument("--no-fallback", dest="fallback", action="store_false",
                     help="record a steady failure without running the transient fallback")
-    ap.add_argument("--part", choices=("grid", "contact", "defaults", "settle", "strain"),
+    ap.add_argument("--part", choices=("grid", "contact", "defaults", "rounded", "settle",
+                                       "strain"),
                     default="grid",
                     help="the law grid (default), penalty against barrier at hard points, "
                          "the law grid with the library's defaults (auto mesh, rescue), "
+                         "the same with the crests rounded to the sampling interval, "
                          "steady = settled transient at two steep points, or what stops "
                          "the 10 MPa press (mesh by mesh)")
     ap.add_argument("--cell", choices=("stations 0+1", "station 1"), default=None,
-                    help="part defaults: one cell only")
+                    help="parts defaults, rounded: one cell only")
     args = ap.parse_args(argv)
     surfaces = cells()
     rows = read_rows(args.rows)
@@ -331,10 +345,10 @@ def main(argv: list[str] | None = None) -> int:
         run_contact(args.rows, surfaces, {(r["cell"], r["pressure"], r["velocity"],
                                            r["contact"]) for r in rows
                                           if r.get("part") == "contact"})
-    elif args.part == "defaults" and not args.report_only:
+    elif args.part in ("defaults", "rounded") and not args.report_only:
         run_defaults(args.rows, surfaces, args.cell, {
             (r["cell"], r["pressure"], r["velocity"]) for r in rows
-            if r.get("part") == "defaults"})
+            if r.get("part") == args.part}, args.part)
     elif args.part == "settle" and not args.report_only:
         run_settle(args.rows, surfaces, {(r["cell"], r["pressure"], r["velocity"])
                                          for r in rows if r.get("part") == "settle"})
