@@ -216,7 +216,7 @@ def contact_solve(prob: Problem, idx: np.ndarray, rhs: np.ndarray, total: float,
     variable-coefficient stiffness ``1/(M(q) + c(x))``, interpolated in ``log c`` between
     the kernels for the shifts ``c̄, √(c̄ m_d), m_d`` (one forward and three inverse FFTs).
     ``soft_shifts``: the number of shifts of the soft-law preconditioner on maps
-    (:func:`_soft_law_shifts`; ``None``: ``_SOFT_SHIFTS``).
+    (:func:`_soft_law_shifts`; ``None``: ``options.soft_law_shifts_2d``).
     """
     nb = idx.size
     opts = prob.options
@@ -318,7 +318,6 @@ _SOFT_MIN_FRACTION = 0.1
 #: Its shifts span ``c`` from a quantile of the positive ``c``
 #: (``options.soft_law_low_quantile_2d``, at least ``_SOFT_LOWEST × m_d``) to the largest.
 _SOFT_LOWEST = 1e-3
-_SOFT_SHIFTS = 3
 
 
 def _soft_law_shifts(prob: Problem, c: np.ndarray | None, complex_kernel: bool,
@@ -326,21 +325,22 @@ def _soft_law_shifts(prob: Problem, c: np.ndarray | None, complex_kernel: bool,
                      ) -> tuple[list[np.ndarray], np.ndarray | None] | None:
     """Kernels and weights of the soft-law preconditioner on a map, or ``None``.
 
-    A soft law (``c = 1/k`` above ``m_d`` on many rows, e.g. the hybrid's linear law applied
-    to a whole map) leaves those rows to the diagonal ``1/(c + m_d)`` in the default
-    preconditioner, which misses their long-range elastic coupling: at low ``q`` the
-    restricted ``M`` dominates ``c``, at high ``q`` ``c`` does. The variable-coefficient
-    stiffness ``1/(M(q) + c(x))``, interpolated in ``log c`` between ``_SOFT_SHIFTS``
+    A soft law (``c = 1/k`` above ``m_d`` on many rows, e.g. the hybrid's linear law applied to
+    a whole map) leaves those rows to the diagonal ``1/(c + m_d)`` in the default
+    preconditioner, which misses their long-range elastic coupling: at low ``q`` the restricted
+    ``M`` dominates ``c``, at high ``q`` ``c`` does. The variable-coefficient stiffness
+    ``1/(M(q) + c(x))``, interpolated in ``log c`` between ``options.soft_law_shifts_2d``
     kernels spanning the set's ``c`` (rows below the lowest shift, e.g. hard-wall rows with
-    ``c = 0``, on the lowest), treats both: on the 1024² linear-law case of
-    ``benchmarks/maps.md`` 25–30 instead of 45–55 GMRES iterations per active-set step and
-    half the iterations of the final Newton steps, at 1.5× the FFTs per iteration
-    (measured; more shifts saved no iterations, two cost more in the Newton steps).
-    ``options.soft_law_preconditioner_2d``; maps of at least 256² points: the iterations
-    of the default grow with the grid (13–14 per active-set step at 128², 21 at 256², 30 at
-    512², 47 at 1024² on that case), and at 128² the extra FFTs cost more than they save
-    (0.34 against 0.28 s). 1D grids never use it. ``count``: the number of shifts
-    (``None``: ``_SOFT_SHIFTS``; the hard wall + soft law steps take
+    ``c = 0``, on the lowest), treats both: on the 1024² linear-law case of ``benchmarks/maps.md``
+    25–30 instead of 45–55 GMRES iterations per active-set step and half the iterations of the
+    final Newton steps, at 1.5× the FFTs per iteration (measured with three shifts and the
+    lowest at the 0.02 quantile of ``c``; more shifts saved no iterations, two cost more in the
+    Newton steps then; with the lowest at the 0.2 quantile two do as well as three:
+    ``options.soft_law_shifts_2d``). ``options.soft_law_preconditioner_2d``; maps of at least
+    256² points: the iterations of the default grow with the grid (13–14 per active-set step at
+    128², 21 at 256², 30 at 512², 47 at 1024² on that case), and at 128² the extra FFTs cost
+    more than they save (0.34 against 0.28 s). 1D grids never use it. ``count``: the number of
+    shifts (``None``: ``options.soft_law_shifts_2d``; the hard wall + soft law steps take
     ``options.wall_soft_shifts_2d``).
     """
     opts = prob.options
@@ -356,7 +356,7 @@ def _soft_law_shifts(prob: Problem, c: np.ndarray | None, complex_kernel: bool,
     hi = float(c.max())
     if hi <= 1.01 * lo:   # one local compliance: its kernel alone (no interpolation)
         return [kn.stiffness_kernel(prob.compliance, hi, hermitian=not complex_kernel)], None
-    shifts = np.geomspace(lo, hi, _SOFT_SHIFTS if count is None else count)
+    shifts = np.geomspace(lo, hi, opts.soft_law_shifts_2d if count is None else count)
     kernels = [kn.stiffness_kernel(prob.compliance, float(sh),
                                    hermitian=not complex_kernel) for sh in shifts]
     return kernels, _shift_weights(c, shifts)

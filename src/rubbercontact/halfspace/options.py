@@ -102,6 +102,12 @@ class SolverOptions:
         + soft law from 9 to 7 updates (1024²: 107–115 instead of 133 GMRES iterations;
         the Newton 113–127 instead of 128) and 3025 to 2805–2866 FFT pairs; 0.1 left 8
         updates, 0.3 and 0.4 cost more iterations per step (0.4: 3172 pairs).
+    soft_law_shifts_2d : int, default 2
+        Shifts of the soft-law preconditioner in the other systems on maps (the Newton
+        steps). With the lowest shift at the 0.2 quantile two take as many GMRES iterations
+        as three (the 1024² linear-law case of ``benchmarks/maps.md``: final Newton 113
+        against 113, FFT pairs 2814 → 2701; 512²: 78 against 73 iterations, 1788 → 1730
+        pairs); with the 0.02 quantile two took 40 % more.
     wall_soft_moving_rtol_2d : float or None, default 5e-2
         Maps: the GMRES tolerance of a hard wall + soft law step while its contact set
         still moves (the first step, and after an update that changed more than 1 % of
@@ -164,6 +170,7 @@ class SolverOptions:
     newton_forcing_target_2d: bool = True
     split_inverse_fft_2d: bool = True
     soft_law_low_quantile_2d: float = 0.2
+    soft_law_shifts_2d: int = 2
     single_krylov_2d: bool = True
 
     def __post_init__(self) -> None:
@@ -181,7 +188,7 @@ class SolverOptions:
                     raise InputError(f"{name}: expected a number in (0, 1), got {value!r}")
             elif value is not None or "None" not in f.type:
                 smallest = {"dense_max_points": 0, "dense_max_set": 0,
-                            "wall_soft_shifts_2d": 2}.get(f.name, 1)
+                            "wall_soft_shifts_2d": 2, "soft_law_shifts_2d": 2}.get(f.name, 1)
                 if isinstance(value, bool) or not isinstance(value, numbers.Integral) \
                         or value < smallest:
                     allowed = " or None" if "None" in f.type else ""
