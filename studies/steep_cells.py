@@ -62,6 +62,16 @@ DEFAULTS = {"mesh": "auto"}
 #: interval, as a run's law cell of a measured road now has it (``fem.crest_radius``).
 CREST_RADIUS = 0.0375
 ROUNDED = {**DEFAULTS, "crest_radius": CREST_RADIUS}
+#: Part ``radius``: how far μ and A move with the rounding's radius, at a low and a high load
+#: on each cell (the crests as fitted: part ``defaults``; at the sampling: part ``rounded``).
+RADII = (0.025, 0.05)
+#: Part ``qs``: the quasi-static limit (the friction must vanish: within QS_TOL of zero) on
+#: the rounded cells' own meshes, at a low and a high load.
+QS_SPEED = 1e-3
+QS_TOL = 0.005
+QS_POINTS = (("station 1", 0.3), ("station 1", 1.0), ("stations 0+1", 1.0))
+RADIUS_POINTS = (("stations 0+1", 0.1, 10.0), ("stations 0+1", 1.0, 10.0),
+                 ("station 1", 0.3, 10.0), ("station 1", 1.0, 10.0))
 #: Part ``settle``: steady = settled transient at the issue's two steep points, on the
 #: defaults' mesh; the transient slides SETTLE_TIMES of the SBR's longest retardation time
 #: from the steady solution's surface offset.
@@ -157,6 +167,8 @@ def report(rows: list[dict], surfaces: dict) -> str:
     lines += ["", *defaults_report(rounded, surfaces, "rounded")]
     if rounded:
         lines += [render("steep_cells", "rounded_footer")]
+    lines += ["", *qs_report(rows)]
+    lines += ["", *radius_report(rows)]
     return "\n".join(lines) + "\n"
 
 
@@ -259,6 +271,70 @@ def run_defaults(path: Path, surfaces: dict, only: str | None, done: set,
                                       "mesh": f"{mesh[0]} x {mesh[1]} (auto)"})
 
 
+def run_radius(path: Path, surfaces: dict, done: set) -> None:
+    """Part ``radius`` (resumable): the points of RADIUS_POINTS rounded to each of RADII."""
+    for r in (*RADII, CREST_RADIUS):
+        for name, p, v in RADIUS_POINTS:
+            if (name, p, v, r) not in done:
+                row = run_point(name, surfaces[name], p, v, False,
+                                **{**DEFAULTS, "crest_radius": r})
+                append_row(path, {**row, "part": "radius", "crest_radius": r})
+
+
+def run_quasistatic(path: Path, surfaces: dict, done: set) -> None:
+    """Part ``qs`` (resumable): the quasi-static limit on the rounded cells' own meshes."""
+    for name, p in QS_POINTS:
+        if (name, p, QS_SPEED) not in done:
+            row = run_point(name, surfaces[name], p, QS_SPEED, False, **ROUNDED)
+            append_row(path, {**row, "part": "qs", "crest_radius": CREST_RADIUS})
+
+
+def qs_report(rows: list[dict]) -> list[str]:
+    """Part ``qs``: μ at the quasi-static speed against the tolerance."""
+    qs = [r for r in rows if r.get("part") == "qs"]
+    if not qs:
+        return []
+    lines = [render("steep_cells", "qs", speed=f"{QS_SPEED:g}", tol=f"{QS_TOL:g}"), "",
+             "| cell | p̄ [MPa] | μ | A | within ±" + f"{QS_TOL:g}" + " | mesh | CPU [s] |",
+             "|---|---|---|---|---|---|---|"]
+    for r in qs:
+        ok = r["solver"] != "steady failed" and abs(r["friction"]) <= QS_TOL
+        res = (f"{r['friction']:.4f} | {r['contact_fraction']:.3f}"
+               if r["solver"] != "steady failed" else f"{_outcome(r)} | –")
+        lines.append(f"| {r['cell']} | {r['pressure']:g} | {res} | {'yes' if ok else 'no'} | "
+                     f"{_final_mesh(r)} | {r['cpu_s']:.0f} |")
+    return lines
+
+
+def _final_mesh(r: dict) -> str:
+    """The mesh a point ended on (the refined one where its stages say so)."""
+    m = re.search(r"refined to (\d+x\d+)", r.get("tried", ""))
+    return m[1].replace("x", " × ") if m else r.get("mesh", "?")
+
+
+def radius_report(rows: list[dict]) -> list[str]:
+    """Part ``radius``: μ and A of each point against the crest radius."""
+    radius = [r for r in rows if r.get("part") == "radius"]
+    if not radius:
+        return []
+    radii = ("none", *sorted({*RADII, CREST_RADIUS}))
+    lines = [render("steep_cells", "radius"), "",
+             "| cell | p̄ [MPa] | v [mm/s] | " + " | ".join(
+                 "as fitted" if r == "none" else f"r = {r * 1e3:g} µm" for r in radii) + " |",
+             "|---|---|---|" + "---|" * len(radii)]
+    for name, p, v in RADIUS_POINTS:
+        got = []
+        for r in radii:
+            parts = {"none": ("defaults",), CREST_RADIUS: ("rounded", "radius")}.get(
+                r, ("radius",))
+            row = next((x for x in rows if x.get("part") in parts and x["cell"] == name
+                        and (x["pressure"], x["velocity"]) == (p, v)
+                        and x.get("crest_radius", r) == r), None)
+            got.append(_default_outcome(row))
+        lines.append(f"| {name} | {p:g} | {v:g} | " + " | ".join(got) + " |")
+    return lines + ["", render("steep_cells", "radius_footer")]
+
+
 def run_settle(path: Path, surfaces: dict, done: set) -> None:
     """Part ``settle`` (resumable): the steady solve with the defaults, then — where it is
     steady and not impaled — the transient test on the same mesh from its offset."""
@@ -327,12 +403,13 @@ def main(argv: list[str] | None = None) -> int:
     ap.add_argument("--report-only", action="store_true")
     ap.add_argument("--no-fallback", dest="fallback", action="store_false",
                     help="record a steady failure without running the transient fallback")
-    ap.add_argument("--part", choices=("grid", "contact", "defaults", "rounded", "settle",
-                                       "strain"),
+    ap.add_argument("--part", choices=("grid", "contact", "defaults", "rounded", "qs",
+                                       "radius", "settle", "strain"),
                     default="grid",
                     help="the law grid (default), penalty against barrier at hard points, "
                          "the law grid with the library's defaults (auto mesh, rescue), "
                          "the same with the crests rounded to the sampling interval, "
+                         "its quasi-static limit and its sensitivity to the radius, "
                          "steady = settled transient at two steep points, or what stops "
                          "the 10 MPa press (mesh by mesh)")
     ap.add_argument("--cell", choices=("stations 0+1", "station 1"), default=None,
@@ -349,6 +426,13 @@ def main(argv: list[str] | None = None) -> int:
         run_defaults(args.rows, surfaces, args.cell, {
             (r["cell"], r["pressure"], r["velocity"]) for r in rows
             if r.get("part") == args.part}, args.part)
+    elif args.part == "qs" and not args.report_only:
+        run_quasistatic(args.rows, surfaces, {(r["cell"], r["pressure"], r["velocity"])
+                                              for r in rows if r.get("part") == "qs"})
+    elif args.part == "radius" and not args.report_only:
+        run_radius(args.rows, surfaces, {(r["cell"], r["pressure"], r["velocity"],
+                                          r.get("crest_radius", CREST_RADIUS)) for r in rows
+                                         if r.get("part") in ("radius", "rounded")})
     elif args.part == "settle" and not args.report_only:
         run_settle(args.rows, surfaces, {(r["cell"], r["pressure"], r["velocity"])
                                          for r in rows if r.get("part") == "settle"})

@@ -103,3 +103,47 @@ def test_the_fem_on_blunt_crests_is_the_fem_on_the_surface_as_given():
     rounded = rc.fem.steady_sliding(blunt, sbr, 0.1, 1.0, mesh=(32, 24), crest_radius=R)
     assert (rounded.friction, rounded.contact_fraction, rounded.mean_separation) == (
         plain.friction, plain.contact_fraction, plain.mean_separation)
+
+
+def test_a_run_rounds_its_law_cell_and_says_so(tmp_path, capsys):
+    # the preset's high-slope wave has crests of 5.3 µm: rounded to 10 µm, the run's law
+    # point is the FEM test on the rounded cell, and the summary says so in one line
+    import xarray as xr
+
+    import rubbercontact as rc
+    from rubbercontact.cli import main
+
+    cfg = tmp_path / "rounded.toml"
+    cfg.write_text("""
+velocities = [10.0]
+realizations = 1
+models = ["vhs", "hybrid"]
+[surface]
+preset = "high_slope_wave"
+[loads]
+pressures = [1.0]
+[halfspace]
+n = 512
+[fem]
+mesh = [30, 23]
+crest_radius = 0.01
+[law]
+pressures = [0.3, 1.0]
+extend = false
+[execution]
+workers = 1
+cache = "cache"
+[output]
+directory = "out"
+""")
+    assert main(["run", str(cfg), "--quiet"]) == 0
+    out = capsys.readouterr().out
+    assert "law cell: the high-slope crests rounded to 0.01 mm; the law's friction" in out
+    law = xr.load_dataset(tmp_path / "out" / "results.nc")["law_friction"]
+    from rubbercontact.roughness.presets import preset
+
+    hs, _ = preset("high_slope_wave").partition(1.0)
+    options = rc.config.load_config(cfg).fem.options(rc.materials.sbr())
+    direct = rc.fem.steady_sliding(hs, rc.materials.sbr(), 1.0, 10.0, options=options)
+    at = float(law.sel(velocity=10.0, law_pressure=1.0))
+    assert at == pytest.approx(direct.friction, rel=1e-9)

@@ -251,9 +251,9 @@ def _describe(ds: xr.Dataset, setup: RunSetup, timings: dict, per_model_time: di
     if setup.needs_law and cfg.law.file is None and isinstance(radius, float):
         ds.attrs["law_cell_note"] = (
             f"law cell: the high-slope crests rounded to {radius:.3g} mm"
-            + (", the profiles' sampling interval"
-               if radius == setup.surface.info.get("dx_mm") else "")
-            + " (fem.crest_radius; docs/validation/steep_cells.md)")
+            + (" (the profiles' sampling)" if radius == setup.surface.info.get("dx_mm") else "")
+            + "; the law's friction depends on that radius (fem.crest_radius; "
+              "docs/validation/steep_cells.md)")
     return ds
 
 
