@@ -397,6 +397,9 @@ _SINGLE_MIN_POINTS = 256 * 256
 #: Single-precision GMRES cycles of :func:`_refined_solve_single` reduce the residual by
 #: at most this factor each (float32 FFTs round at ~1e-7 relative).
 _SINGLE_FLOOR = 1e-5
+#: Single-precision cycles to at least this tolerance keep a float32 Krylov basis
+#: (``options.single_krylov_2d``).
+_KRYLOV32_MIN_RTOL = 1e-3
 #: Refinement cycles allowed (each a GMRES solve of the current residual).
 _SINGLE_CYCLES = 8
 
@@ -455,7 +458,10 @@ def _single_cycle(op32, pre, r: np.ndarray, rtol: float, kernels: list[np.ndarra
     ``budget[0]`` iterations remain, then (as the double-precision path) the Hermitian
     part's inverse, converted in place in ``kernels``. ``krylov32``: the Krylov basis in
     single precision (``options.single_krylov_2d``)."""
-    basis = np.float32 if krylov32 else np.float64
+    # only for loose cycles: on the Lennard-Jones wall alone (c over orders of magnitude)
+    # float32 cycles to the last Newton steps' 1e-5 stalled, and the Newton with them
+    # (512² map of benchmarks/maps.md: 1.76e-8 after 21 steps, tol 1e-8)
+    basis = np.float32 if krylov32 and rtol >= _KRYLOV32_MIN_RTOL else np.float64
     if budget[0] <= 0:
         return gmres(op32, pre, r, rtol=rtol, basis_dtype=basis)
     sol = gmres(op32, pre, r, rtol=rtol, maxiter=budget[0], basis_dtype=basis)

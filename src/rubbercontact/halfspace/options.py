@@ -85,10 +85,11 @@ class SolverOptions:
         Maps: ``multi_shift`` also on maps. Off by default: on the self-affine maps of
         ``benchmarks/maps.md`` it saved no GMRES iterations and doubled their FFTs.
     single_krylov_2d : bool, default True
-        With ``single_precision_2d``: the GMRES iterations of a single-precision cycle keep
-        their Krylov basis in float32 as well (their operator rounds to float32 and each
-        cycle stops at ``1e-5`` at most, so nothing is lost; the double-precision residual
-        still ends the solve); ``False``: a float64 basis.
+        With ``single_precision_2d``: the GMRES iterations of a single-precision cycle to a
+        tolerance of at least 1e-3 (the loose steps) keep their Krylov basis in float32 as
+        well (their operator rounds to float32; the double-precision residual still ends
+        the solve); ``False``: a float64 basis. Tighter cycles keep float64: on the
+        Lennard-Jones wall alone float32 ones stalled the last Newton steps.
     soft_law_preconditioner_2d : bool, default True
         Maps of at least 256² points: contact-set systems of which at least a tenth of the
         rows carry a local compliance ``c`` above the diagonal of ``M`` (a soft law) are
