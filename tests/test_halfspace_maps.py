@@ -260,8 +260,8 @@ def test_wall_soft_map_switches_keep_the_answer(rough, monkeypatch):
     # the hard wall + soft law steps on two shifts (the Newton steps too) and to 5e-2
     # while the set moves, its coarser grid to 1e-6, the final Newton's first step on the
     # tangent at the pressure, against the defaults of 2de76b6; measured at 256²: μ, A, ū
-    # within 9e-13, pressure 2e-11, 1028 instead of 1141 FFT pairs (1047 with the Newton on
-    # two shifts)
+    # within 9e-13, pressure 2e-11, 1028 instead of 1141 FFT pairs (963 against 1079 with
+    # the soft-law preconditioner's lowest shift at 0.3 m_d and two Newton shifts)
     shifts = []
     original = contact_set._soft_law_shifts
 
@@ -334,17 +334,16 @@ def test_split_inverse_fft_switch_keeps_the_map_answer(rough):
     assert new.matvecs == old.matvecs
 
 
-def test_soft_law_shift_quantile_and_float32_basis_keep_the_answer(rough):
-    # the soft-law preconditioner's lowest shift at the 0.2 quantile of c, two shifts in
-    # the Newton steps and the float32 Krylov basis, against the 0.02 quantile, three
-    # shifts and the float64 basis (the defaults of e729684); measured at 256²: μ, A, ū
-    # within 2e-14, pressure 4e-13 (1047 against 1028 FFT pairs: the 256² map is where the
-    # soft-law preconditioner starts to pay)
+def test_soft_law_lowest_shift_and_float32_basis_keep_the_answer(rough):
+    # the soft-law preconditioner's lowest shift at least 0.3 m_d, two shifts in the
+    # Newton steps and the float32 Krylov basis, against 1e-3 m_d, three shifts and the
+    # float64 basis (the defaults of e729684); measured at 256²: μ, A, ū within 2e-14,
+    # pressure 4e-13, 963 against 1028 FFT pairs
     args = (rough.heights, rough.lengths, MAT, 10.0, 0.3)
     law = LennardJonesRepulsion() + _cell_like()
     new = solve_sliding(*args, law=law)
     old = solve_sliding(*args, law=law, options=SolverOptions(
-        soft_law_low_quantile_2d=0.02, soft_law_shifts_2d=3, single_krylov_2d=False,
+        soft_law_lowest_shift_2d=1e-3, soft_law_shifts_2d=3, single_krylov_2d=False,
         split_inverse_fft_2d=False))
     _assert_same(new, old)
 

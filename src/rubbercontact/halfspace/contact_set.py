@@ -316,8 +316,8 @@ def contact_solve(prob: Problem, idx: np.ndarray, rhs: np.ndarray, total: float,
 #: has a local compliance ``c`` above the diagonal ``m_d`` of ``M`` (a soft law's rows).
 _SOFT_MIN_FRACTION = 0.1
 #: Its shifts span ``c`` from a quantile of the positive ``c``
-#: (``options.soft_law_low_quantile_2d``, at least ``_SOFT_LOWEST × m_d``) to the largest.
-_SOFT_LOWEST = 1e-3
+#: (``options.soft_law_low_quantile_2d``, at least ``options.soft_law_lowest_shift_2d × m_d``)
+#: to the largest.
 
 
 def _soft_law_shifts(prob: Problem, c: np.ndarray | None, complex_kernel: bool,
@@ -352,7 +352,7 @@ def _soft_law_shifts(prob: Problem, c: np.ndarray | None, complex_kernel: bool,
         return None
     positive = c[c > 0]
     lo = max(float(np.quantile(positive, opts.soft_law_low_quantile_2d)),
-             _SOFT_LOWEST * m_diag)
+             opts.soft_law_lowest_shift_2d * m_diag)
     hi = float(c.max())
     if hi <= 1.01 * lo:   # one local compliance: its kernel alone (no interpolation)
         return [kn.stiffness_kernel(prob.compliance, hi, hermitian=not complex_kernel)], None

@@ -96,19 +96,28 @@ class SolverOptions:
         preconditioned by the variable-coefficient stiffness ``1/(M(q) + c(x))`` over all
         rows (:mod:`~rubbercontact.halfspace.contact_set`); ``False``: ``1/(M + c̄)`` on the
         rows with ``c`` below the diagonal and the diagonal ``1/(c + m_d)`` on the others.
-    soft_law_low_quantile_2d : float, default 0.2
+    soft_law_low_quantile_2d : float, default 0.02
         The lowest shift of the soft-law preconditioner is this quantile of the set's
-        positive ``c`` (the highest is the largest ``c``). On the 512² and 1024²
-        linear-law cases of ``benchmarks/maps.md`` 0.2 instead of 0.02 takes the hard wall
-        + soft law from 9 to 7 updates (1024²: 107–115 instead of 133 GMRES iterations;
-        the Newton 113–127 instead of 128) and 3025 to 2805–2866 FFT pairs; 0.1 left 8
-        updates, 0.3 and 0.4 cost more iterations per step (0.4: 3172 pairs).
+        positive ``c`` (the highest is the largest ``c``), at least
+        ``soft_law_lowest_shift_2d``.
+    soft_law_lowest_shift_2d : float, default 0.3
+        The lowest shift is at least this many times ``m_d`` (the diagonal of ``M``):
+        rows with ``c`` well below ``m_d`` are hard to the preconditioner whatever their
+        ``c``, and a shift spent there is lost.
+        On the 1024² linear-law case of ``benchmarks/maps.md`` 0.3 instead of 1e-3 moves
+        the lowest shift from 0.13 to 0.3 ``m_d`` in the hard wall + soft law steps and
+        from 4e-5 to 0.3 ``m_d`` in the Newton steps (their wall rows): 3025 → 2696 FFT
+        pairs with ``soft_law_shifts_2d = 2`` (512²: 1897 → 1773); the FEM-like table,
+        whose ``c`` all exceed 17 ``m_d``, is untouched (417 pairs). The 0.2 quantile
+        instead did as well on the linear law (2701) but cost the FEM-like table 482;
+        a floor of ``m_d`` cost the Newton steps 60 % more iterations.
     soft_law_shifts_2d : int, default 2
         Shifts of the soft-law preconditioner in the other systems on maps (the Newton
-        steps). With the lowest shift at the 0.2 quantile two take as many GMRES iterations
-        as three (the 1024² linear-law case of ``benchmarks/maps.md``: final Newton 113
-        against 113, FFT pairs 2814 → 2701; 512²: 78 against 73 iterations, 1788 → 1730
-        pairs); with the 0.02 quantile two took 40 % more.
+        steps). With the lowest shift at least 0.3 ``m_d`` (``soft_law_lowest_shift_2d``)
+        two take as many GMRES iterations as three (the 1024² linear-law case of
+        ``benchmarks/maps.md``: final Newton 113 both; measured with the lowest shift at
+        the 0.2 quantile, 0.17 ``m_d`` there: 2814 → 2701 FFT pairs); with it at 4e-5
+        ``m_d`` two took 40 % more.
     wall_soft_moving_rtol_2d : float or None, default 5e-2
         Maps: the GMRES tolerance of a hard wall + soft law step while its contact set
         still moves (the first step, and after an update that changed more than 1 % of
@@ -170,7 +179,8 @@ class SolverOptions:
     wall_soft_moving_rtol_2d: float | None = 5e-2
     newton_forcing_target_2d: bool = True
     split_inverse_fft_2d: bool = True
-    soft_law_low_quantile_2d: float = 0.2
+    soft_law_low_quantile_2d: float = 0.02
+    soft_law_lowest_shift_2d: float = 0.3
     soft_law_shifts_2d: int = 2
     single_krylov_2d: bool = True
 
