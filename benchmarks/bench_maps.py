@@ -124,12 +124,12 @@ PREVIOUS = SolverOptions(coarse_min_side_2d=None, single_precision_2d=False, mul
                           newton_forcing_target_2d=False, wall_soft_linear_rtol_2d=1e-3)
 #: The defaults of commit e729684 (the code of the 2026-12-04 04:22 UTC run): scipy's
 #: irfftn for the inverse transforms, a float64 Krylov basis in the single-precision GMRES
-#: cycles, the soft-law preconditioner's lowest shift at the 0.02 quantile of ``c`` and on
-#: three shifts in the Newton steps (bitwise its results; the response kernel's
+#: cycles, the soft-law preconditioner's lowest shift down to 1e-3 m_d and on three
+#: shifts in the Newton steps (bitwise its results; the response kernel's
 #: once-per-column E(ω) of 020e635 has no switch: the same numbers, 0.5 s less set-up on
 #: 1024² in both columns).
 ROUND_BEFORE = SolverOptions(split_inverse_fft_2d=False, single_krylov_2d=False,
-                             soft_law_low_quantile_2d=0.02, soft_law_shifts_2d=3)
+                             soft_law_lowest_shift_2d=1e-3, soft_law_shifts_2d=3)
 #: The three solvers of ``--bem``, interleaved in one run.
 BEM_VARIANTS = {"previous": PREVIOUS, "before": ROUND_BEFORE, "current": None}
 BEM_HEADING = "## 2D BEM: the previous solver against the current one"
@@ -249,7 +249,7 @@ def bem_markdown(visco: list[dict], elastic: dict | None, info: str) -> str:
              "2D speed-ups (`PREVIOUS` options: bitwise its results), `before` the defaults "
              "of commit e729684 (`ROUND_BEFORE`: scipy's irfftn, a float64 Krylov basis in "
              "the single-precision GMRES cycles, the soft-law preconditioner's lowest shift "
-             "at the 0.02 quantile of c and three shifts in the Newton steps; the response "
+             "down to 1e-3 m_d and three shifts in the Newton steps; the response "
              "kernel's once-per-column "
              "E(ω), which has no switch, in both), `current` the defaults. CPU time "
              "of the process (the machine is shared: the steadier figure), wall time in "
