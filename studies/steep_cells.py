@@ -70,6 +70,10 @@ RADII = (0.025, 0.05)
 QS_SPEED = 1e-3
 QS_TOL = 0.005
 QS_POINTS = (("station 1", 0.3), ("station 1", 1.0), ("stations 0+1", 1.0))
+#: Part ``mesh``: mesh convergence at a steep point of the rounded station 1 cell, on the
+#: automatic rule's mesh for the default 64 columns per shortest wave and for twice that.
+MESH_POINT = ("station 1", 1.0, 10.0)
+MESH_COLUMNS = (64, 128)
 RADIUS_POINTS = (("stations 0+1", 0.1, 10.0), ("stations 0+1", 1.0, 10.0),
                  ("station 1", 0.3, 10.0), ("station 1", 1.0, 10.0))
 #: Part ``settle``: steady = settled transient at the issue's two steep points, on the
@@ -167,7 +171,8 @@ def report(rows: list[dict], surfaces: dict) -> str:
     lines += ["", *defaults_report(rounded, surfaces, "rounded")]
     if rounded:
         lines += [render("steep_cells", "rounded_footer")]
-    lines += ["", *qs_report(rows)]
+    lines += ["", *qs_report(rows, surfaces)]
+    lines += ["", *mesh_report(rows)]
     lines += ["", *radius_report(rows)]
     return "\n".join(lines) + "\n"
 
@@ -263,8 +268,9 @@ def run_defaults(path: Path, surfaces: dict, only: str | None, done: set,
         if only is not None and name != only:
             continue
         mesh = FemOptions(**options).resolved(surf).mesh
-        for v in VELOCITIES:
-            for p in PRESSURES:
+        # load by load: the points above E∞ (the slowest, outside the cell's range) last
+        for p in PRESSURES:
+            for v in VELOCITIES:
                 if (name, p, v) not in done:
                     row = run_point(name, surf, p, v, False, **options)
                     append_row(path, {**row, "part": part,
@@ -289,9 +295,12 @@ def run_quasistatic(path: Path, surfaces: dict, done: set) -> None:
             append_row(path, {**row, "part": "qs", "crest_radius": CREST_RADIUS})
 
 
-def qs_report(rows: list[dict]) -> list[str]:
+def qs_report(rows: list[dict], surfaces: dict) -> list[str]:
     """Part ``qs``: μ at the quasi-static speed against the tolerance."""
-    qs = [r for r in rows if r.get("part") == "qs"]
+    from rubbercontact.fem.options import FemOptions
+
+    qs = [{"mesh": "{} × {}".format(*FemOptions(**ROUNDED).resolved(surfaces[r["cell"]]).mesh),
+           **r} for r in rows if r.get("part") == "qs"]
     if not qs:
         return []
     lines = [render("steep_cells", "qs", speed=f"{QS_SPEED:g}", tol=f"{QS_TOL:g}"), "",
@@ -310,6 +319,44 @@ def _final_mesh(r: dict) -> str:
     """The mesh a point ended on (the refined one where its stages say so)."""
     m = re.search(r"refined to (\d+x\d+)", r.get("tried", ""))
     return m[1].replace("x", " × ") if m else r.get("mesh", "?")
+
+
+def run_mesh(path: Path, surfaces: dict, done: set) -> None:
+    """Part ``mesh`` (resumable): the steep point on the automatic rule's mesh for N and 2N
+    columns per shortest wave, made explicit (no refinement), crests rounded."""
+    from rubbercontact.fem.resolution import auto_mesh
+
+    name, p, v = MESH_POINT
+    for n in MESH_COLUMNS:
+        if n not in done:
+            m = auto_mesh(surfaces[name], 0.75, n)
+            row = run_point(name, surfaces[name], p, v, False, mesh=(m.nx, m.ny),
+                            grading=m.grading, crest_radius=CREST_RADIUS)
+            append_row(path, {**row, "part": "mesh", "columns_per_wave": n,
+                              "mesh": f"{m.nx} × {m.ny} (grading {m.grading:.1f})"})
+
+
+def mesh_report(rows: list[dict]) -> list[str]:
+    """Part ``mesh``: μ and A of the steep point against the columns per wave."""
+    got = sorted((r for r in rows if r.get("part") == "mesh"),
+                 key=lambda r: r["columns_per_wave"])
+    if not got:
+        return []
+    lines = [render("steep_cells", "mesh", cell=MESH_POINT[0], p=f"{MESH_POINT[1]:g}",
+                    v=f"{MESH_POINT[2]:g}"), "",
+             "| columns per wave | mesh | μ | A | Δμ to the finest | ΔA to the finest | CPU [s] |",
+             "|---|---|---|---|---|---|---|"]
+    fine = got[-1]
+    for r in got:
+        if r["solver"] == "steady failed":
+            lines.append(f"| {r['columns_per_wave']} | {r['mesh']} | {_outcome(r)} | | | | |")
+            continue
+        dmu = abs(r["friction"] / fine["friction"] - 1)
+        da = abs(r["contact_fraction"] / fine["contact_fraction"] - 1)
+        lines.append(f"| {r['columns_per_wave']} | {r['mesh']} | {r['friction']:.4f} | "
+                     f"{r['contact_fraction']:.4f} | {dmu:.1%} | {da:.1%} | "
+                     f"{r['cpu_s']:.0f} |")
+    return lines
 
 
 def radius_report(rows: list[dict]) -> list[str]:
@@ -404,12 +451,13 @@ def main(argv: list[str] | None = None) -> int:
     ap.add_argument("--no-fallback", dest="fallback", action="store_false",
                     help="record a steady failure without running the transient fallback")
     ap.add_argument("--part", choices=("grid", "contact", "defaults", "rounded", "qs",
-                                       "radius", "settle", "strain"),
+                                       "mesh", "radius", "settle", "strain"),
                     default="grid",
                     help="the law grid (default), penalty against barrier at hard points, "
                          "the law grid with the library's defaults (auto mesh, rescue), "
                          "the same with the crests rounded to the sampling interval, "
-                         "its quasi-static limit and its sensitivity to the radius, "
+                         "its quasi-static limit, mesh convergence and sensitivity to the "
+                         "radius, "
                          "steady = settled transient at two steep points, or what stops "
                          "the 10 MPa press (mesh by mesh)")
     ap.add_argument("--cell", choices=("stations 0+1", "station 1"), default=None,
@@ -426,6 +474,9 @@ def main(argv: list[str] | None = None) -> int:
         run_defaults(args.rows, surfaces, args.cell, {
             (r["cell"], r["pressure"], r["velocity"]) for r in rows
             if r.get("part") == args.part}, args.part)
+    elif args.part == "mesh" and not args.report_only:
+        run_mesh(args.rows, surfaces, {r["columns_per_wave"] for r in rows
+                                       if r.get("part") == "mesh"})
     elif args.part == "qs" and not args.report_only:
         run_quasistatic(args.rows, surfaces, {(r["cell"], r["pressure"], r["velocity"])
                                               for r in rows if r.get("part") == "qs"})
