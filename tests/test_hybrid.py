@@ -77,6 +77,14 @@ def test_law_table_reports_failures_and_rejects_nonmonotone():
         law_at_velocity(bad, 10.0)
     with pytest.raises(InputError, match=r"50.0 mm/s is not in the law table"):
         law_at_velocity(law, 50.0)
+    # a point a run did not compute (its speed did not need it) is not a failure
+    import warnings
+
+    skipped = law.copy(deep=True)
+    skipped["status"].values[0, 1] = "not computed"
+    with warnings.catch_warnings():
+        warnings.simplefilter("error", LawWarning)
+        assert law_at_velocity(skipped, 10.0)["pressure"] == [3.0, 1.0, 0.0]  # the anchor
 
 
 def test_law_table_flags_unsteady_points_and_keeps_them():

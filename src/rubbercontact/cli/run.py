@@ -3,6 +3,7 @@
 from __future__ import annotations
 
 import warnings
+from collections import Counter
 from pathlib import Path
 
 import numpy as np
@@ -68,8 +69,10 @@ def command(
         # Dask's local cluster leaves sockets to the garbage collector: not the user's concern
         warnings.simplefilter("ignore", ResourceWarning)
         ds = run(cfg, progress=False if quiet else "auto", retry_failed=retry_failed)
-    for w in caught:
-        typer.echo(f"warning: {w.message}", err=True)
+    # one line per distinct warning: the law's reading warns once per speed and solve
+    said = Counter(str(w.message) for w in caught)
+    for message, times in said.items():
+        typer.echo(f"warning: {message}" + (f" (×{times})" if times > 1 else ""), err=True)
     write_results(ds, results_path, overwrite=overwrite)
     typer.echo(summary_table(ds))
     if config is None:
@@ -106,8 +109,10 @@ def _run_map(cfg, output: Path | None, overwrite: bool, figures: bool) -> None:
     with warnings.catch_warnings(record=True) as caught:
         warnings.simplefilter("always")
         ds = run_map(cfg)
-    for w in caught:
-        typer.echo(f"warning: {w.message}", err=True)
+    # one line per distinct warning: the law's reading warns once per speed and solve
+    said = Counter(str(w.message) for w in caught)
+    for message, times in said.items():
+        typer.echo(f"warning: {message}" + (f" (×{times})" if times > 1 else ""), err=True)
     write_results(ds, results_path, overwrite=overwrite)
     typer.echo(map_summary(ds))
     typer.echo(f"results: {results_path}")

@@ -28,6 +28,10 @@ class LawWarning(UserWarning):
 IMPALED_STATUS = ("excluded: impaled (the surface passes through the rubber face between "
                   "nodes; its friction and contact fraction are not meaningful)")
 
+#: Status of a law grid point that was not computed (a run's speed did not need the
+#: pressure, or its path stopped before it: the run's coverage line says why).
+NOT_COMPUTED = "not computed"
+
 
 def max_height(surface: SineSeries, n: int = 8192) -> float:
     """Highest point of ``surface`` [mm] (a sampled maximum refined by the exact slope root)."""
@@ -166,8 +170,9 @@ def law_at_velocity(law: xr.Dataset, velocity: float) -> dict:
     row = law.isel(velocity=int(match[0]))
     status = row["status"].values.astype(str)
     ok = (status == "ok") & np.isfinite(row["mean_separation"].values)
-    # excluded points were named by screen_impaled or screen_monotone already
-    failed = ~ok & ~np.char.startswith(status, "excluded")
+    # excluded points were named by screen_impaled or screen_monotone already, and the
+    # points a run did not compute by the run's coverage line
+    failed = ~ok & ~np.char.startswith(status, "excluded") & (status != NOT_COMPUTED)
     if failed.any():
         bad = row["pressure"].values[failed].tolist()
         warnings.warn(f"law at v={velocity} mm/s: FEM points at p={bad} MPa failed and are "

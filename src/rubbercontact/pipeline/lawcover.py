@@ -22,7 +22,7 @@ import numpy as np
 import xarray as xr
 
 from ..fem.result import BULK_SHEAR_LIMIT, BULK_SHEAR_STUDY
-from ..hybrid.lawtable import law_top
+from ..hybrid.lawtable import NOT_COMPUTED, law_top
 from ..models.registry import needs_law
 
 #: Rungs per decade of the pressure ladder the law is extended on (1, 3.16, 10, … MPa).
@@ -36,7 +36,7 @@ COVERED_RTOL = 0.02
 MAX_ROUNDS = 3
 
 #: Status of a law grid point that was not computed (its speed did not need the pressure).
-NOT_NEEDED = "not computed"
+NOT_NEEDED = NOT_COMPUTED
 
 
 @dataclass(frozen=True)
