@@ -312,7 +312,7 @@ def qs_report(rows: list[dict], surfaces: dict) -> list[str]:
                if r["solver"] != "steady failed" else f"{_outcome(r)} | –")
         lines.append(f"| {r['cell']} | {r['pressure']:g} | {res} | {'yes' if ok else 'no'} | "
                      f"{_final_mesh(r)} | {r['cpu_s']:.0f} |")
-    return lines
+    return lines + ["", render("steep_cells", "qs_footer")]
 
 
 def _final_mesh(r: dict) -> str:
