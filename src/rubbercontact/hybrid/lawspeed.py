@@ -59,26 +59,23 @@ SPEED_RTOL = 1e-9
 
 
 @dataclass(frozen=True)
-class LawAtSpeed:
-    """The law at one speed.
+class SpeedBracket:
+    """Where a speed falls among the tabulated ones (:meth:`LawSpeeds.where`).
 
     Attributes
     ----------
-    table
-        The law as plain data (the keys of :func:`~.lawtable.law_at_velocity`).
     speed
         The speed asked for [mm/s].
     read_at
-        The speed the law was read at [mm/s]: ``speed``, or the tabulated end it was
+        The speed the law is read at [mm/s]: ``speed``, or the tabulated end it is
         clamped to.
     lower, upper
-        The tabulated speeds it was interpolated between [mm/s] (equal at a tabulated
+        The tabulated speeds it is interpolated between [mm/s] (equal at a tabulated
         speed or when clamped).
     weight
         ``w`` of the module docstring [-] (0 at ``lower``).
     """
 
-    table: dict
     speed: float
     read_at: float
     lower: float
@@ -92,25 +89,16 @@ class LawAtSpeed:
 
 
 @dataclass(frozen=True)
-class SpeedBracket:
-    """Where a speed falls among the tabulated ones (:meth:`LawSpeeds.where`).
+class LawAtSpeed(SpeedBracket):
+    """The law at one speed: where the speed falls (:class:`SpeedBracket`) and the table.
 
     Attributes
     ----------
-    speed, read_at, lower, upper, weight
-        As :class:`LawAtSpeed`'s.
+    table
+        The law as plain data (the keys of :func:`~.lawtable.law_at_velocity`).
     """
 
-    speed: float
-    read_at: float
-    lower: float
-    upper: float
-    weight: float
-
-    @property
-    def clamped(self) -> bool:
-        """Whether ``speed`` lies outside the tabulated speeds (read at the nearest end)."""
-        return not np.isclose(self.read_at, self.speed, rtol=SPEED_RTOL, atol=0.0)
+    table: dict
 
 
 class LawSpeeds:
@@ -175,7 +163,7 @@ class LawSpeeds:
                 self._pairs[lo, hi] = _pair(self.table(lo), self.table(hi),
                                             (self._law(lo), self._law(hi)))
             table = _blend(self._pairs[lo, hi], b.weight)
-        return LawAtSpeed(table, b.speed, b.read_at, lo, hi, b.weight)
+        return LawAtSpeed(b.speed, b.read_at, lo, hi, b.weight, table=table)
 
 
 def _in_pressure(table: dict, nodes: np.ndarray, law=None) -> dict:
