@@ -240,3 +240,27 @@ def test_run_check_prints_the_cost(tmp_path, capsys):
     out = capsys.readouterr().out
     assert "cost: half-space solves (vhs; 256 points): 1 x" in out
     assert "on 2 worker(s)" in out
+
+
+def test_run_prints_each_distinct_warning_once_with_its_count(tmp_path, capsys, monkeypatch):
+    # the law's reading warns once per speed and solve: the same line must not fill the
+    # terminal (speed_sweep printed one 20 times)
+    import warnings
+
+    import rubbercontact.pipeline as pipeline
+
+    real = pipeline.run
+
+    def noisy(cfg, **kw):
+        for _ in range(3):
+            warnings.warn("law: the same thing", UserWarning, stacklevel=2)
+        warnings.warn("law: another thing", UserWarning, stacklevel=2)
+        return real(cfg, **kw)
+
+    monkeypatch.setattr(pipeline, "run", noisy)
+    cfg = tmp_path / "vhs.toml"
+    cfg.write_text(TINY.replace('models = ["vhs", "hybrid", "fem"]', 'models = ["vhs"]'))
+    assert main(["run", str(cfg), "--quiet"]) == 0
+    err = capsys.readouterr().err.splitlines()
+    assert err.count("warning: law: the same thing (×3)") == 1
+    assert err.count("warning: law: another thing") == 1
