@@ -251,7 +251,7 @@ def _pair(a: dict, b: dict, laws: tuple | None) -> _Pair:
 
 def _blend(pair: _Pair, w: float) -> dict:
     """The blend of weight ``w`` of a :class:`_Pair`, as plain data."""
-    mixed = {k: _mix(pair.a[k], pair.b[k], w) for k in pair.a}
+    mixed = {k: blend(pair.a[k], pair.b[k], w) for k in pair.a}
     order = np.argsort(-pair.nodes)                          # separation ascending
     out = {"separation": mixed["separation"][order].tolist(),
            "pressure": pair.nodes[order].tolist(),
@@ -264,11 +264,24 @@ def _blend(pair: _Pair, w: float) -> dict:
     return out
 
 
-def _mix(a: np.ndarray, b: np.ndarray, w: float) -> np.ndarray:
-    """``a^(1−w) b^w`` where every value of both is > 0, else ``(1 − w) a + w b``."""
+def blend(a: np.ndarray, b: np.ndarray, w: float) -> np.ndarray:
+    """A column of the law's table between two speeds at weight ``w`` (module docstring):
+    ``a^(1−w) b^w`` where every value of both is > 0, else ``(1 − w) a + w b`` for the
+    whole column — one rule per column keeps a monotone ``u(σ)`` monotone, which mixing
+    the two rules node by node would not."""
     if np.all(a > 0) and np.all(b > 0):
         return np.exp((1.0 - w) * np.log(a) + w * np.log(b))
     return (1.0 - w) * a + w * b
+
+
+def blend_values(a: np.ndarray, b: np.ndarray, w: float) -> np.ndarray:
+    """The law's readings at given pressures between two speeds, value by value: as
+    :func:`blend` where both values are > 0, linear elsewhere (e.g. the zero ``α`` and
+    ``Δτ`` at zero pressure), each reading being a value on its own, not a table."""
+    both = (a > 0) & (b > 0)
+    with np.errstate(divide="ignore", invalid="ignore"):
+        geo = np.exp((1.0 - w) * np.log(a) + w * np.log(b))
+    return np.where(both, geo, (1.0 - w) * a + w * b)
 
 
 def _anchor(table: dict) -> float | None:

@@ -64,6 +64,7 @@ from scipy.optimize import brentq
 
 from .._validation import positive_scalar
 from ..errors import ConvergenceError, InputError
+from ..hybrid.lawspeed import blend_values
 from ..materials.shift import ShiftLaw
 from ..meanfield.flash import HOTTEST, cascade_rise
 from ..thermal.properties import ThermalProperties
@@ -220,10 +221,9 @@ class LawInPressure:
     interpolant (:func:`~rubbercontact.hybrid.windowing.law_in_pressure`, as the windowed
     hybrid and ``meanfield-hybrid`` read it); between two tabulated speeds, at fixed
     pressure, ``α`` and ``Δτ`` are blended as the law is
-    (:mod:`rubbercontact.hybrid.lawspeed`: geometrically in
-    ``w = ln(v/v_a)/ln(v_b/v_a)`` where both are > 0, else linearly), here at the solve's
-    own pressures rather than at the tables' pressures: the same rule without a table
-    rebuilt per speed (microseconds a read against 2–4 ms). Outside the tabulated speeds
+    (:func:`rubbercontact.hybrid.lawspeed.blend_values`, in ``w = ln(v/v_a)/ln(v_b/v_a)``),
+    here at the solve's own pressures rather than at the tables' pressures, without a table
+    rebuilt per speed. Outside the tabulated speeds
     the nearest end is read; every read is counted in ``reads``
     (:class:`~.flash_hybrid.LawReads`, for the run's note).
 
@@ -265,18 +265,11 @@ class LawInPressure:
             alpha, tau = values(where.lower)
             if where.upper != where.lower:
                 hi = values(where.upper)
-                alpha, tau = (_mix(alpha, hi[0], where.weight), _mix(tau, hi[1], where.weight))
+                alpha, tau = (blend_values(alpha, hi[0], where.weight),
+                              blend_values(tau, hi[1], where.weight))
             return HighSlopeTerms(float(mean(tau)) / mean_pressure, float(mean(alpha)))
 
         return read
-
-
-def _mix(a: np.ndarray, b: np.ndarray, w: float) -> np.ndarray:
-    """``a^(1−w) b^w`` where both are > 0, ``(1 − w) a + w b`` elsewhere."""
-    both = (a > 0) & (b > 0)
-    with np.errstate(divide="ignore", invalid="ignore"):
-        geo = np.exp((1.0 - w) * np.log(a) + w * np.log(b))
-    return np.where(both, geo, (1.0 - w) * a + w * b)
 
 
 def scale_flash(reader: Callable[[float], HighSlopeTerms], low: HighSlopeTerms,
