@@ -23,13 +23,10 @@ measured. The model, kept simple:
 Not foreseen: the law's extension when the local pressures go past its FEM points (a few
 FEM points and the law models once more, up to three rounds, :mod:`.lawcover`), a steady
 solve that stops and runs the barrier rescue or the transient fallback (minutes a point),
-the steepness of a law cell (the CAPTIF high-slope cell's unrefined points cost 2-4x what
-this model gives at the same p / E∞: docs/validation/steep_cells.md, part 'defaults'),
-a steady point that needs many more Newton iterations than its neighbours (1 MPa /
-10 mm/s on examples/captif_road.toml's cell with sharp crests, ``crest_radius = "none"``:
-173 Newton iterations on 128 × 16, then refined on 256 × 19, 39 s of CPU where this model
-gives 5 s; benchmarks/examples.md), and a loaded machine (the wall time then grows with
-the load, the CPU time much less).
+the steepness of a law cell (steep cells' points cost several times what this model
+gives at the same p / E∞: docs/validation/steep_cells.md), a steady point that needs many
+more Newton iterations than its neighbours (benchmarks/examples.md), and a loaded machine
+(the wall time then grows with the load, the CPU time much less).
 The FEM's cost varies by up to 10× with speed (the rubbery end, 1e-3 mm/s, costs the most)
 and load: the estimate is meant to a factor of 2 (``benchmarks/examples.md`` compares it
 with each example's measured time).

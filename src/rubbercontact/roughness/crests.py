@@ -81,20 +81,12 @@ class RoundedCrests:
         return self.band.amplitudes
 
     @property
-    def phases(self) -> np.ndarray:
-        return self.band.phases
-
-    @property
     def wavenumbers(self) -> np.ndarray:
         return self.band.wavenumbers
 
     @property
     def period(self) -> float:
         return self.band.period
-
-    @property
-    def size(self) -> int:
-        return self.band.size
 
     # -- the rounded profile ------------------------------------------------------------------
     def heights(self, x) -> np.ndarray:
@@ -108,11 +100,6 @@ class RoundedCrests:
     def curvatures(self, x) -> np.ndarray:
         """``d²z/dx²`` [1/mm]."""
         return self.band.curvatures(x) + self.lowering.curvatures(x)
-
-    def sampled(self, length: float, n: int) -> tuple[np.ndarray, np.ndarray]:
-        """Heights [mm] and slopes [-] at ``x_j = j·length/n``."""
-        x = np.arange(n) * (length / n)
-        return self.heights(x), self.slopes(x)
 
     def as_dict(self) -> dict:
         """The band and the radius (the lowering follows from them)."""
