@@ -1,9 +1,9 @@
 """A sine profile with its crests rounded to a radius: the law cell of a measured road.
 
 A steep band of sines has crests far sharper than its waves: a sine of wavelength ``λ``
-and peak slope ``S = qΔ`` has the crest radius ``λ/(2π S)``, 12.5 µm for the CAPTIF fits'
-0.25 mm wave (``S`` about 3), where the profile was sampled every 37.5 µm. Nothing
-measured says the road is that sharp there: below its sampling interval (and the
+and peak slope ``S = qΔ`` has the crest radius ``λ/(2π S)``, on a measured road's steep
+band often below the profile's sampling interval. Nothing measured says the road is that
+sharp there: below its sampling interval (and the
 instrument's spot or stylus tip) a profile does not resolve a crest. The FEM cell, on the
 other hand, follows such a crest, and pressed above a fraction of ``E∞`` the rubber
 wrapping it is crushed until Newton stops (docs/validation/steep_cells.md).
