@@ -23,12 +23,8 @@ from rubbercontact.hybrid.lawspeed import LawSpeeds
 from rubbercontact.hybrid.lawtable import law_at_velocity
 from rubbercontact.hybrid.windowing import windowed_hs_terms
 from rubbercontact.pipeline import flash as pipeline_flash
-from rubbercontact.pipeline.flash_hybrid import (
-    SCALE_FLASH,
-    LawReads,
-    hybrid_scale,
-    hybrid_solver,
-)
+from rubbercontact.pipeline.flash_halfspace import hybrid_solver
+from rubbercontact.pipeline.flash_hybrid import SCALE_FLASH, LawReads, hybrid_scale
 from rubbercontact.pipeline.flash_scales import (
     HighSlopeTerms,
     LawInPressure,

@@ -53,8 +53,6 @@ import numpy as np
 from ..hybrid.lawspeed import LawAtSpeed, LawSpeeds, SpeedBracket
 from ..materials import GeneralizedMaxwell
 from ..materials.shift import ShiftLaw
-from ..models import registry
-from ..models.planning import RunPoint
 from ..roughness import SineSeries
 from ..thermal.contact import CONTACT_SEPARATION, contact_mask, start_pressure
 from .flash_scales import (
@@ -64,7 +62,6 @@ from .flash_scales import (
     scale_flash,
     shifted_reader,
 )
-from .setup import RunSetup, task_material
 
 #: The hybrids computed with the flash temperature.
 HYBRID_FLASH_MODELS = ("hybrid", "hybrid-windowed")
@@ -129,26 +126,20 @@ def law_speeds(tables: dict | None) -> LawSpeeds | None:
     return LawSpeeds(tables) if tables else None
 
 
-def hybrid_solver(setup: RunSetup, model: str, realization: int, pressure: float,
-                  laws: LawSpeeds | None, reads: LawReads
-                  ) -> Callable[[float, object], object] | None:
-    """``solve(reduced_speed, start=None)`` of one realization's hybrid low-slope solve at
-    ``pressure`` [MPa], as the run's task solves it (the same surface, grid, rubber,
-    interaction and tolerance, :meth:`~rubbercontact.models.halfspace.Hybrid.run_task`)
-    with the law at ``reduced_speed`` [mm/s] (module docstring); None when the low-slope
-    surface is flat (no half-space solve to heat). Solves at a speed already solved are
-    returned again (a temperature-independent rubber asks for the same speed at every
-    temperature)."""
+def halfspace_solver(kw: dict, pressure: float, laws: LawSpeeds | None, reads: LawReads,
+                     memo: bool = True) -> Callable[[float, object], object] | None:
+    """``solve(reduced_speed, start=None)`` of a half-space solve at ``pressure`` [MPa] as
+    the run's task solves it: ``kw``, the arguments of its
+    :func:`~rubbercontact.hybrid.tasks.halfspace_loads_task` (the surface, grid, rubber,
+    interaction and tolerance; ``hs_window`` for the windowed reading; its speed, loads and
+    law not read), the law (``vhs``: None) at ``reduced_speed`` [mm/s] (module docstring);
+    None when the surface is flat (no half-space solve to heat). With ``memo`` a solve at a
+    speed already solved is returned again (a temperature-independent rubber asks for the
+    same speed at every temperature)."""
     from ..halfspace import solve_sliding
     from ..hybrid.tasks import halfspace_law
     from ..hybrid.windowing import windowed_hs_terms
 
-    material = GeneralizedMaxwell(**task_material(setup.material))
-    speed0 = float(setup.speeds.computed[0])
-    table0 = None if laws is None else laws.table(laws.speeds[0])
-    cls = registry.model_class(model)
-    _, kw = cls.run_task(model, RunPoint(setup, material, speed0, np.array([pressure]),
-                                         table0, realization, cls.run_data(model, setup)))
     surface = SineSeries(kw["surface"]["wavelengths"], kw["surface"]["amplitudes"],
                          kw["surface"].get("phases"))
     if surface.size == 0:
@@ -159,7 +150,7 @@ def hybrid_solver(setup: RunSetup, model: str, realization: int, pressure: float
 
     def solve(speed: float, start=None):
         key = float(speed)
-        if key in solved:
+        if memo and key in solved:
             return solved[key]
         table = reads.table(laws, key)
         res = solve_sliding(surface, kw["period"], mat, key, pressure,
@@ -169,7 +160,8 @@ def hybrid_solver(setup: RunSetup, model: str, realization: int, pressure: float
         if table is not None:
             res = _with_law_terms(res, table, kw["period"], window, pressure,
                                   windowed_hs_terms)
-        solved[key] = res
+        if memo:
+            solved[key] = res
         return res
 
     return solve

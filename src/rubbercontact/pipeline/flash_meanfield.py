@@ -39,6 +39,7 @@ from __future__ import annotations
 import warnings
 from collections.abc import Callable
 from dataclasses import dataclass, replace
+from typing import TYPE_CHECKING
 
 import numpy as np
 
@@ -49,7 +50,7 @@ from ..materials import GeneralizedMaxwell
 from ..materials.shift import shift_law_from_dict
 from ..meanfield import PSD
 from ..meanfield import solve as solve_meanfield
-from ..meanfield.flash import FlashOptions, cascade_rise, tread_rise
+from ..meanfield.flash import FlashOptions, cascade_rise, flash_friction_curve, tread_rise
 from ..meanfield.options import options_from_dict
 from ..models import registry
 from ..models.planning import RunPoint
@@ -63,7 +64,11 @@ from .flash_scales import (
     scale_flash,
     shifted_reader,
 )
+from .plan import meanfield_surfaces
 from .setup import RunSetup, task_material
+
+if TYPE_CHECKING:
+    from .flash import FlashPlan, Tally
 
 #: The model.
 MODEL = "meanfield-hybrid"
@@ -215,3 +220,64 @@ def meanfield_hybrid_flash(solve: Callable[[float], object], velocities: np.ndar
                      resid if hs is None else max(resid, hs.residual),
                      np.nan if hs is None else root + hs.rise)
     return MeanFieldHybridFlash(*out, failures=failures)
+
+
+def fill_meanfield(out: dict, at: tuple, m: str, setup: RunSetup, pressure: float,
+                    temperature: float | None, plan: FlashPlan, acc: Tally) -> None:
+    """One mean-field flash μ(v) into ``out[...][at]``."""
+    psd = PSD.from_dict(meanfield_surfaces(setup)[m])
+    try:
+        curve = _curve(psd, setup, setup.speeds.velocities, pressure, temperature, plan)
+    except ConvergenceError as exc:
+        acc.failed(m, pressure, temperature, str(exc).splitlines()[0])
+        return
+    acc.residual = max(acc.residual, float(np.max(curve.residual)))
+    for key, values in (("friction_flash", curve.friction),
+                        ("contact_fraction_flash", curve.contact_fraction),
+                        ("flash_temperature", curve.flash_temperature),
+                        ("flash_heat_flux", curve.friction * pressure
+                         * setup.speeds.velocities)):
+        out[key][at] = values
+    out["flash_scale_temperature"][at] = (curve.node_temperature
+                                          - curve.background_temperature)
+
+
+def fill_meanfield_hybrid(out: dict, at: tuple, setup: RunSetup, pressure: float,
+                           temperature: float | None, plan: FlashPlan, acc: Tally,
+                           laws, reads: LawReads) -> None:
+    """One ``meanfield-hybrid`` flash μ(v) into ``out[...][at]`` (module docstring)."""
+    m = MODEL
+    solve = meanfield_hybrid_solver(setup, pressure, laws, reads)
+    if solve is None:
+        acc.failed(m, pressure, temperature, "no low-slope wave: the law's flat-interface "
+                                             "solve, isothermal")
+        return
+    scale = None
+    if setup.hs0.size and plan.per_scale:
+        spots = ScaleSpots.of_cell(setup.hs0.period, plan.options.spot_radius, plan.thermal,
+                                   plan.options.tolerance)
+        scale = meanfield_scale(pressure, laws, reads, spots, setup.material.shift)
+    res = meanfield_hybrid_flash(solve, setup.speeds.velocities, pressure,
+                                 setup.material.shift, temperature,
+                                 replace(plan.options, temperature=temperature), scale)
+    for speed, message in res.failures.items():
+        acc.failed(m, pressure, temperature, f"{speed:g} mm/s: {message}")
+    if solve.beyond > 0:
+        acc.failed(m, pressure, temperature, f"up to {solve.beyond:.1f} % of a flash "
+                                             f"solve's low-slope contact beyond the law's "
+                                             f"highest pressure, where it is held")
+    if np.isfinite(res.residual).any():
+        acc.residual = max(acc.residual, float(np.nanmax(res.residual)))
+    for key, values in (("friction_flash", res.friction),
+                        ("contact_fraction_flash", res.contact_fraction),
+                        ("flash_temperature", res.rise), ("flash_heat_flux", res.heat_flux),
+                        ("flash_temperature_hs", res.rise_hs)):
+        out[key][at] = values
+
+
+def _curve(psd: PSD, setup: RunSetup, velocities: np.ndarray, pressure: float,
+           temperature: float | None, plan: FlashPlan):
+    """One flash μ(v) at a run temperature [°C] (None: the reference) and load [MPa]."""
+    return flash_friction_curve(psd, setup.material, velocities, pressure,
+                                nu=setup.config.material.nu, options=plan.mean_field,
+                                flash=replace(plan.options, temperature=temperature))
