@@ -1,0 +1,139 @@
+"""The half-space and hybrid flash through sweep tasks and the result cache
+(:mod:`rubbercontact.pipeline.flash_task`, :mod:`rubbercontact.pipeline.flash_halfspace`).
+
+Checked against the run itself, not against numbers it printed: a second run is served
+from the cache (no flash task computed) and is the first run bit for bit; a run killed
+between the flash's two rounds resumes with only the unfinished tasks computed and gives
+the uninterrupted run bit for bit; the task's key holds the code of the flash kernel (an
+edit of any of its modules is a new key) and not the run's set-up or config (an edit there
+leaves it).
+"""
+
+import shutil
+
+import numpy as np
+import pytest
+from test_pipeline_flash_hybrid import _config, _linear_law
+
+import rubbercontact as rc
+import rubbercontact.pipeline.flash_task as flash_task
+from rubbercontact.pipeline.execute import make_runner
+from rubbercontact.sweep import code_digest, codehash
+from rubbercontact.sweep.tasks import task_key
+
+MODELS = ["vhs", "hybrid", "hybrid-windowed"]
+VARIABLES = ("friction_flash", "contact_fraction_flash", "flash_temperature",
+             "flash_heat_flux", "flash_temperature_hs")
+
+
+@pytest.fixture(autouse=True)
+def _no_continuation(monkeypatch):
+    monkeypatch.setattr("rubbercontact.pipeline.lawstage.continue_with_linear_shape",
+                        lambda table, *args, **kwargs: table)
+
+
+@pytest.fixture
+def calls(monkeypatch) -> list:
+    """The flash tasks computed (the synchronous executor resolves the task by its path)."""
+    done: list = []
+    task = flash_task.halfspace_flash_task
+
+    def counted(**kwargs):
+        done.append(kwargs["pressure"])
+        return task(**kwargs)
+
+    monkeypatch.setattr(flash_task, "halfspace_flash_task", counted)
+    return done
+
+
+def _cfg(tmp_path, cache: str) -> dict:
+    cfg = _config(tmp_path, speeds=(100.0, 1e4), models=MODELS, realizations=2)
+    cfg["execution"]["cache"] = str(tmp_path / cache)
+    return cfg
+
+
+def _same(a, b) -> None:
+    for k in VARIABLES:
+        np.testing.assert_array_equal(a[k].values, b[k].values, err_msg=k)
+    for k in ("flash_note", "flash_residual_K", "flash_halfspace_solves"):
+        assert a.attrs[k] == b.attrs[k], k
+
+
+def test_a_second_run_is_served_from_the_cache_and_a_killed_run_resumes(tmp_path, calls):
+    cfg = _cfg(tmp_path, "a")
+    law = _linear_law(cfg)
+    first = rc.pipeline.run(cfg, law=law, progress=False)
+    tasks = len(calls)
+    assert tasks == len(MODELS)            # one per model at one load, no temperatures
+    assert first.attrs["flash_halfspace_solves"] > 0
+
+    calls.clear()
+    again = rc.pipeline.run(cfg, law=law, progress=False)
+    assert calls == []                     # every flash task from the cache
+    _same(first, again)
+
+    killed = _cfg(tmp_path, "b")
+    runner = make_runner(rc.config.parse_config(killed), progress=False)
+    rounds = []
+
+    def kill_at_the_second_round(tasks, *args, **kwargs):
+        if tasks and tasks[0].function == flash_task.FLASH_TASK:
+            rounds.append(len(tasks))
+            if len(rounds) == 2:
+                raise KeyboardInterrupt("killed")
+        return runner(tasks, *args, **kwargs)
+
+    calls.clear()
+    with pytest.raises(KeyboardInterrupt):
+        rc.pipeline.run(killed, law=law, runner=kill_at_the_second_round, progress=False)
+    assert rounds == [2, 1] and len(calls) == 2      # vhs and hybrid done, the windowed not
+    calls.clear()
+    resumed = rc.pipeline.run(killed, law=law, progress=False)
+    assert len(calls) == 1                 # only hybrid-windowed, guided by hybrid's roots
+    _same(first, resumed)
+
+
+def _edited(tmp_path, monkeypatch, module: str) -> None:
+    """The digest reads ``module``'s source from a copy with one statement more."""
+    path = codehash._module_file(module)
+    copy = tmp_path / f"{module}.py"
+    shutil.copy(path, copy)
+    copy.write_text(copy.read_text() + "\n_EDITED = 1\n")
+    real = codehash._module_file
+    monkeypatch.setattr(codehash, "_module_file",
+                        lambda name: copy if name == module else real(name))
+    codehash._reset()
+
+
+@pytest.mark.parametrize("module", [
+    "rubbercontact.thermal.kernel",            # the moving heat source (FFT)
+    "rubbercontact.thermal.contact",           # the contact temperature's search
+    "rubbercontact.thermal.sweep",             # the sweep over speeds
+    "rubbercontact.pipeline.flash_scales",     # the high-slope scale's own flash
+    "rubbercontact.pipeline.flash_hybrid",     # the hybrid's solve with the law
+    "rubbercontact.halfspace.solver",          # the half-space solve
+])
+def test_an_edit_of_the_flash_kernel_is_a_new_key(tmp_path, monkeypatch, module):
+    kwargs = {"solves": [], "pressure": 0.3, "velocities": [1.0], "shift": {},
+              "thermal": {}, "temperature": None, "search": {}}
+    before = task_key(flash_task.FLASH_TASK, kwargs)
+    _edited(tmp_path, monkeypatch, module)
+    try:
+        assert task_key(flash_task.FLASH_TASK, kwargs) != before
+    finally:
+        monkeypatch.undo()
+        codehash._reset()
+    assert task_key(flash_task.FLASH_TASK, kwargs) == before
+
+
+@pytest.mark.parametrize("module", ["rubbercontact.pipeline.setup",
+                                    "rubbercontact.pipeline.flash",
+                                    "rubbercontact.config"])
+def test_the_run_set_up_is_not_part_of_the_task_code(tmp_path, monkeypatch, module):
+    before = code_digest(flash_task.FLASH_TASK)
+    _edited(tmp_path, monkeypatch, module)
+    try:
+        assert code_digest(flash_task.FLASH_TASK) == before
+    finally:
+        monkeypatch.undo()
+        codehash._reset()
