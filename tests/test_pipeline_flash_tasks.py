@@ -17,6 +17,9 @@ from test_pipeline_flash_hybrid import _config, _linear_law
 
 import rubbercontact as rc
 import rubbercontact.pipeline.flash_task as flash_task
+from rubbercontact.config import parse_config
+from rubbercontact.pipeline import resolve
+from rubbercontact.pipeline.cost import estimate_cost
 from rubbercontact.pipeline.execute import make_runner
 from rubbercontact.sweep import code_digest, codehash
 from rubbercontact.sweep.tasks import task_key
@@ -65,6 +68,10 @@ def test_a_second_run_is_served_from_the_cache_and_a_killed_run_resumes(tmp_path
     first = rc.pipeline.run(cfg, law=law, progress=False)
     tasks = len(calls)
     assert tasks == len(MODELS)            # one per model at one load, no temperatures
+    stages = {s.name.split(" (")[0]: s for s in estimate_cost(resolve(parse_config(cfg))).stages}
+    flash = stages["flash temperature: half-space solves"]
+    assert len(flash.tasks) == tasks       # the cost model counts the run's flash tasks
+    assert flash.count == stages["half-space solves"].count    # a heated search per solve
     assert first.attrs["flash_halfspace_solves"] > 0
 
     calls.clear()

@@ -17,6 +17,9 @@ measured. The model, kept simple:
 - the law's tables, continued past the top FEM pressure with the linear law's shape,
   ``LAW_TABLE_SPEED_S`` per computed speed, serial in the run's own process;
 - mean-field points per model, ``MEANFIELD_POINT_S``;
+- with the flash temperature, per half-space model, run temperature and load one task of
+  ``FLASH_SOLVE_FACTOR`` times its isothermal solves; per mean-field model, temperature
+  and load one μ(v), ``MEANFIELD_FLASH_CURVE_S``, in the run's own process;
 - the wall time: each stage's tasks in rounds of ``workers`` (a law by continuation has one
   task per pressure, so 5 pressures on 2 workers take 3 rounds), plus ``OVERHEAD_S``.
 
@@ -95,6 +98,17 @@ LAW_TABLE_SPEED_S = 3.5
 #: load 2.5; the strips: BENCHMARKS.md, "strip cascade"); a model not listed is priced as
 #: the strips.
 MEANFIELD_POINT_S = {"meanfield": 0.001, "meanfield-hybrid": 0.004, "meanfield-strips": 0.17}
+#: A half-space model's flash (``[friction.flash_temperature]``) against its isothermal
+#: solves, per speed, realization and load: the heated solves of the search, each warm
+#: started from the nearest one solved (benchmarks/flash_run.md, 2026-12-03, load 3: the
+#: guided flash's CPU 3.9 s against the isothermal model tasks' 2.7 s, 1.4x, on
+#: speed_sweep made small, 8 speeds from 1e-3 mm/s of which the cold ones cost none;
+#: benchmarks/flash.md, the Lennard-Jones wall over speed_sweep's 15 speeds: 2.2x).
+FLASH_SOLVE_FACTOR = 1.8
+#: One mean-field flash μ(v) per model, run temperature and load, in the run's own process
+#: [s] (meanfield-hybrid 0.8-1.1 s for 2 loads of 13 speeds, 2026-12-04; meanfield under
+#: 2 s over 201 speeds, benchmarks/flash.md).
+MEANFIELD_FLASH_CURVE_S = 0.5
 #: Set-up outside the solves (Python and the Dask workers' start, the surface, the law's
 #: tables, the figures) [s]: the 2026-12-03 quiet asphalt run's 0.4 min wall less its solves.
 OVERHEAD_S = 15.0
@@ -320,4 +334,33 @@ def estimate_cost(setup: RunSetup) -> CostEstimate:
     for m in (m for m in setup.models if planning(m).per == PER_LOAD):
         stages.append(Stage(f"mean-field points ({m})", speeds * loads,
                             MEANFIELD_POINT_S.get(m, MEANFIELD_POINT_S["meanfield-strips"])))
+    if cfg.friction.flash_temperature.enabled:
+        stages += flash_stages(setup, loads)
     return CostEstimate(tuple(stages), cfg.execution.workers, tuple(notes))
+
+
+def flash_stages(setup: RunSetup, loads: int) -> list[Stage]:
+    """The flash temperature's solves (:mod:`.flash`): per half-space model, run
+    temperature and load one task of its realizations' heated solves, priced as
+    ``FLASH_SOLVE_FACTOR`` times their isothermal solves; the mean-field models' μ(v) in
+    the run's own process, ``MEANFIELD_FLASH_CURVE_S`` each."""
+    from .flash_halfspace import HALFSPACE_FLASH_MODELS
+    from .flash_meanfield import MODEL as MEANFIELD_HYBRID
+
+    temps = 1 if setup.speeds.temperatures is None else len(setup.speeds.temperatures)
+    speeds, n_real = setup.speeds.velocities.size, len(setup.realizations)
+    hs = [m for m in setup.models if m in HALFSPACE_FLASH_MODELS]
+    mf = [m for m in setup.models if m in ("meanfield", MEANFIELD_HYBRID)]
+    out = []
+    if hs:
+        each = FLASH_SOLVE_FACTOR * halfspace_solve_seconds(setup.config.halfspace.n)
+        tasks = len(hs) * temps * loads
+        out.append(Stage(f"flash temperature: half-space solves ({', '.join(hs)}; "
+                         f"{tasks} tasks)", tasks * n_real * speeds, each,
+                         (n_real * speeds * each,) * tasks))
+    if mf:
+        curves = len(mf) * temps * loads
+        out.append(Stage(f"flash temperature: mean-field curves ({', '.join(mf)}; in the "
+                         f"run's own process)", curves, MEANFIELD_FLASH_CURVE_S,
+                         (curves * MEANFIELD_FLASH_CURVE_S,)))
+    return out
