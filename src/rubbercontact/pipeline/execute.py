@@ -10,6 +10,8 @@ spread over temperatures (:mod:`.temperature`) and the flash temperature (:mod:`
 
 from __future__ import annotations
 
+import functools
+import inspect
 import json
 import time
 from collections.abc import Callable
@@ -108,15 +110,17 @@ def run(config: RunConfig | dict | str | Path, *, runner: Runner | None = None,
 
     stage = None
     if setup.needs_law:
-        stage = build_law(cfg, setup.hs0, material, pressures, runner, law, velocities=speeds)
+        stage = build_law(cfg, setup.hs0, material, pressures, named(runner, "law FEM"), law,
+                          velocities=speeds, progress=progress)
     t0 = time.perf_counter()
-    models = run_models(setup, material, pressures, stage, runner)
+    models = run_models(setup, material, pressures, stage, runner, progress)
     timings["models"] = time.perf_counter() - t0 - models.law_time
     stage, slots, results, ds = models.stage, models.slots, models.results, models.ds
     if stage is not None:
         if stage.fem_time is not None:
             timings["law"] = stage.fem_time
-        stage_law = add_vhs(stage.law, setup.hs0, material, cfg, runner)
+        stage_law = add_vhs(stage.law, setup.hs0, material, cfg,
+                            named(runner, "law VHS (Fig. 7)"))
     ds = add_profiles(ds, slots, results)
     per_model_time = model_times(slots, results)
     if stage is not None:
@@ -172,12 +176,13 @@ class ModelRuns:
 
 
 def run_models(setup: RunSetup, material: GeneralizedMaxwell, pressures: np.ndarray,
-               stage: LawStage | None, runner: Runner) -> ModelRuns:
+               stage: LawStage | None, runner: Runner,
+               progress: bool | str = False) -> ModelRuns:
     """Run the model tasks; while the law models' local pressures go beyond the law's FEM
     points, extend the law (``law.extend``, :mod:`.lawcover`) and run those models again."""
     cfg = setup.config
     slots, tasks = model_tasks(setup, material, pressures, stage.tables if stage else {})
-    results = runner(tasks)
+    results = named(runner, "models")(tasks)
     ds = _assemble(setup, material, pressures, slots, results)
     if stage is None:
         return ModelRuns(None, slots, results, ds, "", 0.0)
@@ -196,16 +201,30 @@ def run_models(setup: RunSetup, material: GeneralizedMaxwell, pressures: np.ndar
         rounds += 1
         added += list(ext.points)
         stage = extend_law(stage, ext.points, cfg, setup.hs0, material,
-                           setup.speeds.computed, runner)
+                           setup.speeds.computed, named(runner, "law FEM (extension)"),
+                           progress)
         slots, tasks = model_tasks(setup, material, pressures, stage.tables)
         redo = [k for k, sl in enumerate(slots) if needs_law(sl.model)]
-        for k, res in zip(redo, runner([tasks[k] for k in redo]), strict=True):
+        again = named(runner, "models (law extended)")
+        for k, res in zip(redo, again([tasks[k] for k in redo]), strict=True):
             results[k] = res
         ds = _assemble(setup, material, pressures, slots, results)
         cov = coverage(ds, stage.law)
     law_time = (stage.fem_time or 0.0) - law_time0
     text = describe(cov, added, stopped, rounds) if stage.raw is not None else ""
     return ModelRuns(stage, slots, results, ds, text, law_time)
+
+
+def named(runner: Runner, description: str) -> Runner:
+    """``runner`` with its progress lines naming the stage (``description``), when it takes
+    a ``description`` (:func:`make_runner`'s does); a runner that does not is used as is."""
+    try:
+        params = inspect.signature(runner).parameters.values()
+    except (TypeError, ValueError):
+        return runner
+    if any(p.name == "description" or p.kind is p.VAR_KEYWORD for p in params):
+        return functools.partial(runner, description=description)
+    return runner
 
 
 def _assemble(setup: RunSetup, material: GeneralizedMaxwell, pressures: np.ndarray,

@@ -10,7 +10,7 @@ fresh points is in BENCHMARKS.md ("Steady FEM").
 from __future__ import annotations
 
 import time
-from dataclasses import dataclass
+from dataclasses import dataclass, field
 
 import numpy as np
 import xarray as xr
@@ -52,12 +52,16 @@ class LawStage:
         The law table before the monotonicity screen (every FEM point tried, with its
         status), which an extension (:func:`extend_law`) adds to; None when the law was
         given.
+    readings
+        ``{speed: reading}``: the law read at each speed before its continuation, which an
+        extension compares to reuse the tables of the speeds it did not change.
     """
 
     law: xr.Dataset
     tables: dict
     fem_time: float | None
     raw: xr.Dataset | None = None
+    readings: dict = field(default_factory=dict, repr=False)
 
 
 def law_pressures(cfg: RunConfig, pressures: np.ndarray) -> np.ndarray:
@@ -76,7 +80,7 @@ def uses_continuation(cfg: RunConfig, n_speeds: int) -> bool:
 
 def build_law(cfg: RunConfig, hs0: SineSeries, material: GeneralizedMaxwell,
               pressures: np.ndarray, runner, law: xr.Dataset | None = None,
-              velocities=None) -> LawStage:
+              velocities=None, progress: bool | str = False) -> LawStage:
     """The high-slope law of a run and the tables the hybrid reads, one per speed.
 
     ``law`` (or ``cfg.law.file``, a ``law.nc`` or a run's ``results.nc``) is used when
@@ -89,6 +93,9 @@ def build_law(cfg: RunConfig, hs0: SineSeries, material: GeneralizedMaxwell,
     velocities
         The speeds to tabulate [mm/s] (default ``cfg.velocities``; a run with temperatures
         passes its reduced speeds).
+    progress
+        Progress display of the tables (``"auto"``, True, False): they are computed in this
+        process, seconds a speed, and shown as the stage "law tables".
     """
     speeds = np.asarray(cfg.velocities if velocities is None else velocities, float)
     if law is None and cfg.law.file is not None:
@@ -100,17 +107,19 @@ def build_law(cfg: RunConfig, hs0: SineSeries, material: GeneralizedMaxwell,
     if law is not None:
         law = as_law(law, source)
         check_law_matches(law, hs0, material, speeds, source)
-        return _stage(law, None, hs0, material, speeds, cfg, raw=None)
+        return _stage(law, None, hs0, material, speeds, cfg, raw=None, progress=progress)
     t0 = time.perf_counter()
     raw = fem_law(cfg, hs0, material, law_pressures(cfg, pressures), speeds, runner)
-    return _stage(raw, time.perf_counter() - t0, hs0, material, speeds, cfg, raw=raw)
+    return _stage(raw, time.perf_counter() - t0, hs0, material, speeds, cfg, raw=raw,
+                  progress=progress)
 
 
 def extend_law(stage: LawStage, points: dict[float, list[float]], cfg: RunConfig,
                hs0: SineSeries, material: GeneralizedMaxwell, speeds: np.ndarray,
-               runner) -> LawStage:
+               runner, progress: bool | str = False) -> LawStage:
     """``stage`` with FEM law points added at ``{pressure [MPa]: speeds [mm/s]}``
-    (:mod:`.lawcover`), screened and tabulated again."""
+    (:mod:`.lawcover`), screened and tabulated again (a speed whose reading did not change
+    keeps its table)."""
     if stage.raw is None:
         raise ValueError("extend_law: a given law cannot be extended (no FEM options)")
     t0 = time.perf_counter()
@@ -123,18 +132,43 @@ def extend_law(stage: LawStage, points: dict[float, list[float]], cfg: RunConfig
                      fallback=False)
     raw = merge_points(stage.raw, new)
     fem_time = (stage.fem_time or 0.0) + time.perf_counter() - t0
-    return _stage(raw, fem_time, hs0, material, speeds, cfg, raw=raw)
+    return _stage(raw, fem_time, hs0, material, speeds, cfg, raw=raw, progress=progress,
+                  before=stage)
 
 
 def _stage(law: xr.Dataset, fem_time: float | None, hs0: SineSeries,
            material: GeneralizedMaxwell, speeds: np.ndarray, cfg: RunConfig,
-           raw: xr.Dataset | None) -> LawStage:
-    """Screen ``law`` for monotonicity and tabulate it at each speed."""
+           raw: xr.Dataset | None, progress: bool | str = False,
+           before: LawStage | None = None) -> LawStage:
+    """Screen ``law`` for monotonicity and tabulate it at each speed (``before``: a
+    speed read as there keeps its table)."""
+    from ..sweep.progress import make_reporter
+
     law = screen_monotone(law)
-    tables = {float(v): continue_with_linear_shape(law_at_velocity(law, float(v)), hs0,
-                                                   material, float(v), nu=cfg.material.nu)
-              for v in speeds}
-    return LawStage(law, tables, fem_time, raw)
+    readings = {float(v): law_at_velocity(law, float(v)) for v in speeds}
+    old = before or LawStage(law, {}, None)
+    todo = [v for v, r in readings.items()
+            if v not in old.tables or not _same_reading(r, old.readings.get(v))]
+    reporter = make_reporter(progress if todo else False, "law tables")
+    reporter.start(len(todo))
+    tables = {}
+    for v, reading in readings.items():
+        if v in todo:
+            tables[v] = continue_with_linear_shape(reading, hs0, material, v,
+                                                   nu=cfg.material.nu)
+            reporter.advance(label=f"law table v={v:g} mm/s")
+        else:
+            tables[v] = old.tables[v]
+    reporter.close()
+    return LawStage(law, tables, fem_time, raw, readings)
+
+
+def _same_reading(a: dict, b: dict | None) -> bool:
+    """Whether two readings of the law at one speed are equal, key by key."""
+    if b is None or a.keys() != b.keys():
+        return False
+    return all(np.array_equal(np.asarray(a[k]), np.asarray(b[k]), equal_nan=True)
+               for k in a)
 
 
 def fem_law(cfg: RunConfig, hs0: SineSeries, material: GeneralizedMaxwell,
