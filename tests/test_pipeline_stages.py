@@ -96,3 +96,11 @@ def test_a_run_names_its_sweeps(tmp_path, capsys):
     rc.pipeline.run(cfg, progress="log")
     err = capsys.readouterr().err
     assert "[models] 1/1 done" in err and "[sweep]" not in err
+
+
+def test_the_full_fem_tasks_go_to_the_workers_first_in_their_order():
+    from rubbercontact.pipeline.plan import Slot
+
+    slots = [Slot("vhs", 0, 0, None), Slot("fem", 0, 0, 0), Slot("hybrid", 0, 0, None),
+             Slot("fem", 0, 0, 1), Slot("meanfield", 0, None, 0)]
+    assert execute.longest_first(slots) == [1, 3, 0, 2, 4]

@@ -182,7 +182,10 @@ def run_models(setup: RunSetup, material: GeneralizedMaxwell, pressures: np.ndar
     points, extend the law (``law.extend``, :mod:`.lawcover`) and run those models again."""
     cfg = setup.config
     slots, tasks = model_tasks(setup, material, pressures, stage.tables if stage else {})
-    results = named(runner, "models")(tasks)
+    order = longest_first(slots)
+    results = [None] * len(tasks)
+    for k, res in zip(order, named(runner, "models")([tasks[k] for k in order]), strict=True):
+        results[k] = res
     ds = _assemble(setup, material, pressures, slots, results)
     if stage is None:
         return ModelRuns(None, slots, results, ds, "", 0.0)
@@ -213,6 +216,19 @@ def run_models(setup: RunSetup, material: GeneralizedMaxwell, pressures: np.ndar
     law_time = (stage.fem_time or 0.0) - law_time0
     text = describe(cov, added, stopped, rounds) if stage.raw is not None else ""
     return ModelRuns(stage, slots, results, ds, text, law_time)
+
+
+def longest_first(slots: list) -> list[int]:
+    """The order to hand the model tasks to the workers: the tasks of the models planned
+    per speed, realization and load (the full FEM: minutes each) first, then the rest
+    (half-space and mean-field solves: seconds). Long tasks first keep every worker busy
+    to the end, and the progress ETA, extrapolated from the tasks done, then errs high
+    instead of low."""
+    from ..models.planning import PER_REALIZATION_LOAD
+    from ..models.registry import planning
+
+    long = {m for m in {sl.model for sl in slots} if planning(m).per == PER_REALIZATION_LOAD}
+    return sorted(range(len(slots)), key=lambda k: slots[k].model not in long)
 
 
 def named(runner: Runner, description: str) -> Runner:
