@@ -49,6 +49,15 @@ class Counters:
     tried: list = field(default_factory=list)   # one line per path: what was tried
 
 
+class BudgetSpent(Exception):
+    """The steady solve spent its Newton budget (:attr:`~.options.SteadyOptions.newton_budget`);
+    raised out of every stage at once, so a stop costs no more than the budget."""
+
+    def __init__(self, budget: int) -> None:
+        super().__init__(f"Newton budget spent ({budget} iterations, steady.newton_budget)")
+        self.budget = budget
+
+
 @dataclass
 class NewtonOutcome:
     """One Newton–Krylov solve: its last iterate, whether it converged, and why not."""
@@ -80,6 +89,8 @@ def newton_krylov(cell: SteadyCell, U0: np.ndarray, shift: float, load: float, g
     for _ in range(options.newton_per_step):
         if hist[-1] <= atol:
             return NewtonOutcome(U, ev, True, hist)
+        if counters.newton_iterations >= options.newton_budget:
+            raise BudgetSpent(options.newton_budget)
         if pre is None:
             pre = _factor(cell, ev, counters)
             if pre is None:
@@ -292,9 +303,14 @@ def follow(cell: SteadyCell, U0: np.ndarray, start: Endpoint, end: Endpoint, shi
         # at 2 MPa 13 of 28 secant-predicted steps failed and were redone from the plain
         # start, 85 s against 72 s).
         prob = blend(start, end, target)
-        res = newton_krylov(cell.with_kernel(prob.kernel, prob.bias), U, shift, prob.load,
-                            gauge, atol if target >= 1.0 else path_tol_factor * atol, options,
-                            counters)
+        try:
+            res = newton_krylov(cell.with_kernel(prob.kernel, prob.bias), U, shift, prob.load,
+                                gauge, atol if target >= 1.0 else path_tol_factor * atol,
+                                options, counters)
+        except BudgetSpent as spent:
+            counters.tried.append(f"{label}: {len(out.steps)} steps to λ = {out.reached:.4g} "
+                                  f"({spent})")
+            raise
         counters.continuation_steps += 1
         log.debug("%s: λ %.4g %s after %d Newton %s", label, target,
                   "converged" if res.converged else "cut", len(res.residuals) - 1, res.reason)

@@ -94,6 +94,11 @@ class SteadyOptions:
     fallback
         If the steady solve (and its rescue) fails, run the transient test and say so in
         the status.
+    newton_budget
+        Newton iterations one steady solve may spend on its mesh, its barrier rescue's
+        included; past them it stops and says so (a stop then costs a bounded, machine-
+        independent amount of work). The default is 1.5× the most any converged point of
+        the steep-cell study needed (docs/validation/steep_cells.md).
     """
 
     krylov_rtol: float = 1e-2
@@ -107,6 +112,7 @@ class SteadyOptions:
     coarse_columns: int = 48
     rescue: str = "barrier"
     fallback: bool = True
+    newton_budget: int = 1200
 
     def validate(self) -> SteadyOptions:
         positive_scalar("steady.krylov_rtol", self.krylov_rtol)
@@ -118,6 +124,7 @@ class SteadyOptions:
         _integer("steady.max_steps", self.max_steps, 1)
         _integer("steady.coarse_elements", self.coarse_elements, 0)
         _integer("steady.coarse_columns", self.coarse_columns, 3)
+        _integer("steady.newton_budget", self.newton_budget, 1)
         if self.rescue not in RESCUES:
             raise InputError(f"steady.rescue: one of {', '.join(RESCUES)}, got {self.rescue!r}")
         for name in ("first_step", "min_step"):

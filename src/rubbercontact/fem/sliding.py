@@ -236,6 +236,7 @@ def _steady(surface, material, p, v, opts: FemOptions, start) -> SlidingTestResu
         sol = solve_steady(surface, material, p, v, opts, start)
     except SteadyFailure as fail:
         failures = [fail]
+        rescue = _with_budget_left(rescue, fail.counters.newton_iterations)
         if rescue is not None:
             try:
                 return _barrier_rescue(surface, material, p, v, rescue,
@@ -245,6 +246,7 @@ def _steady(surface, material, p, v, opts: FemOptions, start) -> SlidingTestResu
         return _after_failure(surface, material, p, v, opts, failures)
     res = steady_result(sol, surface, material, p, v, opts, time.perf_counter() - wall0,
                         warn_impaled=rescue is None)
+    rescue = _with_budget_left(rescue, sol.counters.newton_iterations)
     if not (res.stats.impaled and rescue is not None):
         return res
     # The penalty converged with a crest through the face between two nodes: μ and A
@@ -279,6 +281,14 @@ def _rescue_options(opts: FemOptions) -> FemOptions | None:
     return opts.with_(contact="barrier", steady={
         "newton_per_step": max(RESCUE_NEWTON, opts.steady.newton_per_step),
         "rescue": "none", "fallback": False})
+
+
+def _with_budget_left(rescue: FemOptions | None, spent: int) -> FemOptions | None:
+    """The rescue's options with the Newton budget the penalty solve left (None: no rescue,
+    or nothing left: the budget bounds the whole steady solve on a mesh)."""
+    if rescue is None or spent >= rescue.steady.newton_budget:
+        return None
+    return rescue.with_(steady={"newton_budget": rescue.steady.newton_budget - spent})
 
 
 def _after_failure(surface, material, p, v, opts: FemOptions,

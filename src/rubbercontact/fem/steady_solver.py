@@ -34,7 +34,7 @@ from ..materials.maxwell import GeneralizedMaxwell
 from ..roughness.sines import SineSeries
 from .deformation import measure_deformation
 from .multilevel import coarse_meshes, prolong
-from .newton_krylov import Counters, Endpoint, PathResult, follow
+from .newton_krylov import BudgetSpent, Counters, Endpoint, PathResult, follow
 from .options import FemOptions
 from .press import HeightPress, PressOutcome
 from .setup import CellSetup, build_cell
@@ -158,9 +158,13 @@ def _press_by_height(setup: CellSetup, cell: SteadyCell, press: PathResult,
     if press.reached > 0 and travel > 0:
         first = min(first, 0.25 * travel * (1.0 - press.reached) / press.reached)
     hp = HeightPress(cell, setup.load, setup.atol, options.steady, counters)
-    out = hp.run(press.U, max(first, 1e-4 * pv), 1e-6 * pv)
-    counters.tried.append(f"height press {m.cell.nx}x{m.cell.ny} from λ = "
-                          f"{press.reached:.4g}: {out.steps} heights"
+    label = f"height press {m.cell.nx}x{m.cell.ny} from λ = {press.reached:.4g}"
+    try:
+        out = hp.run(press.U, max(first, 1e-4 * pv), 1e-6 * pv)
+    except BudgetSpent as spent:
+        counters.tried.append(f"{label} ({spent})")
+        raise
+    counters.tried.append(f"{label}: {out.steps} heights"
                           + (", converged" if out.converged else f" ({out.reason})"))
     return out
 
@@ -244,9 +248,26 @@ def solve_steady(surface: SineSeries, material: GeneralizedMaxwell, mean_pressur
     Raises
     ------
     SteadyFailure
-        No converged state; its ``tried`` lists every stage.
+        No converged state (every stage stopped, or the Newton budget was spent); its
+        ``tried`` lists every stage.
     """
     counters = Counters()
+    try:
+        setup, U = _solve(surface, material, mean_pressure, velocity, options, start, counters)
+    except BudgetSpent as spent:
+        # the stage that spent it is the last one tried (each records itself on the way out)
+        reason = counters.tried[-1] if counters.tried else str(spent)
+        raise SteadyFailure(reason, counters.tried, counters) from None
+    kern = _kernel(setup)
+    UA, ev, shift = _to_top_gauge(setup, kern, U)
+    state = SteadyState(tuple(options.mesh), U, kern, setup.load)
+    return SteadySolution(setup, UA, ev, shift, state, counters, list(counters.tried))
+
+
+def _solve(surface, material, mean_pressure: float, velocity: float, options: FemOptions,
+           start: SteadyState | None, counters: Counters) -> tuple[CellSetup, np.ndarray]:
+    """The converged ``"face"``-gauge unknowns on the finest mesh: from the neighbour
+    ``start`` if it is on this mesh and its path converges, else pressed coarse to fine."""
     setup, U = None, None
     if start is not None and tuple(start.mesh) == tuple(options.mesh):
         setup = build_cell(surface, material, mean_pressure, velocity, options,
@@ -260,7 +281,4 @@ def solve_steady(surface: SineSeries, material: GeneralizedMaxwell, mean_pressur
     if U is None:
         setup, U = _coarse_to_fine(surface, material, mean_pressure, velocity, options,
                                    counters)
-    kern = _kernel(setup)
-    UA, ev, shift = _to_top_gauge(setup, kern, U)
-    state = SteadyState(tuple(options.mesh), U, kern, setup.load)
-    return SteadySolution(setup, UA, ev, shift, state, counters, list(counters.tried))
+    return setup, U
