@@ -649,6 +649,12 @@ def test_saved_law_is_reused_without_fem_on_a_surface_sharing_its_high_slope_wav
     from rubbercontact.io.results import read_law, write_law, write_results
 
     built = rc.pipeline.run(_law_run_config(tmp_path, "built"), progress=False)
+    # the law cell checked its quasi-static limit at each of its pressures: a lone sine is
+    # symmetric, so its relaxed friction vanishes on any mesh (within the check's tolerance)
+    qs = built["law_quasi_static_friction"]
+    assert qs["law_pressure"].values.tolist() == [0.3, 1.0]
+    assert np.all(np.abs(qs.values) <= qs.attrs["tolerance"])
+    assert built.attrs["law_quasi_static"].endswith("2 of 2 law pressures pass")
     law_nc = write_law(law_from_results(built), tmp_path / "law.nc")
     results_nc = write_results(built, tmp_path / "results.nc")
     # The file round trip keeps the table and its provenance.
@@ -665,6 +671,7 @@ def test_saved_law_is_reused_without_fem_on_a_surface_sharing_its_high_slope_wav
         assert seen and not [t for t in seen if t.function.endswith(":fem_task")]
         for k in ("friction", "contact_fraction", "mean_separation"):
             np.testing.assert_array_equal(ds[k].values, built[k].values)
+        assert "law_quasi_static" not in ds.attrs      # no FEM, nothing checked
 
     # The section 3 surface carries the same high-slope wave (plus two low-slope ones in
     # random phase): the law applies to it as it is.

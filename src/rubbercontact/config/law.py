@@ -29,4 +29,7 @@ class LawConfig(_Strict):
     max_pressure: PositiveFloat | None = Field(
         None, description="highest pressure the law is extended to [MPa] (default: below "
                           "the rubber's glassy modulus)")
-
+    quasi_static_check: bool = Field(
+        True, description="one FEM point per law pressure at the quasi-static speed, where "
+                          "the law's friction must vanish on a resolved cell (the run warns "
+                          "where it does not)")

@@ -27,6 +27,7 @@ from ..models.registry import needs_law
 from .adhesion import AdhesionLaw, add_adhesion
 from .assemble import add_law, add_profiles, assemble, model_times
 from .flash import add_flash, plan_flash
+from .lawcheck import add_quasi_static
 from .lawcover import MAX_ROUNDS, coverage, describe, plan_extension
 from .lawstage import LawStage, add_vhs, build_law, extend_law
 from .loads import at_areas, pressure_grid_for_areas
@@ -143,6 +144,8 @@ def run(config: RunConfig | dict | str | Path, *, runner: Runner | None = None,
     if stage is not None and not setup.speeds.isothermal:
         ds = add_law(ds, stage_law, on="law_velocity")
     ds = _with_validity(ds, setup)
+    if stage is not None and stage.quasi_static is not None:
+        ds = add_quasi_static(ds, stage.quasi_static)
     if models.coverage:
         ds.attrs["law_coverage"] = models.coverage
     timings["total"] = time.perf_counter() - t_start

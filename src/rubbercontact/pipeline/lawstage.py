@@ -26,6 +26,7 @@ from ..hybrid.law import (
 )
 from ..materials import GeneralizedMaxwell
 from ..roughness import SineSeries
+from .lawcheck import QuasiStaticCheck, check_quasi_static
 from .lawcover import NOT_NEEDED, merge_points
 from .setup import task_material
 
@@ -55,6 +56,9 @@ class LawStage:
     readings
         ``{speed: reading}``: the law read at each speed before its continuation, which an
         extension compares to reuse the tables of the speeds it did not change.
+    quasi_static
+        The cell's quasi-static check at the FEM pressures (:mod:`.lawcheck`); None when
+        the law was given or ``law.quasi_static_check`` is off.
     """
 
     law: xr.Dataset
@@ -62,6 +66,7 @@ class LawStage:
     fem_time: float | None
     raw: xr.Dataset | None = None
     readings: dict = field(default_factory=dict, repr=False)
+    quasi_static: QuasiStaticCheck | None = None
 
 
 def law_pressures(cfg: RunConfig, pressures: np.ndarray) -> np.ndarray:
@@ -109,9 +114,12 @@ def build_law(cfg: RunConfig, hs0: SineSeries, material: GeneralizedMaxwell,
         check_law_matches(law, hs0, material, speeds, source)
         return _stage(law, None, hs0, material, speeds, cfg, raw=None, progress=progress)
     t0 = time.perf_counter()
-    raw = fem_law(cfg, hs0, material, law_pressures(cfg, pressures), speeds, runner)
+    at = law_pressures(cfg, pressures)
+    raw = fem_law(cfg, hs0, material, at, speeds, runner)
+    qs = (check_quasi_static(_fem_options(cfg, material), hs0, material, at, runner)
+          if cfg.law.quasi_static_check else None)
     return _stage(raw, time.perf_counter() - t0, hs0, material, speeds, cfg, raw=raw,
-                  progress=progress)
+                  progress=progress, quasi_static=qs)
 
 
 def extend_law(stage: LawStage, points: dict[float, list[float]], cfg: RunConfig,
@@ -131,15 +139,22 @@ def extend_law(stage: LawStage, points: dict[float, list[float]], cfg: RunConfig
                      continuation=uses_continuation(cfg, np.unique(speeds).size),
                      fallback=False)
     raw = merge_points(stage.raw, new)
+    qs = stage.quasi_static
+    if qs is not None:
+        fresh = [p for p in points if p not in set(qs.pressure.tolist())]
+        if fresh:
+            qs = qs.merged(check_quasi_static(_fem_options(cfg, material), hs0, material,
+                                              fresh, runner))
     fem_time = (stage.fem_time or 0.0) + time.perf_counter() - t0
     return _stage(raw, fem_time, hs0, material, speeds, cfg, raw=raw, progress=progress,
-                  before=stage)
+                  before=stage, quasi_static=qs)
 
 
 def _stage(law: xr.Dataset, fem_time: float | None, hs0: SineSeries,
            material: GeneralizedMaxwell, speeds: np.ndarray, cfg: RunConfig,
            raw: xr.Dataset | None, progress: bool | str = False,
-           before: LawStage | None = None) -> LawStage:
+           before: LawStage | None = None,
+           quasi_static: QuasiStaticCheck | None = None) -> LawStage:
     """Screen ``law`` for monotonicity and tabulate it at each speed (``before``: a
     speed read as there keeps its table)."""
     from ..sweep.progress import make_reporter
@@ -160,7 +175,7 @@ def _stage(law: xr.Dataset, fem_time: float | None, hs0: SineSeries,
         else:
             tables[v] = old.tables[v]
     reporter.close()
-    return LawStage(law, tables, fem_time, raw, readings)
+    return LawStage(law, tables, fem_time, raw, readings, quasi_static)
 
 
 def _same_reading(a: dict, b: dict | None) -> bool:
@@ -189,10 +204,9 @@ def fem_points(cfg: RunConfig, hs0: SineSeries, material: GeneralizedMaxwell,
     :data:`~.lawcover.NOT_NEEDED`. ``continuation``: one task per pressure following its
     speeds (steady solver), else one task per point; ``fallback=False``: no transient test
     where the steady solve stops (``steady.fallback``)."""
-    from ..fem import make_options
     from ..sweep import Task
 
-    options = make_options(cfg.fem.options(material))          # fails here, not per task
+    options = _fem_options(cfg, material)                       # fails here, not per task
     if not fallback:
         options = options.with_(steady={"fallback": False})
     opts = options.to_dict()
@@ -225,6 +239,13 @@ def fem_points(cfg: RunConfig, hs0: SineSeries, material: GeneralizedMaxwell,
         for (i, j), res in zip(at, runner(tasks), strict=True):
             results[i, j] = res
     return assemble_law(results.ravel().tolist(), p, v, hs0, material, opts)
+
+
+def _fem_options(cfg: RunConfig, material: GeneralizedMaxwell):
+    """The law cell's :class:`~rubbercontact.fem.FemOptions` from the config."""
+    from ..fem import make_options
+
+    return make_options(cfg.fem.options(material))
 
 
 def _path_point(path, i: int):

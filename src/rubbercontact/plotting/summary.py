@@ -46,6 +46,8 @@ def summary_table(ds: xr.Dataset) -> str:
             lines += _per_speed(ds, v)
     coverage = [f"law: {ds.attrs['law_coverage']}"] if ds.attrs.get("law_coverage") else []
     cell = [ds.attrs["law_cell_note"]] if ds.attrs.get("law_cell_note") else []
+    if ds.attrs.get("law_quasi_static"):
+        cell.append(f"law cell: {ds.attrs['law_quasi_static']}")
     return "\n".join(lines + cell + coverage + _validity(ds))
 
 

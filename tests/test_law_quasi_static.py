@@ -1,0 +1,105 @@
+"""The law cell's quasi-static check (:mod:`rubbercontact.pipeline.lawcheck`).
+
+Physics: slid slowly enough that the rubber is relaxed at the shortest wave's frequency,
+the cell is elastic and dissipates nothing, so the law's friction must vanish there; a
+mesh too coarse for its contact patches keeps a friction of the lattice instead.
+"""
+
+import numpy as np
+import pytest
+
+import rubbercontact as rc
+from rubbercontact.fem import make_options
+from rubbercontact.pipeline.lawcheck import (
+    QS_LOSS_TANGENT,
+    QS_TOL,
+    QuasiStaticCheck,
+    check_quasi_static,
+    quasi_static_speed,
+)
+from rubbercontact.sweep import run_sweep
+
+
+def _sls_loss_tangent(omega, e_inf, e1, tau):
+    """Closed form of the standard linear solid: E = E∞ + E1 iωτ/(1 + iωτ)."""
+    x = omega * tau
+    return (e1 * x / (1 + x * x)) / (e_inf + e1 * x * x / (1 + x * x))
+
+
+@pytest.mark.parametrize("tau", [1e-3, 1.0, 1e3])
+def test_quasi_static_speed_is_the_fastest_relaxed_decade(tau):
+    e_inf, e1, lam = 4.0, 400.0, 0.25
+    mat = rc.materials.GeneralizedMaxwell(e_inf, np.array([e1]), np.array([tau]))
+    v = quasi_static_speed(mat, lam)
+    tan = _sls_loss_tangent(2 * np.pi * np.array([v, 10 * v]) / lam, e_inf, e1, tau)
+    assert tan[0] <= QS_LOSS_TANGENT
+    assert v == 1.0 or tan[1] > QS_LOSS_TANGENT
+
+
+def test_quasi_static_speed_of_an_elastic_rubber_and_of_one_that_never_relaxes():
+    assert quasi_static_speed(rc.materials.GeneralizedMaxwell.elastic(5.0), 0.1) == 1.0
+    # E∞ a billionth of the branch: tan δ ≈ (E1/E∞) ωτ stays above 1e-3 down to 1e-12 mm/s
+    never = rc.materials.GeneralizedMaxwell(1e-9, np.array([1.0]), np.array([1e3]))
+    with pytest.raises(ValueError, match="no speed"):
+        quasi_static_speed(never, 0.1)
+
+
+def test_the_check_sorts_merges_and_says_where_it_fails():
+    a = QuasiStaticCheck(1e-3, np.array([0.1, 1.0]), np.array([0.02, 0.001]), ("ok", "ok"))
+    b = QuasiStaticCheck(1e-3, np.array([0.3]), np.array([np.nan]), ("ConvergenceError: x",))
+    both = a.merged(b)
+    assert both.pressure.tolist() == [0.1, 0.3, 1.0]
+    assert both.status == ("ok", "ConvergenceError: x", "ok")
+    assert both.failing.tolist() == [True, False, False]
+    assert both.stopped.tolist() == [False, True, False]
+    assert "1 of 3 law pressures pass; 0.1 MPa fail; 0.3 MPa did not converge" in \
+        both.describe()
+    assert "friction 0.02 at 0.1 MPa" in both.warning()
+    assert a.merged(QuasiStaticCheck(1e-3, np.array([3.0]), np.array([0.0]), ("ok",))
+                    ).warning().count("\n") == 0
+    ds = both.as_dataset()
+    assert ds["law_quasi_static_friction"].attrs["velocity_mm_s"] == 1e-3
+    with pytest.raises(ValueError):
+        a.merged(QuasiStaticCheck(1e-2, np.array([3.0]), np.array([0.0]), ("ok",)))
+
+
+def _runner(tasks):
+    return run_sweep(tasks, cache=None, progress=False).results
+
+
+@pytest.fixture(scope="module")
+def steep_cell():
+    # two steep waves an octave apart (peak slopes 3.1 and 1.6), crests unrounded: the
+    # shape of the CAPTIF high-slope cells in docs/validation/steep_cells.md
+    return rc.roughness.SineSeries([0.25, 0.5], [0.125, 0.125])
+
+
+def test_a_resolved_cell_passes_and_a_coarse_one_keeps_a_lattice_friction(steep_cell):
+    sbr = rc.materials.sbr()
+    resolved = check_quasi_static(make_options(mesh="auto"), steep_cell, sbr, [0.1], _runner)
+    assert resolved.speed == quasi_static_speed(sbr, 0.25)
+    assert resolved.status == ("ok",)
+    assert abs(resolved.friction[0]) <= QS_TOL and resolved.warning() is None
+    coarse = check_quasi_static(make_options(mesh=(32, 8)), steep_cell, sbr, [0.1], _runner)
+    assert coarse.failing.all(), coarse.friction
+    assert "law cell under-resolved" in coarse.warning()
+
+
+def test_a_run_carries_the_check_on_its_law_pressures_and_warns_once_where_it_fails():
+    import warnings
+
+    import xarray as xr
+
+    from rubbercontact.hybrid.lawtable import LawWarning
+    from rubbercontact.pipeline.lawcheck import add_quasi_static
+
+    ds = xr.Dataset(coords={"law_pressure": [0.1, 0.3, 1.0]})
+    check = QuasiStaticCheck(1e-3, np.array([1.0, 0.1, 0.3])[[1, 2, 0]],
+                             np.array([-0.3, 0.0, 0.001]), ("ok",) * 3)
+    with warnings.catch_warnings(record=True) as seen:
+        warnings.simplefilter("always")
+        out = add_quasi_static(ds, check)
+    assert [w.category for w in seen] == [LawWarning]
+    assert "-0.3 at 0.1 MPa" in str(seen[0].message)
+    np.testing.assert_array_equal(out["law_quasi_static_friction"], [-0.3, 0.0, 0.001])
+    assert out.attrs["law_quasi_static"].endswith("2 of 3 law pressures pass; 0.1 MPa fail")
