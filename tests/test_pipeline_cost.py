@@ -18,6 +18,7 @@ from rubbercontact.pipeline.cost import (
     HALFSPACE_POINTS,
     HALFSPACE_SOLVE_S,
     OVERHEAD_S,
+    QS_POINT_FACTOR,
     TRANSIENT_FACTOR,
     Stage,
     estimate_cost,
@@ -51,6 +52,18 @@ def test_counts_are_the_planned_solves():
     assert cost["mean-field points"].count == mf == 2 * 3
     n_law = len(law_pressures(setup.config, pressures))
     assert cost["law FEM points"].count == n_law * 2 == 6
+
+
+def test_the_law_cells_quasi_static_check_is_one_point_per_law_pressure():
+    setup = resolve(parse_config(CONFIG))
+    cost = {s.name.split(" (")[0]: s for s in estimate_cost(setup).stages}
+    check = cost["law cell quasi-static check"]
+    fresh = [law_point_seconds(setup, p) for p in CONFIG["law"]["pressures"]]
+    assert check.count == 3
+    assert check.total_s == pytest.approx(QS_POINT_FACTOR * sum(fresh))
+    off = resolve(parse_config({**CONFIG, "law": {**CONFIG["law"],
+                                                  "quasi_static_check": False}}))
+    assert not [s for s in estimate_cost(off).stages if "quasi-static" in s.name]
 
 
 def test_prices_scale_from_the_measured_points():

@@ -53,6 +53,12 @@ from .setup import RunSetup
 #: 2026-12-04 on examples/asphalt.toml's cell: 1.39 s at 0.1 MPa / 10 mm/s, 1.20 s at
 #: 0.5 MPa / 50 mm/s.
 FEM_POINT_S = 1.3
+#: A law cell's quasi-static point (:mod:`.lawcheck`) against a law point at the same
+#: pressure: the relaxed rubber indents deeper, in more continuation steps. Measured on the
+#: built-in default (2026-12-06, load 15): its 6 quasi-static points took 113 s of wall
+#: against 72 s for its 12 law points, about 3x a point.
+QS_POINT_FACTOR = 3.0
+
 #: The reference mesh (nx, ny): the law cell of examples/asphalt.toml and section3.toml.
 FEM_REFERENCE_MESH = (120, 23)
 #: Cost against the elements ``nx ny``. BENCHMARKS (quiet, 2298ddb): the section 3 full
@@ -303,6 +309,11 @@ def estimate_cost(setup: RunSetup) -> CostEstimate:
             stages.append(Stage(f"law FEM points ({mesh[0]} x {mesh[1]}{how})",
                                 len(pressures) * speeds, float(each.mean()),
                                 tuple(np.tile(each, speeds).tolist())))
+        if cfg.law.quasi_static_check:
+            # one fresh point per law pressure at the quasi-static speed (.lawcheck)
+            qs = QS_POINT_FACTOR * each
+            stages.append(Stage("law cell quasi-static check (one point per law pressure)",
+                                len(pressures), float(qs.mean()), tuple(qs[::-1].tolist())))
         notes.append("the law's extension, if the local pressures go past its FEM points "
                      "(FEM points and the law models once more, the run says so)")
         above = pressures[pressures > e_inf]
