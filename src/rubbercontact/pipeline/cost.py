@@ -78,12 +78,15 @@ TRANSIENT_FACTOR = 50.0
 #: cost far more: 62 s at 1e-3 mm/s, 1 MPa, BENCHMARKS.)
 CONTINUATION_FACTOR = 0.5
 #: Share of an automatic mesh's points re-solved on twice the columns (the narrowest
-#: contact patch under ``fem.patch_columns`` columns), 2026-12-04: 2 of the 3 points of
-#: examples/captif_road.toml, 106 of the 135 of examples/speed_sweep.toml. The re-solve is
-#: priced as a fresh point on the refined mesh (nx doubled, and the rows of the rule for
-#: twice the columns: 256 x 19 after 128 x 16 on captif_road's cell); the solver presses
-#: it nested, on nx columns first, and carries it over.
-AUTO_REFINED_SHARE = 0.75
+#: contact patch under ``fem.patch_columns`` columns), on the law cells as runs build them
+#: since their crests are rounded to the profiles' sampling (``fem.crest_radius``): 38 of
+#: the 135 law points of examples/speed_sweep.toml (2026-12-06 04:29 UTC, ab0117d), 0 of
+#: the 3 of examples/captif_road.toml (twice, 03:49 and 06:09 UTC); 0.28. With sharp
+#: crests it had been 2 of 3 and 106 of 135 (2026-12-04). The re-solve is priced as a fresh
+#: point on the refined mesh (nx doubled, and the rows of the rule for twice the columns:
+#: 256 x 19 after 128 x 16 on captif_road's cell); the solver presses it nested, on nx
+#: columns first, and carries it over.
+AUTO_REFINED_SHARE = 0.28
 #: One half-space solve (one load) [s] on ``HALFSPACE_POINTS`` points, scaled as n log n:
 #: the examples from an empty cache on the quiet machine (2026-12-04 05:21 UTC, load
 #: 0.3-2.4, benchmarks/examples.md), by the solves' own clocks: asphalt 120 solves in 4 s,
