@@ -24,7 +24,7 @@ becomes the variable-coefficient ``1/(M(q) + c(x))``, interpolated in ``log c`` 
 shifts ``c̄, √(c̄ m_d), m_d`` (one forward and three inverse FFTs per application); the Newton
 iteration counts then stay flat in N. On maps of at least 256² points a soft law (at least
 a tenth of the rows with ``c > m_d``) is preconditioned by that variable-coefficient stiffness
-over all rows, its shifts spanning the set's ``c`` (:func:`_soft_law_shifts`), instead of
+over all rows (:func:`~.precond.soft_law_kernels`), instead of
 leaving those rows to the diagonal. In 1D, a contact set of at most
 ``options.dense_max_set`` points (or any set on a grid of at most ``options.dense_max_points``
 points) is solved directly: the set's block of the circulant ``M`` is gathered from one column
@@ -48,6 +48,8 @@ from scipy.linalg import lapack
 
 from . import kernels as kn
 from .krylov import gmres
+from .options import SINGLE_MIN_POINTS_2D
+from .precond import shift_weights, shifted_preconditioner, soft_law_kernels
 from .problem import Problem
 
 __all__ = ["LinearSolve", "contact_solve", "mixed_precision_solve", "refined_solve",
@@ -74,27 +76,6 @@ class LinearSolve:
     multiplier: float
     iterations: int
     residual: float
-
-
-def shifted_preconditioner(prob: Problem, c: np.ndarray, contact: np.ndarray) -> np.ndarray:
-    """Stiffness kernel ``1/(M + c̄)`` with ``c̄`` the median of ``c`` on the ``contact`` points
-    (all points when none is), Hermitian part only unless the options say otherwise."""
-    cbar = float(np.median(c[contact])) if contact.any() else float(np.median(c))
-    return kn.stiffness_kernel(prob.compliance, cbar,
-                               hermitian=not prob.options.complex_preconditioner)
-
-
-def _shift_weights(c: np.ndarray, shifts: np.ndarray) -> np.ndarray:
-    """Weights (``len(shifts)`` × ``c.size``) interpolating linearly in ``log c`` between shifts."""
-    lc = np.log(np.clip(c, shifts[0], shifts[-1]))
-    ls = np.log(shifts)
-    j = np.clip(np.searchsorted(ls, lc) - 1, 0, shifts.size - 2)
-    t = (lc - ls[j]) / (ls[j + 1] - ls[j])
-    weights = np.zeros((shifts.size, c.size))
-    cols = np.arange(c.size)
-    weights[j, cols] = 1.0 - t
-    weights[j + 1, cols] += t
-    return weights
 
 
 def _solve_dense(prob: Problem, idx: np.ndarray, rhs: np.ndarray, total: float,
@@ -216,7 +197,7 @@ def contact_solve(prob: Problem, idx: np.ndarray, rhs: np.ndarray, total: float,
     variable-coefficient stiffness ``1/(M(q) + c(x))``, interpolated in ``log c`` between
     the kernels for the shifts ``c̄, √(c̄ m_d), m_d`` (one forward and three inverse FFTs).
     ``soft_shifts``: the number of shifts of the soft-law preconditioner on maps
-    (:func:`_soft_law_shifts`; ``None``: ``options.soft_law_shifts_2d``).
+    (:func:`~.precond.soft_law_kernels`; ``None``: ``options.soft_law_shifts_2d``).
     """
     nb = idx.size
     opts = prob.options
@@ -224,7 +205,7 @@ def contact_solve(prob: Problem, idx: np.ndarray, rhs: np.ndarray, total: float,
                                  or nb <= opts.dense_max_set):
         return _solve_dense(prob, idx, rhs, total, c)
     single = (opts.single_precision_2d and len(prob.shape) == 2
-              and prob.size >= _SINGLE_MIN_POINTS)
+              and prob.size >= SINGLE_MIN_POINTS_2D)
     buf = np.zeros(prob.size)
     # single precision: the iterations scatter into a float32 work grid (the transforms'
     # input; the same rounding as converting a float64 grid, without the copy)
@@ -232,7 +213,7 @@ def contact_solve(prob: Problem, idx: np.ndarray, rhs: np.ndarray, total: float,
     m_diag = prob.compliance_diagonal
     op = _restricted_operator(prob, idx, c, buf, single=False)
 
-    soft = _soft_law_shifts(prob, c, np.iscomplexobj(precond), soft_shifts)
+    soft = soft_law_kernels(prob, c, np.iscomplexobj(precond), soft_shifts)
     if soft is not None:
         extra_diag = None   # every row on the variable-coefficient kernel
     if extra_diag is not None and extra_diag.any():
@@ -243,9 +224,9 @@ def contact_solve(prob: Problem, idx: np.ndarray, rhs: np.ndarray, total: float,
         cont = None
         idc = idx
     kernels = [precond]
-    weights = None
+    weights = scale = None
     if soft is not None:
-        kernels, weights = soft
+        kernels, weights, scale = soft
     elif multi_shift and c is not None:
         cc = c if cont is None else c[cont]
         cbar = float(np.median(cc)) if cc.size else m_diag
@@ -255,7 +236,7 @@ def contact_solve(prob: Problem, idx: np.ndarray, rhs: np.ndarray, total: float,
             herm = not np.iscomplexobj(precond)
             kernels = [kn.stiffness_kernel(prob.compliance, sh, hermitian=herm)
                        for sh in shifts]
-            weights = _shift_weights(cc, shifts)
+            weights = shift_weights(cc, shifts)
     if single:
         kernels = [kn.single(k) for k in kernels]
 
@@ -275,6 +256,8 @@ def contact_solve(prob: Problem, idx: np.ndarray, rhs: np.ndarray, total: float,
                 pc += wgt * kn.inverse(spec * kern, prob.shape, split=split,
                                        scratch=True).ravel()[idc]
         work[idc] = 0.0
+        if scale is not None:
+            pc = pc * scale
         if cont is None:
             out = pc
         else:
@@ -312,56 +295,6 @@ def contact_solve(prob: Problem, idx: np.ndarray, rhs: np.ndarray, total: float,
     return LinearSolve(x, float(res.mean()), its, sol.residual)
 
 
-#: Maps: the soft-law preconditioner is used when at least this fraction of the set's rows
-#: has a local compliance ``c`` above the diagonal ``m_d`` of ``M`` (a soft law's rows).
-_SOFT_MIN_FRACTION = 0.1
-#: Its shifts span ``c`` from a quantile of the positive ``c``
-#: (``options.soft_law_low_quantile_2d``, at least ``options.soft_law_lowest_shift_2d × m_d``)
-#: to the largest.
-
-
-def _soft_law_shifts(prob: Problem, c: np.ndarray | None, complex_kernel: bool,
-                     count: int | None = None
-                     ) -> tuple[list[np.ndarray], np.ndarray | None] | None:
-    """Kernels and weights of the soft-law preconditioner on a map, or ``None``.
-
-    A soft law (``c = 1/k`` above ``m_d`` on many rows, e.g. the hybrid's linear law applied to
-    a whole map) leaves those rows to the diagonal ``1/(c + m_d)`` in the default
-    preconditioner, which misses their long-range elastic coupling: at low ``q`` the restricted
-    ``M`` dominates ``c``, at high ``q`` ``c`` does. The variable-coefficient stiffness
-    ``1/(M(q) + c(x))``, interpolated in ``log c`` between ``options.soft_law_shifts_2d``
-    kernels spanning the set's ``c`` (rows below the lowest shift, e.g. hard-wall rows with
-    ``c = 0``, on the lowest), treats both: on the 1024² linear-law case of ``benchmarks/maps.md``
-    25–30 instead of 45–55 GMRES iterations per active-set step and half the iterations of the
-    final Newton steps, at 1.5× the FFTs per iteration (measured with three shifts and the
-    lowest at the 0.02 quantile of ``c``; more shifts saved no iterations, two cost more in the
-    Newton steps then; with the lowest at the 0.2 quantile two do as well as three:
-    ``options.soft_law_shifts_2d``). ``options.soft_law_preconditioner_2d``; maps of at least
-    256² points: the iterations of the default grow with the grid (13–14 per active-set step at
-    128², 21 at 256², 30 at 512², 47 at 1024² on that case), and at 128² the extra FFTs cost
-    more than they save (0.34 against 0.28 s). 1D grids never use it. ``count``: the number of
-    shifts (``None``: ``options.soft_law_shifts_2d``; the hard wall + soft law steps take
-    ``options.wall_soft_shifts_2d``).
-    """
-    opts = prob.options
-    if c is None or len(prob.shape) != 2 or not opts.soft_law_preconditioner_2d \
-            or prob.size < _SINGLE_MIN_POINTS:
-        return None
-    m_diag = prob.compliance_diagonal
-    if np.count_nonzero(c > m_diag) < _SOFT_MIN_FRACTION * c.size:
-        return None
-    positive = c[c > 0]
-    lo = max(float(np.quantile(positive, opts.soft_law_low_quantile_2d)),
-             opts.soft_law_lowest_shift_2d * m_diag)
-    hi = float(c.max())
-    if hi <= 1.01 * lo:   # one local compliance: its kernel alone (no interpolation)
-        return [kn.stiffness_kernel(prob.compliance, hi, hermitian=not complex_kernel)], None
-    shifts = np.geomspace(lo, hi, opts.soft_law_shifts_2d if count is None else count)
-    kernels = [kn.stiffness_kernel(prob.compliance, float(sh),
-                                   hermitian=not complex_kernel) for sh in shifts]
-    return kernels, _shift_weights(c, shifts)
-
-
 def _restricted_operator(prob: Problem, idx: np.ndarray, c: np.ndarray | None,
                          buf: np.ndarray, single: bool) -> Callable[[np.ndarray], np.ndarray]:
     """``v ↦ (M v)_B + c v`` with its mean removed (the subspace ``Σ x = 0``); ``buf`` a zero
@@ -389,11 +322,6 @@ def _set_residual(prob: Problem, idx: np.ndarray, rhs: np.ndarray, c: np.ndarray
     return rhs - mx - (0.0 if c is None else c * x)
 
 
-#: Maps of fewer points keep double precision: an FFT pair in single precision costs 0.8 of
-#: a double one at 64², 0.7 at 128², 0.2 at 256² (measured, one core; the double-precision
-#: transforms leave the cache from 256² on), and the round-off of a single-precision solve
-#: breaks symmetries that small test maps pin (μ = 0 to 1e-12 on an elastic map).
-_SINGLE_MIN_POINTS = 256 * 256
 #: Single-precision GMRES cycles of :func:`_refined_solve_single` reduce the residual by
 #: at most this factor each (float32 FFTs round at ~1e-7 relative).
 _SINGLE_FLOOR = 1e-5

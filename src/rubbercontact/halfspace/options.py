@@ -16,6 +16,12 @@ __all__ = ["SolverOptions"]
 
 #: Grids are coarsened by this factor per level of the multilevel starts.
 COARSE_FACTOR = 4
+#: Maps of fewer points keep double precision in the contact-set solves and the plain
+#: preconditioners: an FFT pair in single precision costs nearly a double one on small
+#: maps (the double-precision transforms leave the cache from 256² on; figures in
+#: ``benchmarks/maps.md``), and the round-off of a single-precision solve breaks
+#: symmetries that small test maps pin (μ = 0 to 1e-12 on an elastic map).
+SINGLE_MIN_POINTS_2D = 256 * 256
 
 
 @dataclass(frozen=True)
@@ -118,6 +124,12 @@ class SolverOptions:
         ``benchmarks/maps.md``: final Newton 113 both; measured with the lowest shift at
         the 0.2 quantile, 0.17 ``m_d`` there: 2814 → 2701 FFT pairs); with it at 4e-5
         ``m_d`` two took 40 % more.
+    soft_law_scaled_2d : bool, default True
+        The soft-law preconditioner as one kernel ``1/(M + s)`` at its lowest shift with
+        each row's output scaled by ``(4 m_d + s)/(4 m_d + c)``
+        (:func:`~rubbercontact.halfspace.precond.scaled_kernel`) instead of the kernels
+        of ``soft_law_shifts_2d`` (or ``wall_soft_shifts_2d``) shifts interpolated in
+        ``log c``: one inverse FFT per application instead of two.
     wall_soft_moving_rtol_2d : float or None, default 5e-2
         Maps: the GMRES tolerance of a hard wall + soft law step while its contact set
         still moves (the first step, and after an update that changed more than 1 % of
@@ -183,6 +195,7 @@ class SolverOptions:
     soft_law_lowest_shift_2d: float = 0.3
     soft_law_shifts_2d: int = 2
     single_krylov_2d: bool = True
+    soft_law_scaled_2d: bool = True
 
     def __post_init__(self) -> None:
         for f in fields(self):
