@@ -20,7 +20,7 @@ from test_pipeline_flash_hybrid import WLF, _config, _run
 
 import rubbercontact as rc
 from rubbercontact.meanfield.flash import FlashOptions
-from rubbercontact.pipeline.flash_meanfield import contact_rise, meanfield_hybrid_flash
+from rubbercontact.pipeline.flash_meanfield_task import contact_rise, meanfield_hybrid_flash
 from rubbercontact.thermal import band_centre_temperature
 
 MODEL = "meanfield-hybrid"

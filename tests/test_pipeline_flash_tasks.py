@@ -1,5 +1,6 @@
 """The half-space and hybrid flash through sweep tasks and the result cache
-(:mod:`rubbercontact.pipeline.flash_task`, :mod:`rubbercontact.pipeline.flash_halfspace`).
+(:mod:`rubbercontact.pipeline.flash_task`, :mod:`rubbercontact.pipeline.flash_halfspace`;
+``meanfield-hybrid``: :mod:`rubbercontact.pipeline.flash_meanfield_task`).
 
 Checked against the run itself, not against numbers it printed: a second run is served
 from the cache (no flash task computed) and is the first run bit for bit; a run killed
@@ -16,6 +17,7 @@ import pytest
 from test_pipeline_flash_hybrid import _config, _linear_law
 
 import rubbercontact as rc
+import rubbercontact.pipeline.flash_meanfield_task as meanfield_task
 import rubbercontact.pipeline.flash_task as flash_task
 from rubbercontact.config import parse_config
 from rubbercontact.pipeline import resolve
@@ -24,7 +26,9 @@ from rubbercontact.pipeline.execute import make_runner
 from rubbercontact.sweep import code_digest, codehash
 from rubbercontact.sweep.tasks import task_key
 
-MODELS = ["vhs", "hybrid", "hybrid-windowed"]
+MODELS = ["vhs", "hybrid", "hybrid-windowed", "meanfield-hybrid"]
+TASKS = {flash_task.FLASH_TASK: (flash_task, "halfspace_flash_task"),
+         meanfield_task.MEANFIELD_FLASH_TASK: (meanfield_task, "meanfield_hybrid_flash_task")}
 VARIABLES = ("friction_flash", "contact_fraction_flash", "flash_temperature",
              "flash_heat_flux", "flash_temperature_hs")
 
@@ -37,15 +41,17 @@ def _no_continuation(monkeypatch):
 
 @pytest.fixture
 def calls(monkeypatch) -> list:
-    """The flash tasks computed (the synchronous executor resolves the task by its path)."""
+    """The flash tasks computed (the synchronous executor resolves a task by its path)."""
     done: list = []
-    task = flash_task.halfspace_flash_task
 
-    def counted(**kwargs):
-        done.append(kwargs["pressure"])
-        return task(**kwargs)
+    def counted(task, name: str):
+        def run(**kwargs):
+            done.append(name)
+            return task(**kwargs)
+        return run
 
-    monkeypatch.setattr(flash_task, "halfspace_flash_task", counted)
+    for module, name in TASKS.values():
+        monkeypatch.setattr(module, name, counted(getattr(module, name), name))
     return done
 
 
@@ -62,6 +68,7 @@ def _same(a, b) -> None:
         assert a.attrs[k] == b.attrs[k], k
 
 
+@pytest.mark.filterwarnings("ignore::rubbercontact.hybrid.LawWarning")   # the law's range
 def test_a_second_run_is_served_from_the_cache_and_a_killed_run_resumes(tmp_path, calls):
     cfg = _cfg(tmp_path, "a")
     law = _linear_law(cfg)
@@ -70,7 +77,8 @@ def test_a_second_run_is_served_from_the_cache_and_a_killed_run_resumes(tmp_path
     assert tasks == len(MODELS)            # one per model at one load, no temperatures
     stages = {s.name.split(" (")[0]: s for s in estimate_cost(resolve(parse_config(cfg))).stages}
     flash = stages["flash temperature: half-space solves"]
-    assert len(flash.tasks) == tasks       # the cost model counts the run's flash tasks
+    # the cost model counts the run's flash tasks
+    assert len(flash.tasks) + stages["flash temperature: meanfield-hybrid curves"].count == tasks
     assert flash.count == stages["half-space solves"].count    # a heated search per solve
     assert first.attrs["flash_halfspace_solves"] > 0
 
@@ -84,7 +92,7 @@ def test_a_second_run_is_served_from_the_cache_and_a_killed_run_resumes(tmp_path
     rounds = []
 
     def kill_at_the_second_round(tasks, *args, **kwargs):
-        if tasks and tasks[0].function == flash_task.FLASH_TASK:
+        if tasks and tasks[0].function in TASKS:
             rounds.append(len(tasks))
             if len(rounds) == 2:
                 raise KeyboardInterrupt("killed")
@@ -93,10 +101,10 @@ def test_a_second_run_is_served_from_the_cache_and_a_killed_run_resumes(tmp_path
     calls.clear()
     with pytest.raises(KeyboardInterrupt):
         rc.pipeline.run(killed, law=law, runner=kill_at_the_second_round, progress=False)
-    assert rounds == [2, 1] and len(calls) == 2      # vhs and hybrid done, the windowed not
+    assert rounds == [3, 1] and len(calls) == 3      # all done but hybrid-windowed
     calls.clear()
     resumed = rc.pipeline.run(killed, law=law, progress=False)
-    assert len(calls) == 1                 # only hybrid-windowed, guided by hybrid's roots
+    assert calls == ["halfspace_flash_task"]        # hybrid-windowed, from hybrid's roots
     _same(first, resumed)
 
 
@@ -112,35 +120,44 @@ def _edited(tmp_path, monkeypatch, module: str) -> None:
     codehash._reset()
 
 
-@pytest.mark.parametrize("module", [
-    "rubbercontact.thermal.kernel",            # the moving heat source (FFT)
-    "rubbercontact.thermal.contact",           # the contact temperature's search
-    "rubbercontact.thermal.sweep",             # the sweep over speeds
-    "rubbercontact.pipeline.flash_scales",     # the high-slope scale's own flash
-    "rubbercontact.pipeline.flash_hybrid",     # the hybrid's solve with the law
-    "rubbercontact.halfspace.solver",          # the half-space solve
+@pytest.mark.parametrize("function, module", [
+    *((flash_task.FLASH_TASK, m) for m in (
+        "rubbercontact.thermal.kernel",            # the moving heat source (FFT)
+        "rubbercontact.thermal.contact",           # the contact temperature's search
+        "rubbercontact.thermal.sweep",             # the sweep over speeds
+        "rubbercontact.pipeline.flash_scales",     # the high-slope scale's own flash
+        "rubbercontact.pipeline.flash_hybrid",     # the hybrid's solve with the law
+        "rubbercontact.halfspace.solver")),        # the half-space solve
+    *((meanfield_task.MEANFIELD_FLASH_TASK, m) for m in (
+        "rubbercontact.meanfield.flash",           # the cascade of spots
+        "rubbercontact.thermal.spots",             # the band source
+        "rubbercontact.pipeline.flash_scales",
+        "rubbercontact.meanfield.solve")),         # the mean-field solve
 ])
-def test_an_edit_of_the_flash_kernel_is_a_new_key(tmp_path, monkeypatch, module):
+def test_an_edit_of_the_flash_kernel_is_a_new_key(tmp_path, monkeypatch, function, module):
     kwargs = {"solves": [], "pressure": 0.3, "velocities": [1.0], "shift": {},
               "thermal": {}, "temperature": None, "search": {}}
-    before = task_key(flash_task.FLASH_TASK, kwargs)
+    before = task_key(function, kwargs)
     _edited(tmp_path, monkeypatch, module)
     try:
-        assert task_key(flash_task.FLASH_TASK, kwargs) != before
+        assert task_key(function, kwargs) != before
     finally:
         monkeypatch.undo()
         codehash._reset()
-    assert task_key(flash_task.FLASH_TASK, kwargs) == before
+    assert task_key(function, kwargs) == before
 
 
+@pytest.mark.parametrize("function", [flash_task.FLASH_TASK,
+                                      meanfield_task.MEANFIELD_FLASH_TASK])
 @pytest.mark.parametrize("module", ["rubbercontact.pipeline.setup",
                                     "rubbercontact.pipeline.flash",
+                                    "rubbercontact.pipeline.flash_meanfield",
                                     "rubbercontact.config"])
-def test_the_run_set_up_is_not_part_of_the_task_code(tmp_path, monkeypatch, module):
-    before = code_digest(flash_task.FLASH_TASK)
+def test_the_run_set_up_is_not_part_of_the_task_code(tmp_path, monkeypatch, function, module):
+    before = code_digest(function)
     _edited(tmp_path, monkeypatch, module)
     try:
-        assert code_digest(flash_task.FLASH_TASK) == before
+        assert code_digest(function) == before
     finally:
         monkeypatch.undo()
         codehash._reset()

@@ -19,7 +19,8 @@ measured. The model, kept simple:
 - mean-field points per model, ``MEANFIELD_POINT_S``;
 - with the flash temperature, per half-space model, run temperature and load one task of
   ``FLASH_SOLVE_FACTOR`` times its isothermal solves; per mean-field model, temperature
-  and load one μ(v), ``MEANFIELD_FLASH_CURVE_S``, in the run's own process;
+  and load one μ(v), ``MEANFIELD_FLASH_CURVE_S`` (``meanfield-hybrid``'s a task,
+  ``meanfield``'s in the run's own process);
 - the wall time: each stage's tasks in rounds of ``workers`` (a law by continuation has one
   task per pressure, so 5 pressures on 2 workers take 3 rounds), plus ``OVERHEAD_S``.
 
@@ -356,15 +357,15 @@ def estimate_cost(setup: RunSetup) -> CostEstimate:
 def flash_stages(setup: RunSetup, loads: int) -> list[Stage]:
     """The flash temperature's solves (:mod:`.flash`): per half-space model, run
     temperature and load one task of its realizations' heated solves, priced as
-    ``FLASH_SOLVE_FACTOR`` times their isothermal solves; the mean-field models' μ(v) in
-    the run's own process, ``MEANFIELD_FLASH_CURVE_S`` each."""
+    ``FLASH_SOLVE_FACTOR`` times their isothermal solves; ``meanfield-hybrid``'s μ(v) one
+    task per run temperature and load, ``meanfield``'s in the run's own process,
+    ``MEANFIELD_FLASH_CURVE_S`` each."""
     from .flash_halfspace import HALFSPACE_FLASH_MODELS
     from .flash_meanfield import MODEL as MEANFIELD_HYBRID
 
     temps = 1 if setup.speeds.temperatures is None else len(setup.speeds.temperatures)
     speeds, n_real = setup.speeds.velocities.size, len(setup.realizations)
     hs = [m for m in setup.models if m in HALFSPACE_FLASH_MODELS]
-    mf = [m for m in setup.models if m in ("meanfield", MEANFIELD_HYBRID)]
     out = []
     if hs:
         each = FLASH_SOLVE_FACTOR * halfspace_solve_seconds(setup.config.halfspace.n)
@@ -372,9 +373,11 @@ def flash_stages(setup: RunSetup, loads: int) -> list[Stage]:
         out.append(Stage(f"flash temperature: half-space solves ({', '.join(hs)}; "
                          f"{tasks} tasks)", tasks * n_real * speeds, each,
                          (n_real * speeds * each,) * tasks))
-    if mf:
-        curves = len(mf) * temps * loads
-        out.append(Stage(f"flash temperature: mean-field curves ({', '.join(mf)}; in the "
-                         f"run's own process)", curves, MEANFIELD_FLASH_CURVE_S,
-                         (curves * MEANFIELD_FLASH_CURVE_S,)))
+    if MEANFIELD_HYBRID in setup.models:
+        out.append(Stage(f"flash temperature: {MEANFIELD_HYBRID} curves (one task each)",
+                         temps * loads, MEANFIELD_FLASH_CURVE_S))
+    if "meanfield" in setup.models:
+        out.append(Stage("flash temperature: meanfield curves (in the run's own process)",
+                         temps * loads, MEANFIELD_FLASH_CURVE_S,
+                         (temps * loads * MEANFIELD_FLASH_CURVE_S,)))
     return out

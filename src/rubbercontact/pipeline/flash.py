@@ -25,11 +25,12 @@ speeds:
 * ``meanfield-hybrid``: per load, at each speed the temperature its own heat gives to its
   finest low-slope spots, ``T0 + T_c`` (the mean-field flash's cascade), for the
   mean-field solve; the law's share at the high-slope spots' ``T0 + T_c + ΔT_hs``, one
-  cascade level further (:mod:`.flash_meanfield`, :mod:`.flash_scales`), in-process.
+  cascade level further (:mod:`.flash_meanfield_task`, :mod:`.flash_scales`).
 
-The half-space models' flash runs as sweep tasks, one per model, run temperature and load,
-through the run's runner and result cache (:mod:`.flash_halfspace`,
-:mod:`.flash_task`): a second run is served from the cache, a killed one resumes.
+All but ``meanfield``'s run as sweep tasks, one per model, run temperature and load,
+through the run's runner and result cache (:mod:`.flash_halfspace`, :mod:`.flash_task`,
+:mod:`.flash_meanfield`, :mod:`.flash_meanfield_task`): a second run is served from the
+cache, a killed one resumes.
 
 ``ΔT_hs``, the high-slope spots' own flash on top of the low-slope contact, is one step of
 the mean-field cascade, solved with the law's friction it heats (:mod:`.flash_scales`;
@@ -64,10 +65,16 @@ from ..materials.spec import load_thermal
 from ..meanfield import PSD, MeanFieldOptions
 from ..meanfield.flash import FlashOptions
 from ..thermal import FlashSearch, ThermalProperties
-from .flash_halfspace import HALFSPACE_FLASH_MODELS, fill_point, plan_points, run_points
+from .flash_halfspace import (
+    HALFSPACE_FLASH_MODELS,
+    fill_point,
+    law_kwargs,
+    plan_points,
+    run_points,
+)
 from .flash_hybrid import HYBRID_FLASH_MODELS, LawReads, law_speeds
 from .flash_meanfield import MODEL as MEANFIELD_HYBRID
-from .flash_meanfield import fill_meanfield, fill_meanfield_hybrid
+from .flash_meanfield import fill_meanfield, fill_meanfield_hybrid, plan_meanfield_points
 from .plan import meanfield_surfaces
 from .setup import RunSetup
 
@@ -195,7 +202,8 @@ def add_flash(ds: xr.Dataset, setup: RunSetup, plan: FlashPlan | None,
     out["flash_scale_temperature"] = np.full((*shape, nodes.size), np.nan)
     acc = Tally([plan.note] if plan.note else [])
     laws, reads = law_speeds(tables), LawReads()
-    points = plan_points(ds, setup, plan, tables)
+    points = (plan_points(ds, setup, plan, laws)
+              + plan_meanfield_points(setup, plan, pressures, laws, law_kwargs(laws)))
     results = run_points(points, plan, runner or _in_process)
     found = {(pt.model, pt.it, pt.ip): (pt, res)
              for pt, res in zip(points, results, strict=True)}
@@ -205,8 +213,7 @@ def add_flash(ds: xr.Dataset, setup: RunSetup, plan: FlashPlan | None,
             for ip, p in enumerate(pressures):
                 at = (models.index(m), it, slice(None), ip)
                 if m == MEANFIELD_HYBRID:
-                    fill_meanfield_hybrid(out, at, setup, float(p), temp, plan, acc, laws,
-                                          reads)
+                    fill_meanfield_hybrid(out, at, *found[(m, it, ip)], acc, reads)
                 elif m in HALFSPACE_FLASH_MODELS:
                     fill_point(out, at, *found[(m, it, ip)], setup, acc, reads)
                 else:

@@ -54,7 +54,7 @@ OUT_ROWS_OF_TASK = ROWS[:len(OUT_ROWS)]
 
 @dataclass(frozen=True)
 class FlashPoint:
-    """One half-space model's flash at one run temperature and load.
+    """One model's flash at one run temperature and load: a sweep task.
 
     Attributes
     ----------
@@ -66,15 +66,18 @@ class FlashPoint:
         The run temperature [°C] (None: the shift law's reference).
     pressure
         ``σ0`` [MPa].
+    kwargs
+        The task's arguments (None: no task, e.g. no speed to search).
+    function
+        The task's import path.
     cold
-        Speeds (mask over the run's) not searched (module docstring).
+        The half-space models: speeds (mask over the run's) not searched (module
+        docstring).
     bound
         The rise bound at each speed [K] (:func:`cold_speeds`).
     isothermal
         The run's isothermal friction and contact fraction, ``(2, velocity,
         realization)``.
-    kwargs
-        The task's arguments (None: no speed to search).
     """
 
     model: str
@@ -82,10 +85,18 @@ class FlashPoint:
     ip: int
     temperature: float | None
     pressure: float
-    cold: np.ndarray
-    bound: np.ndarray
-    isothermal: np.ndarray
     kwargs: dict | None
+    function: str = FLASH_TASK
+    cold: np.ndarray | None = None
+    bound: np.ndarray | None = None
+    isothermal: np.ndarray | None = None
+
+
+def law_kwargs(laws: LawSpeeds | None) -> dict | None:
+    """The law at its tabulated speeds as a task reads it (None without a law)."""
+    if laws is None:
+        return None
+    return {"speeds": laws.speeds.tolist(), "tables": [laws.table(s) for s in laws.speeds]}
 
 
 def solve_kwargs(setup: RunSetup, model: str, realization: int, pressure: float,
@@ -142,14 +153,12 @@ def cold_speeds(v: np.ndarray, iso: np.ndarray, pressure: float, setup: RunSetup
 
 
 def plan_points(ds: xr.Dataset, setup: RunSetup, plan: FlashPlan,
-                tables: dict | None) -> list[FlashPoint]:
+                laws: LawSpeeds | None) -> list[FlashPoint]:
     """Every half-space model's :class:`FlashPoint`, in the run's order (model, temperature,
     load)."""
     temps = setup.speeds.temperatures
     per_t = [None] if temps is None else [float(t) for t in temps]
-    laws = LawSpeeds(tables) if tables else None
-    law_kw = None if laws is None else {"speeds": laws.speeds.tolist(),
-                                        "tables": [laws.table(s) for s in laws.speeds]}
+    law_kw = law_kwargs(laws)
     v = setup.speeds.velocities
     shift = shift_law_from_dict(setup.material.shift).as_dict()
     points = []
@@ -170,7 +179,8 @@ def plan_points(ds: xr.Dataset, setup: RunSetup, plan: FlashPlan,
                     "temperature": temp, "search": asdict(plan.search),
                     "laws": law_kw if m != "vhs" else None, "scale": scale,
                     "guided": plan.guided, "memo": m != "vhs"}
-                points.append(FlashPoint(m, it, ip, temp, float(p), cold, bound, iso, kw))
+                points.append(FlashPoint(m, it, ip, temp, float(p), kw, cold=cold,
+                                          bound=bound, isothermal=iso))
     return points
 
 
@@ -188,8 +198,8 @@ def _scale_kwargs(setup: RunSetup, plan: FlashPlan, m: str, laws) -> dict | None
 
 def run_points(points: list[FlashPoint], plan: FlashPlan, runner) -> list:
     """Each point's task result (an ``xr.Dataset``, a failure record, or None without a
-    task): the first model of each guide group in one round of ``runner``, the second
-    hybrid, started from the first's roots (``plan.guided``), in a second."""
+    task): every model's tasks in one round of ``runner`` but the second hybrid's, which
+    start from the first's roots (``plan.guided``), in a second."""
     from ..sweep import Task
 
     results: list = [None] * len(points)
@@ -208,7 +218,7 @@ def run_points(points: list[FlashPoint], plan: FlashPlan, runner) -> list:
             pt, kw = points[k], points[k].kwargs
             if not _leads(pt, first) and plan.guided:
                 kw = {**kw, "guide": _guide(results[lead.get((pt.it, pt.ip))], kw)}
-            tasks.append(Task(FLASH_TASK, kw, label=_label(pt)))
+            tasks.append(Task(pt.function, kw, label=_label(pt)))
         for k, res in zip(ks, runner(tasks) if tasks else [], strict=True):
             results[k] = res
     return results
@@ -269,7 +279,7 @@ def _fill_hot(rows: np.ndarray, pt: FlashPoint, result, v: np.ndarray, acc: Tall
     flat = set(json.loads(result.attrs["flat"]))
     failures = json.loads(result.attrs["failures"])
     acc.solves += int(result.attrs["solves"])
-    _merge_reads(reads, json.loads(result.attrs["reads"]))
+    merge_reads(reads, json.loads(result.attrs["reads"]))
     values = {k: result[k].values for k in ROWS}
     for ir in range(rows.shape[0]):
         if ir in flat:
@@ -287,7 +297,7 @@ def _fill_hot(rows: np.ndarray, pt: FlashPoint, result, v: np.ndarray, acc: Tall
                 rows[ir, :, k] = [values[n][ir, j] for n in OUT_ROWS_OF_TASK]
 
 
-def _merge_reads(reads: LawReads, task: dict) -> None:
+def merge_reads(reads: LawReads, task: dict) -> None:
     """A task's law reads added to the run's."""
     if task["slowest"] is not None and reads.slowest is None:
         reads.slowest = task["slowest"]
