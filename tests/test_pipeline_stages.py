@@ -104,3 +104,20 @@ def test_the_full_fem_tasks_go_to_the_workers_first_in_their_order():
     slots = [Slot("vhs", 0, 0, None), Slot("fem", 0, 0, 0), Slot("hybrid", 0, 0, None),
              Slot("fem", 0, 0, 1), Slot("meanfield", 0, None, 0)]
     assert execute.longest_first(slots) == [1, 3, 0, 2, 4]
+
+
+def test_the_cli_says_the_whole_runs_estimate_before_its_stages(tmp_path, capsys):
+    from rubbercontact.cli import main
+
+    cfg = tmp_path / "vhs.toml"
+    cfg.write_text('velocities = [10.0]\nrealizations = 1\nmodels = ["vhs"]\n'
+                   '[surface]\npreset = "section3"\n[loads]\npressures = [0.3]\n'
+                   '[halfspace]\nn = 256\n[execution]\nworkers = 1\ncache = "cache"\n'
+                   '[output]\ndirectory = "out"\n')
+    assert main(["run", str(cfg), "--no-figures"]) == 0
+    err = capsys.readouterr().err.splitlines()
+    first = next(k for k, line in enumerate(err) if line.startswith("[models]"))
+    said = [line for line in err[:first] if line.startswith("run: about ")]
+    assert len(said) == 1 and "on 1 worker(s)" in said[0] and "of CPU" in said[0]
+    assert main(["run", str(cfg), "--no-figures", "--quiet", "--overwrite"]) == 0
+    assert "run: about" not in capsys.readouterr().err

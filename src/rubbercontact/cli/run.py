@@ -63,6 +63,10 @@ def command(
         from .roughness import analyse_default
 
         analyse_default(outdir, echo=typer.echo)
+    if not quiet:
+        # the whole run's expected time before the stages' own progress lines, whose ETA
+        # covers only the stage under way
+        typer.echo(run_estimate(cfg), err=True)
 
     with warnings.catch_warnings(record=True) as caught:
         warnings.simplefilter("always")
@@ -131,6 +135,17 @@ def _run_map(cfg, output: Path | None, overwrite: bool, figures: bool) -> None:
 DEFAULT_RUN_NOTE = ("built-in default: a reduced demonstration of the paper's §3 case (coarse "
                     "FEM meshes, the FEM on 1 realization, equal σ0), not the validation: the "
                     "validated eq. 28 errors are in README.md and VALIDATION.md")
+
+
+def run_estimate(cfg) -> str:
+    """The whole run's expected cost, one line (the last ``cost: about`` line of
+    ``--check``; the progress lines that follow time one stage each)."""
+    from ..pipeline import resolve
+    from ..pipeline.cost import estimate_cost
+
+    about = next(line for line in estimate_cost(resolve(cfg)).describe().splitlines()
+                 if line.startswith("cost: about"))
+    return f"run: {about.removeprefix('cost: ')}; `run --check` lists the stages"
 
 
 def _flash_plan(setup) -> list[str]:
