@@ -12,7 +12,7 @@ time on one core; the machine's load is printed with the figures. ``--speeds``: 
 speeds (1e-4 … 1e3 mm/s) on the 512² map, each model in turn, with the total wall time
 (issue 42's target: ≤ 10 min for the three models on the 2-core machine). ``--bem``: the 2D
 half-space solver against its previous path (``PREVIOUS`` options, bitwise the code before
-the 2D speed-ups) and against the defaults of commit e729684 (``ROUND_BEFORE``) in one
+the 2D speed-ups) and against the defaults of commit 61d4682 (``ROUND_BEFORE``) in one
 run, interleaved: viscoelastic solves with tabulated laws on 1024²,
 the hard wall and the Lennard-Jones wall on 512², and the elastic hard wall on 512² against
 Tamaas at equal accuracy (√10 tolerance ladders, then medians of 7 interleaved solves); it
@@ -122,14 +122,14 @@ PREVIOUS = SolverOptions(coarse_min_side_2d=None, single_precision_2d=False, mul
                           split_inverse_fft_2d=False,
                           wall_soft_mixed_newton_2d=False, soft_law_preconditioner_2d=False,
                           newton_forcing_target_2d=False, wall_soft_linear_rtol_2d=1e-3)
-#: The defaults of commit e729684 (the code of the 2026-12-04 04:22 UTC run): scipy's
-#: irfftn for the inverse transforms, a float64 Krylov basis in the single-precision GMRES
-#: cycles, the soft-law preconditioner's lowest shift down to 1e-3 m_d and on three
-#: shifts in the Newton steps (bitwise its results; the response kernel's
-#: once-per-column E(ω) of 020e635 has no switch: the same numbers, 0.5 s less set-up on
-#: 1024² in both columns).
-ROUND_BEFORE = SolverOptions(split_inverse_fft_2d=False, single_krylov_2d=False,
-                             soft_law_lowest_shift_2d=1e-3, soft_law_shifts_2d=3)
+#: The defaults of commit 61d4682 (the start of the 2026-12-06 06:00 UTC round): the
+#: soft-law preconditioner on two shifts interpolated in log c, each step's displacement
+#: by its own transform, the hard wall + soft law stage started from 128² (three changes
+#: of that round without a switch run in both columns: the single-precision GMRES cycles
+#: end on their residual estimate, the unused shifted kernel is not built, a zero off-set
+#: step is not transformed; the same iterates, fewer FFT pairs).
+ROUND_BEFORE = SolverOptions(soft_law_scaled_2d=False, reuse_response_2d=False,
+                             wall_soft_coarse_min_side_2d=None)
 #: The three solvers of ``--bem``, interleaved in one run.
 BEM_VARIANTS = {"previous": PREVIOUS, "before": ROUND_BEFORE, "current": None}
 BEM_HEADING = "## 2D BEM: the previous solver against the current one"
@@ -246,12 +246,11 @@ def bem_markdown(visco: list[dict], elastic: dict | None, info: str) -> str:
     lines = [BEM_HEADING, "", info, "",
              "Viscoelastic (SBR, 10 mm/s, 0.3 MPa, the map of the table above), three solvers "
              "interleaved in one process, medians of `runs`: `previous` the solver before the "
-             "2D speed-ups (`PREVIOUS` options: bitwise its results), `before` the defaults "
-             "of commit e729684 (`ROUND_BEFORE`: scipy's irfftn, a float64 Krylov basis in "
-             "the single-precision GMRES cycles, the soft-law preconditioner's lowest shift "
-             "down to 1e-3 m_d and three shifts in the Newton steps; the response "
-             "kernel's once-per-column "
-             "E(ω), which has no switch, in both), `current` the defaults. CPU time "
+             "2D speed-ups (`PREVIOUS` options), `before` the defaults "
+             "of commit 61d4682 (`ROUND_BEFORE`: the soft-law preconditioner on two shifts "
+             "interpolated in log c, each step's displacement by its own transform, the hard "
+             "wall + soft law stage from 128²; the round's changes without a switch in both), "
+             "`current` the defaults. CPU time "
              "of the process (the machine is shared: the steadier figure), wall time in "
              "brackets; FFT pairs of any precision on all grids (a multi-shift "
              "preconditioner application counts as its number of shifts); Δ the largest "

@@ -53,7 +53,7 @@ from .precond import shift_weights, shifted_preconditioner, soft_law_kernels
 from .problem import Problem
 
 __all__ = ["LinearSolve", "contact_solve", "mixed_precision_solve", "refined_solve",
-           "shifted_preconditioner"]
+           "shifted_preconditioner", "step_displacement"]
 
 
 @dataclass(frozen=True, eq=False)
@@ -70,12 +70,16 @@ class LinearSolve:
         GMRES iterations (1 for a dense solve).
     residual
         Relative residual of GMRES (0 for a dense solve).
+    response
+        ``M x`` on the whole grid (flat, ``x`` zero-extended) [mm], from the last
+        double-precision residual; ``None`` for a dense solve.
     """
 
     x: np.ndarray
     multiplier: float
     iterations: int
     residual: float
+    response: np.ndarray | None = None
 
 
 def _solve_dense(prob: Problem, idx: np.ndarray, rhs: np.ndarray, total: float,
@@ -184,13 +188,16 @@ def _to_hermitian(kernels: list[np.ndarray]) -> None:
 
 
 def contact_solve(prob: Problem, idx: np.ndarray, rhs: np.ndarray, total: float,
-                  precond: np.ndarray, c: np.ndarray | None = None,
+                  precond: np.ndarray | Callable[[], np.ndarray],
+                  c: np.ndarray | None = None,
                   x0: np.ndarray | None = None, rtol: float = 1e-10,
                   extra_diag: np.ndarray | None = None,
                   multi_shift: bool = False, soft_shifts: int | None = None) -> LinearSolve:
     """Solve ``(M x)_B + c x + λ = rhs``, ``Σ x = total`` on the flat indices ``idx``.
 
-    ``precond`` is the stiffness kernel used as preconditioner; ``extra_diag`` (optional, bool
+    ``precond`` is the stiffness kernel used as preconditioner, or a function returning it
+    (called only if it is used: not when the soft-law preconditioner replaces it, whose
+    kernels are complex as it would be); ``extra_diag`` (optional, bool
     on B) marks points preconditioned by the diagonal ``1/(c + m_diag)`` instead.
     ``multi_shift``: when many points have ``c`` well above the kernel's shift ``c̄`` (the
     median of ``c``; a steep law's contact edges), the preconditioner becomes the
@@ -213,7 +220,13 @@ def contact_solve(prob: Problem, idx: np.ndarray, rhs: np.ndarray, total: float,
     m_diag = prob.compliance_diagonal
     op = _restricted_operator(prob, idx, c, buf, single=False)
 
-    soft = soft_law_kernels(prob, c, np.iscomplexobj(precond), soft_shifts)
+    if callable(precond):
+        complex_kernel = np.iscomplexobj(prob.compliance) and opts.complex_preconditioner
+    else:
+        complex_kernel = np.iscomplexobj(precond)
+    soft = soft_law_kernels(prob, c, complex_kernel, soft_shifts)
+    if soft is None and callable(precond):
+        precond = precond()
     if soft is not None:
         extra_diag = None   # every row on the variable-coefficient kernel
     if extra_diag is not None and extra_diag.any():
@@ -233,7 +246,7 @@ def contact_solve(prob: Problem, idx: np.ndarray, rhs: np.ndarray, total: float,
         if cbar < 0.01 * m_diag and \
                 np.count_nonzero(cc > 10.0 * cbar) >= opts.multi_shift_min_points:
             shifts = np.geomspace(cbar, m_diag, 3)
-            herm = not np.iscomplexobj(precond)
+            herm = not complex_kernel
             kernels = [kn.stiffness_kernel(prob.compliance, sh, hermitian=herm)
                        for sh in shifts]
             weights = shift_weights(cc, shifts)
@@ -278,7 +291,7 @@ def contact_solve(prob: Problem, idx: np.ndarray, rhs: np.ndarray, total: float,
         # preconditioner annihilates and GMRES would break down on
         b[:] = 0.0
     y0 = None if x0 is None else (x0 - x0.mean())
-    if np.iscomplexobj(precond):
+    if complex_kernel:
         sol = gmres(op, pre, b, x0=y0, rtol=rtol, maxiter=opts.complex_preconditioner_maxiter)
         its = sol.iterations
         if sol.residual > rtol:
@@ -291,8 +304,8 @@ def contact_solve(prob: Problem, idx: np.ndarray, rhs: np.ndarray, total: float,
         sol = gmres(op, pre, b, x0=y0, rtol=rtol)
         its = sol.iterations
     x = base + sol.x
-    res = _set_residual(prob, idx, rhs, c, x, buf)
-    return LinearSolve(x, float(res.mean()), its, sol.residual)
+    res, mx = _set_residual(prob, idx, rhs, c, x, buf)
+    return LinearSolve(x, float(res.mean()), its, sol.residual, mx)
 
 
 def _restricted_operator(prob: Problem, idx: np.ndarray, c: np.ndarray | None,
@@ -313,13 +326,29 @@ def _restricted_operator(prob: Problem, idx: np.ndarray, c: np.ndarray | None,
     return op
 
 
+def step_displacement(prob: Problem, dsig: np.ndarray, w_free: np.ndarray,
+                      lin: LinearSolve | None) -> np.ndarray:
+    """``M δσ`` [mm] of a step whose ``δσ`` is ``lin.x`` on the set and a fixed part of
+    displacement ``w_free`` off it (flat arrays).
+
+    On maps (``options.reuse_response_2d``) the sum of ``w_free`` and the solve's last
+    double-precision response ``lin.response``: one FFT pair less per step, the same field
+    to round-off; otherwise one transform of ``δσ``.
+    """
+    if lin is not None and lin.response is not None and len(prob.shape) == 2 \
+            and prob.options.reuse_response_2d:
+        return w_free + lin.response
+    return prob.displacement(dsig)
+
+
 def _set_residual(prob: Problem, idx: np.ndarray, rhs: np.ndarray, c: np.ndarray | None,
-                  x: np.ndarray, buf: np.ndarray) -> np.ndarray:
-    """``rhs − (M x)_B − c x`` in double precision (its mean is ``λ``)."""
+                  x: np.ndarray, buf: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
+    """``rhs − (M x)_B − c x`` in double precision (its mean is ``λ``), and ``M x`` on the
+    whole grid."""
     buf[idx] = x
-    mx = prob.apply(prob.compliance, buf)[idx]
+    mx = prob.apply(prob.compliance, buf)
     buf[idx] = 0.0
-    return rhs - mx - (0.0 if c is None else c * x)
+    return rhs - mx[idx] - (0.0 if c is None else c * x), mx
 
 
 #: Single-precision GMRES cycles of :func:`_refined_solve_single` reduce the residual by
@@ -348,11 +377,11 @@ def _refined_solve_single(prob: Problem, idx: np.ndarray, rhs: np.ndarray,
     the residuals, ``work``: a zero float32 grid for the iterations.
     """
     op32 = _restricted_operator(prob, idx, c, work, single=True)
-    res = _set_residual(prob, idx, rhs, c, base, buf)
+    res, mx = _set_residual(prob, idx, rhs, c, base, buf)
     b = res - res.mean()
     bnorm = float(np.linalg.norm(b))
     if bnorm <= 1e-14 * float(np.linalg.norm(rhs)):
-        return LinearSolve(base, float(res.mean()), 0, 0.0)  # the uniform pressure (above)
+        return LinearSolve(base, float(res.mean()), 0, 0.0, mx)  # the uniform pressure (above)
     x, r, exact = base, b, True
     if x0 is not None:
         # warm start: its residual in single precision; the double-precision test follows
@@ -375,9 +404,9 @@ def _refined_solve_single(prob: Problem, idx: np.ndarray, rhs: np.ndarray,
             # below cannot see (measured: λ off by 1e-8 at any tolerance)
             dx = dx - dx.mean()
         x = x + dx
-        res = _set_residual(prob, idx, rhs, c, x, buf)
+        res, mx = _set_residual(prob, idx, rhs, c, x, buf)
         r, exact = res - res.mean(), True
-    return LinearSolve(x, float(res.mean()), its, float(np.linalg.norm(r)) / bnorm)
+    return LinearSolve(x, float(res.mean()), its, float(np.linalg.norm(r)) / bnorm, mx)
 
 
 def _single_cycle(op32, pre, r: np.ndarray, rtol: float, kernels: list[np.ndarray],
@@ -390,9 +419,12 @@ def _single_cycle(op32, pre, r: np.ndarray, rtol: float, kernels: list[np.ndarra
     # float32 cycles to the last Newton steps' 1e-5 stalled, and the Newton with them
     # (512² map of benchmarks/maps.md: 1.76e-8 after 21 steps, tol 1e-8)
     basis = np.float32 if krylov32 and rtol >= _KRYLOV32_MIN_RTOL else np.float64
+    # the refinement computes the residual in double precision after every cycle: GMRES
+    # need not apply the single-precision operator once more for its own
     if budget[0] <= 0:
-        return gmres(op32, pre, r, rtol=rtol, basis_dtype=basis)
-    sol = gmres(op32, pre, r, rtol=rtol, maxiter=budget[0], basis_dtype=basis)
+        return gmres(op32, pre, r, rtol=rtol, basis_dtype=basis, true_residual=False)
+    sol = gmres(op32, pre, r, rtol=rtol, maxiter=budget[0], basis_dtype=basis,
+                true_residual=False)
     budget[0] -= sol.iterations
     if sol.residual > rtol:
         _to_hermitian(kernels)

@@ -32,11 +32,12 @@ the same start (never observed). μ, contact fraction and ``ū`` agree with the 
 from __future__ import annotations
 
 from dataclasses import replace
+from functools import partial
 
 import numpy as np
 from scipy.optimize import brentq
 
-from .contact_set import contact_solve, shifted_preconditioner
+from .contact_set import contact_solve, shifted_preconditioner, step_displacement
 from .inverse import InverseWall
 from .laws import InteractionLaw
 from .problem import Problem, Solution
@@ -185,16 +186,18 @@ def newton_law(prob: Problem, law: InteractionLaw, tol: float, max_iter: int,
         free = ~stiff
         dsig[free] = f[free] - sigma[free]  # k ≈ 0: explicit update
         total = prob.sigma0 * n - sigma.sum() - dsig[free].sum()
+        lin = w_free = None
         if idx.size:
             c = 1.0 / k_inv[idx]
-            w_free = prob.displacement(dsig) if free.any() else np.zeros(n)
+            w_free = prob.displacement(dsig) if np.any(dsig[free]) else np.zeros(n)
             rhs = c * (f[idx] - sigma[idx])
             if inv is not None:
                 # inverse rows: u + δu = g(σ) − c δσ  →  (M + c) δσ + δū = g(σ) − u
                 rhs[inv[idx]] = g_s - u[inv] if rhs_inv is None else rhs_inv
             rhs -= w_free[idx]
             contact = c < m_diag
-            lin = contact_solve(prob, idx, rhs, total, shifted_preconditioner(prob, c, contact),
+            precond = partial(shifted_preconditioner, prob, c, contact)   # if used
+            lin = contact_solve(prob, idx, rhs, total, precond,
                                 c=c, rtol=_newton_rtol(tol, rnorm / snorm, loose,
                                                        inverse is not None, _target(prob)),
                                 extra_diag=~contact, multi_shift=_multi_shift(prob))
@@ -204,7 +207,7 @@ def newton_law(prob: Problem, law: InteractionLaw, tol: float, max_iter: int,
         else:
             dsig[free] += total / n
             dubar = 0.0
-        dw = prob.displacement(dsig)
+        dw = step_displacement(prob, dsig, w_free, lin)
         du = dubar + dw
         # merit: residual weighted to a displacement, W = 1/(k + 1/m_diag), frozen during the
         # line search so the Newton direction is a descent direction of |W r|

@@ -130,6 +130,16 @@ class SolverOptions:
         (:func:`~rubbercontact.halfspace.precond.scaled_kernel`) instead of the kernels
         of ``soft_law_shifts_2d`` (or ``wall_soft_shifts_2d``) shifts interpolated in
         ``log c``: one inverse FFT per application instead of two.
+    wall_soft_coarse_min_side_2d : int or None, default 64
+        Maps: ``coarse_min_side_2d`` for the hard wall + soft law stage (``None``: that
+        one); ``coarse_min_side_2d = None`` still turns every coarse start off. Its
+        coarsest grid solves the soft law alone by Newton from the Winkler pressure, in
+        many steps; on a coarser grid they cost less, and the next grid starts from there.
+    reuse_response_2d : bool, default True
+        Maps: a Newton or hard wall + soft law step's displacement ``M δσ`` is the sum of
+        its off-set part's and the contact-set solve's last response
+        (:func:`~rubbercontact.halfspace.contact_set.step_displacement`) instead of a
+        transform of its own: one double-precision FFT pair less per step.
     wall_soft_moving_rtol_2d : float or None, default 5e-2
         Maps: the GMRES tolerance of a hard wall + soft law step while its contact set
         still moves (the first step, and after an update that changed more than 1 % of
@@ -196,6 +206,8 @@ class SolverOptions:
     soft_law_shifts_2d: int = 2
     single_krylov_2d: bool = True
     soft_law_scaled_2d: bool = True
+    reuse_response_2d: bool = True
+    wall_soft_coarse_min_side_2d: int | None = 64
 
     def __post_init__(self) -> None:
         for f in fields(self):

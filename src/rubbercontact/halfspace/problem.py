@@ -164,16 +164,18 @@ class Problem:
         return Problem(self.shape, self.lengths, self.z, self.slope, compliance, self.sigma0,
                        self.options)
 
-    def can_coarsen(self, min_points: int | None) -> bool:
+    def can_coarsen(self, min_points: int | None, min_side: int | None = None) -> bool:
         """Whether a multilevel start applies: 1D, ``N`` divisible by 4, ``N/4 >= min_points``;
-        a map, both sides even and halved at least ``options.coarse_min_side_2d`` (and
-        ``min_points``, the 1D switch, not ``None``)."""
+        a map, both sides even and halved at least ``min_side`` (``None``:
+        ``options.coarse_min_side_2d``), and ``min_points``, the 1D switch, not ``None``."""
         if min_points is None:
             return False
         if len(self.shape) == 1:
             n = self.size
             return n % COARSE_FACTOR == 0 and n // COARSE_FACTOR >= min_points
         side = self.options.coarse_min_side_2d
+        if side is not None and min_side is not None:
+            side = min_side
         return side is not None and all(n % 2 == 0 and n // 2 >= max(side, MIN_POINTS)
                                         for n in self.shape)
 

@@ -30,11 +30,12 @@ from __future__ import annotations
 
 from collections.abc import Callable
 from dataclasses import dataclass, replace
+from functools import partial
 
 import numpy as np
 
 from ..errors import InputError
-from .contact_set import contact_solve, shifted_preconditioner
+from .contact_set import contact_solve, shifted_preconditioner, step_displacement
 from .hardwall import hard_wall_active_set, winkler_guess
 from .laws import LAW_KINDS, InteractionLaw, SumLaw
 from .newton import newton_from, newton_law, shift_for_law
@@ -118,15 +119,16 @@ def wall_soft_active_set(prob: Problem, soft: InteractionLaw, tol: float, max_it
         c = np.zeros(idx.size)
         kk = k[idx]
         c[~on_a] = 1.0 / kk[~on_a]
-        w_free = prob.displacement(dsig) if free.any() else np.zeros(n)
+        w_free = prob.displacement(dsig) if np.any(dsig[free]) else np.zeros(n)
         rhs = np.where(on_a, -u[idx], c * (f[idx] - sigma[idx])) - w_free[idx]
         contact = c < m_diag
-        lin = contact_solve(prob, idx, rhs, total, shifted_preconditioner(prob, c, contact),
+        precond = partial(shifted_preconditioner, prob, c, contact)   # if used
+        lin = contact_solve(prob, idx, rhs, total, precond,
                             c=c, rtol=_linear_rtol(prob, moving), extra_diag=~contact,
                             soft_shifts=prob.options.wall_soft_shifts_2d)
         lin_its += lin.iterations
         dsig[idx] = lin.x
-        dw = prob.displacement(dsig)
+        dw = step_displacement(prob, dsig, w_free, lin)
         du = lin.multiplier + dw
         wgt = 1.0 / (k + 1.0 / m_diag)
         phi0 = float(np.linalg.norm(merit(sigma, u, f, wgt)))
@@ -196,7 +198,8 @@ def _hard_wall_soft(prob: Problem, soft: InteractionLaw, tol: float,
     On grids that can be coarsened (``options.wall_soft_coarse_min_points``) it starts from
     the interpolated solution on a 4× coarser grid (recursively), as the viscoelastic hard wall.
     """
-    if prob.can_coarsen(prob.options.wall_soft_coarse_min_points):
+    if prob.can_coarsen(prob.options.wall_soft_coarse_min_points,
+                        prob.options.wall_soft_coarse_min_side_2d):
         coarse = prob.coarse()
         out_c = _hard_wall_soft(coarse, soft, _coarse_tol(prob, tol), max_iter)
         prob.matvecs += coarse.matvecs
