@@ -336,5 +336,10 @@ def captif_report(ds, wall, figs, msgs, solves: list[dict] | None = None) -> lis
             out.append(f"| {v:g} | {p:g} | " + " | ".join(cells) + " |")
     if solves:
         out += ["", fem_solves_line(solves)]
+    # the run's own lines on its law cell: crests, quasi-static check, coverage
+    law = [ds.attrs.get("law_cell_note"), ds.attrs.get("law_quasi_static") and
+           f"law cell: {ds.attrs['law_quasi_static']}",
+           ds.attrs.get("law_coverage") and f"law: {ds.attrs['law_coverage']}"]
+    out += [""] + [f"- {line}" for line in law if line]
     out += [""] + [f"![{f.stem}]({repo_path(f)})" for f in figs]
     return out + warning_lines(msgs) + [""]
