@@ -138,7 +138,7 @@ def run(config: RunConfig | dict | str | Path, *, runner: Runner | None = None,
     ds = add_errors(ds)
     ds = spread_over_temperatures(ds, setup.speeds)
     ds, flash_time = add_flash(ds, setup, flash, stage.tables if stage is not None else None,
-                               runner)
+                               named(runner, "flash temperature"))
     if flash is not None:
         timings["flash"] = flash_time
     if stage is not None and not setup.speeds.isothermal:
