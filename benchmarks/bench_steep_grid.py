@@ -38,6 +38,7 @@ from rubbercontact.fem.sweep import sweep_points
 
 ROOT = Path(__file__).resolve().parents[1]
 sys.path.insert(0, str(ROOT))
+from studies._rows import publish  # noqa: E402
 from studies.steep_cells import PRESSURES, ROUNDED, VELOCITIES, cells  # noqa: E402
 
 #: The issue's bar: the 25 points within 10 minutes on one core, median point 20 s.
@@ -136,11 +137,7 @@ def main(argv: list[str] | None = None) -> int:
             f"{os.cpu_count()} cores), {time.strftime('%Y-%m-%d')}, commit {commit}, "
             f"mesh {options.resolved(surface).mesh} (auto, crests rounded to "
             f"{ROUNDED['crest_radius']} mm).", ""]
-    text = "\n".join(head + summary(rows) + [""] + table(rows)) + "\n"
-    print(text)
-    if args.output:
-        args.output.write_text(text)
-    return 0
+    return publish("\n".join(head + summary(rows) + [""] + table(rows)) + "\n", args.output)
 
 
 if __name__ == "__main__":
