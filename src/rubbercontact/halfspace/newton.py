@@ -37,7 +37,7 @@ from functools import partial
 import numpy as np
 from scipy.optimize import brentq
 
-from .contact_set import contact_solve, shifted_preconditioner, step_displacement
+from .contact_set import contact_solve, shifted_preconditioner
 from .inverse import InverseWall
 from .laws import InteractionLaw
 from .problem import Problem, Solution
@@ -186,7 +186,6 @@ def newton_law(prob: Problem, law: InteractionLaw, tol: float, max_iter: int,
         free = ~stiff
         dsig[free] = f[free] - sigma[free]  # k ≈ 0: explicit update
         total = prob.sigma0 * n - sigma.sum() - dsig[free].sum()
-        lin = w_free = None
         if idx.size:
             c = 1.0 / k_inv[idx]
             w_free = prob.displacement(dsig) if np.any(dsig[free]) else np.zeros(n)
@@ -207,7 +206,10 @@ def newton_law(prob: Problem, law: InteractionLaw, tol: float, max_iter: int,
         else:
             dsig[free] += total / n
             dubar = 0.0
-        dw = step_displacement(prob, dsig, w_free, lin)
+        # its own transform, not the solve's response (options.reuse_response_2d): on the
+        # Lennard-Jones wall alone (512² map of benchmarks/maps.md) the summed one, 1e-23 mm
+        # off, turned the first line search from t = 1 to 0.5, and 18 steps followed, not 5
+        dw = prob.displacement(dsig)
         du = dubar + dw
         # merit: residual weighted to a displacement, W = 1/(k + 1/m_diag), frozen during the
         # line search so the Newton direction is a descent direction of |W r|

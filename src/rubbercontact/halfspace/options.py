@@ -136,7 +136,7 @@ class SolverOptions:
         coarsest grid solves the soft law alone by Newton from the Winkler pressure, in
         many steps; on a coarser grid they cost less, and the next grid starts from there.
     reuse_response_2d : bool, default True
-        Maps: a Newton or hard wall + soft law step's displacement ``M δσ`` is the sum of
+        Maps: a hard wall + soft law step's displacement ``M δσ`` is the sum of
         its off-set part's and the contact-set solve's last response
         (:func:`~rubbercontact.halfspace.contact_set.step_displacement`) instead of a
         transform of its own: one double-precision FFT pair less per step.
