@@ -8,6 +8,7 @@ HERE = Path(__file__).resolve().parent
 PARTS = [("halfspace.md", "Half-space (BEM) solver"),
          ("steady.md", "Steady FEM against the time-stepped test"),
          ("fem.md", "FEM sliding test (time-stepped)"),
+         ("steep_grid.md", "The steep real-road law cell: station 1's law grid"),
          ("sweep.md", "Sweeps: Dask executor and result cache"),
          ("speed_sweep.md", "Speed sweeps: friction against speed from an empty cache"),
          ("halfspace_sweep.md", "Half-space part of a 15-speed curve, against a baseline"),

@@ -19,6 +19,7 @@ def main() -> int:
     for script, args in (("bench_halfspace.py", ["--output", str(HERE / "halfspace.md")]),
                          ("bench_steady.py", ["--output", str(HERE / "steady.md")]),
                          ("bench_fem.py", []),
+                         ("bench_steep_grid.py", ["--output", str(HERE / "steep_grid.md")]),
                          ("bench_meanfield.py", ["--output", str(HERE / "meanfield.md")]),
                          ("bench_strips.py", ["--output", str(HERE / "strips.md")])):
         path = HERE / script
