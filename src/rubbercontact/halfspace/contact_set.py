@@ -17,24 +17,25 @@ definite (the sector of the loss angle), so when GMRES with the complex ``K`` ha
 within ``options.complex_preconditioner_maxiter`` iterations it continues with the Hermitian one
 (a safety net, forced in a test).
 
-Steep laws add a ``c`` that varies over orders of magnitude across a contact edge (``c = 1/k``):
-where ``c > m_d`` (the diagonal of ``M``) the point is preconditioned by ``1/(c + m_d)``, and when
-at least ``options.multi_shift_min_points`` points have ``c > 10 c̄`` (resolved edges) the kernel
-becomes the variable-coefficient ``1/(M(q) + c(x))``, interpolated in ``log c`` between the
-shifts ``c̄, √(c̄ m_d), m_d`` (one forward and three inverse FFTs per application); the Newton
-iteration counts then stay flat in N. On maps of at least 256² points a soft law (at least
-a tenth of the rows with ``c > m_d``) is preconditioned by that variable-coefficient stiffness
-over all rows (:func:`~.precond.soft_law_kernels`), instead of
-leaving those rows to the diagonal. In 1D, a contact set of at most
-``options.dense_max_set`` points (or any set on a grid of at most ``options.dense_max_points``
-points) is solved directly: the set's block of the circulant ``M`` is gathered from one column
-and the bordered system factorised (in single precision, refined to double:
-:func:`mixed_precision_solve`). That is exact and, for the few percent of contact of a
-rubber on a road, cheaper than GMRES, each of whose iterations costs two FFTs of the whole
-grid. On maps of at least 256² points (``options.single_precision_2d``) the GMRES iterations
-run with single-precision FFTs and double-precision residuals refine the solution to the
-same tolerance (:func:`_refined_solve_single`; float32 transforms cost 0.2–0.45 of float64
-ones there). Iteration counts and timings are measured in ``benchmarks/halfspace.md`` and
+Steep laws add a ``c`` that varies over orders of magnitude across a contact edge
+(``c = 1/k``): where ``c > m_d`` (the diagonal of ``M``) the point is preconditioned by
+``1/(c + m_d)``, and when at least ``options.multi_shift_min_points`` points have
+``c > 10 c̄`` (resolved edges) the kernel becomes the variable-coefficient
+``1/(M(q) + c(x))``, interpolated in ``log c`` between the shifts ``c̄, √(c̄ m_d), m_d`` (one
+forward and three inverse FFTs per application); the Newton iteration counts then stay flat
+in N. On maps of at least 256² points a soft law (at least a tenth of the rows with
+``c > m_d``) is preconditioned over all rows by one stiffness kernel and a row scaling, or by
+that variable-coefficient stiffness (:func:`~.precond.soft_law_kernels`), instead of leaving
+those rows to the diagonal. In 1D, a contact set of at most ``options.dense_max_set`` points
+(or any set on a grid of at most ``options.dense_max_points`` points) is solved directly: the
+set's block of the circulant ``M`` is gathered from one column and the bordered system
+factorised (in single precision, refined to double: :func:`mixed_precision_solve`). That is
+exact and, for the few percent of contact of a rubber on a road, cheaper than GMRES, each of
+whose iterations costs two FFTs of the whole grid. On maps of at least 256² points
+(``options.single_precision_2d``) the GMRES iterations run with single-precision FFTs and
+double-precision residuals refine the solution to the same tolerance
+(:func:`_refined_solve_single`; float32 transforms cost 0.2–0.45 of float64 ones there).
+Iteration counts and timings are measured in ``benchmarks/halfspace.md`` and
 ``benchmarks/maps.md``.
 """
 

@@ -119,7 +119,8 @@ class SolverOptions:
         a floor of ``m_d`` cost the Newton steps 60 % more iterations.
     soft_law_shifts_2d : int, default 2
         Shifts of the soft-law preconditioner in the other systems on maps (the Newton
-        steps). With the lowest shift at least 0.3 ``m_d`` (``soft_law_lowest_shift_2d``)
+        steps) when ``soft_law_scaled_2d`` is off. With the lowest shift at least 0.3
+        ``m_d`` (``soft_law_lowest_shift_2d``)
         two take as many GMRES iterations as three (the 1024² linear-law case of
         ``benchmarks/maps.md``: final Newton 113 both; measured with the lowest shift at
         the 0.2 quantile, 0.17 ``m_d`` there: 2814 → 2701 FFT pairs); with it at 4e-5
@@ -153,7 +154,8 @@ class SolverOptions:
         iterations). ``None``: ``tol`` on every grid.
     wall_soft_shifts_2d : int, default 2
         Shifts of the soft-law preconditioner (``soft_law_preconditioner_2d``) in the
-        systems of the hard wall + soft law steps on maps; the Newton steps keep three.
+        systems of the hard wall + soft law steps on maps when ``soft_law_scaled_2d`` is
+        off; the Newton steps keep three.
         Those steps' systems, solved to ``wall_soft_linear_rtol_2d``, take as many GMRES
         iterations with two shifts as with three, at three FFTs per iteration instead of
         four (the 1024² linear-law case of ``benchmarks/maps.md``: 162 against 160
