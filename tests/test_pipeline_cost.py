@@ -15,6 +15,7 @@ from rubbercontact.pipeline.cost import (
     FEM_POINT_S,
     FEM_PRESSURE_SLOPE,
     FEM_REFERENCE_MESH,
+    FULL_FEM_FACTOR,
     HALFSPACE_POINTS,
     HALFSPACE_SOLVE_S,
     OVERHEAD_S,
@@ -219,3 +220,16 @@ def test_the_law_tables_cost_each_computed_speed_in_the_runs_own_process():
     assert five.total_s == pytest.approx(5 * LAW_TABLE_SPEED_S)
     # serial: the workers do not share it
     assert five.wall_s(2) == pytest.approx(five.total_s) == five.wall_s(8)
+
+
+def test_a_full_fem_test_is_priced_as_the_full_factor_times_a_point_of_its_mesh_and_load():
+    # the full cell (several waves) needs more Newton iterations than a law point at the
+    # same mesh and load (FULL_FEM_FACTOR); its loads are the config's mean pressure
+    setup = resolve(parse_config(CONFIG))
+    cost = {s.name.split(" (")[0]: s for s in estimate_cost(setup).stages}
+    mesh = setup.config.fem.full_mesh_or_default
+    e_inf = setup.material.equilibrium_modulus
+    mean = float(np.mean(CONFIG["loads"]["pressures"]))
+    assert cost["full FEM tests"].each_s == pytest.approx(
+        FULL_FEM_FACTOR * fem_point_seconds(tuple(mesh), "steady", mean, e_inf), rel=1e-12)
+
