@@ -499,6 +499,32 @@ def test_loose_intermediate_steps_end_at_the_state_of_the_fully_converged_path()
     assert c_loose.newton_iterations < c_plain.newton_iterations
 
 
+def test_step_growth_rule_ends_at_the_state_of_the_doubling_only_path(monkeypatch):
+    # The continuation step grown by 1.5 after a step of 6-8 Newton iterations (the
+    # default) against the earlier rule (doubled after <= 5, else kept): both ends are
+    # converged to the Newton tolerance, so both are the same locally unique state (to
+    # 1e-6 of an element, as the homotopy test above) on a steep cell's press.
+    from rubbercontact.fem import newton_krylov
+    from rubbercontact.fem.newton_krylov import Counters, Endpoint, follow
+    from rubbercontact.fem.options import SteadyOptions
+
+    assert newton_krylov.growth(5) == 2.0 and newton_krylov.growth(8) == 1.5
+    assert newton_krylov.growth(9) == 1.0
+    setup, cell = _cell(mesh=(24, 12))
+    U0 = np.zeros(setup.model.n)
+    ends = {}
+    for rule in (((5, 2.0),), newton_krylov.STEP_GROWTH):
+        monkeypatch.setattr(newton_krylov, "STEP_GROWTH", rule)
+        counters = Counters()
+        ends[rule] = follow(cell, U0, Endpoint(cell.kernel, 0.0),
+                            Endpoint(cell.kernel, setup.load), 0.0, "face", setup.atol,
+                            SteadyOptions(first_step=1.0 / 32), counters, "press")
+        assert ends[rule].converged, counters.tried
+    old, new = ends.values()
+    assert old.steps != new.steps      # the rules took different paths here
+    assert np.max(np.abs(new.U - old.U)) <= 1e-6 * setup.cell.hx
+
+
 def test_gmres_that_stagnates_gives_no_direction_after_one_restart_cycle():
     # A singular operator (half of the unknowns have no stiffness: a floating cell) with a
     # right-hand side mostly in its null space: GMRES cannot get below the null part's
