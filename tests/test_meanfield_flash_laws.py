@@ -14,7 +14,8 @@ tables and no fixed point) and the Lambert-W solution of the small-load, exponen
 
 The published trend (the peak's drop and shift in Persson 2006's model compound) is not
 reproduced: the paper's master curve and surface are not available to this project in
-numbers (issue 40).
+numbers (issue 40). The speeds its abstract states are checked on a typical case in
+tests/test_meanfield_flash_published.py (docs/validation/flash_temperature.md).
 """
 
 from __future__ import annotations

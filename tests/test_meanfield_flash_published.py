@@ -225,5 +225,5 @@ if __name__ == "__main__":      # the table of docs/validation/flash_temperature
         shift = f"> {f['shift_decades']:.2f}" if end else f"{f['shift_decades']:.2f}"
         print(f"| {case['cutoff'] * 1e3:g} | {changed} | {f['onset']:.3g} | "
               f"{f['important']:.3g} | {f['v_peak']:.3g} | {f['mu_peak']:.3f} | "
-              f"{iso} | {f['mu_peak_iso']:.3f} | {f['drop']:.2f} | "
+              f"{iso} | {f['mu_peak_iso']:.3f} | {'< ' if end else ''}{f['drop']:.2f} | "
               f"{shift} | {f['rise_10mms']:.3g} | {f['rise_1ms']:.3g} |")
