@@ -358,6 +358,10 @@ _SINGLE_FLOOR = 1e-5
 #: Single-precision cycles to at least this tolerance keep a float32 Krylov basis
 #: (``options.single_krylov_2d``).
 _KRYLOV32_MIN_RTOL = 1e-3
+#: ``options.tight_krylov32_2d``: a cycle tighter than ``_KRYLOV32_MIN_RTOL`` whose
+#: double-precision residual ends above this many times its target leaves the solve's
+#: further cycles to a float64 basis.
+_KRYLOV32_SHORTFALL = 10.0
 #: Refinement cycles allowed (each a GMRES solve of the current residual).
 _SINGLE_CYCLES = 8
 
@@ -391,12 +395,17 @@ def _refined_solve_single(prob: Problem, idx: np.ndarray, rhs: np.ndarray,
         x, r, exact = base + y0, b - op32(y0), False
     its = 0
     budget = [prob.options.complex_preconditioner_maxiter if np.iscomplexobj(kernels[0]) else 0]
+    opts = prob.options
+    # the float32 basis down to this cycle tolerance (tight cycles only while they deliver)
+    basis_floor = _SINGLE_FLOOR if opts.single_krylov_2d and opts.tight_krylov32_2d \
+        else _KRYLOV32_MIN_RTOL
     for _ in range(_SINGLE_CYCLES):
         rnorm = float(np.linalg.norm(r))
         if exact and rnorm <= rtol * bnorm:
             break
-        sol = _single_cycle(op32, pre, r, max(rtol * bnorm / rnorm, _SINGLE_FLOOR), kernels,
-                            budget, prob.options.single_krylov_2d)
+        cycle_rtol = max(rtol * bnorm / rnorm, _SINGLE_FLOOR)
+        sol = _single_cycle(op32, pre, r, cycle_rtol, kernels, budget, opts.single_krylov_2d,
+                            basis_floor, prob.krylov_workspace())
         its += sol.iterations
         dx = sol.x
         if prob.options.single_krylov_2d:
@@ -407,25 +416,32 @@ def _refined_solve_single(prob: Problem, idx: np.ndarray, rhs: np.ndarray,
         x = x + dx
         res, mx = _set_residual(prob, idx, rhs, c, x, buf)
         r, exact = res - res.mean(), True
+        if cycle_rtol < _KRYLOV32_MIN_RTOL and \
+                float(np.linalg.norm(r)) > _KRYLOV32_SHORTFALL * cycle_rtol * rnorm:
+            basis_floor = _KRYLOV32_MIN_RTOL   # a tight float32 cycle fell short: float64
     return LinearSolve(x, float(res.mean()), its, float(np.linalg.norm(r)) / bnorm, mx)
 
 
 def _single_cycle(op32, pre, r: np.ndarray, rtol: float, kernels: list[np.ndarray],
-                  budget: list[int], krylov32: bool = False):
+                  budget: list[int], krylov32: bool = False,
+                  basis_floor: float = _KRYLOV32_MIN_RTOL, workspace: dict | None = None):
     """One GMRES solve of the correction; with the complex preconditioner while
     ``budget[0]`` iterations remain, then (as the double-precision path) the Hermitian
     part's inverse, converted in place in ``kernels``. ``krylov32``: the Krylov basis in
-    single precision (``options.single_krylov_2d``)."""
-    # only for loose cycles: on the Lennard-Jones wall alone (c over orders of magnitude)
-    # float32 cycles to the last Newton steps' 1e-5 stalled, and the Newton with them
-    # (512² map of benchmarks/maps.md: 1.76e-8 after 21 steps, tol 1e-8)
-    basis = np.float32 if krylov32 and rtol >= _KRYLOV32_MIN_RTOL else np.float64
+    single precision (``options.single_krylov_2d``) for cycles to at least
+    ``basis_floor``; ``workspace``: :func:`~.krylov.gmres`'s."""
+    # by default only for loose cycles: on the Lennard-Jones wall alone (c over orders of
+    # magnitude) float32 cycles to the last Newton steps' 1e-5 stalled, and the Newton with
+    # them (512² map of benchmarks/maps.md: 1.76e-8 after 21 steps, tol 1e-8); tighter ones
+    # with options.tight_krylov32_2d, guarded by the caller
+    basis = np.float32 if krylov32 and rtol >= basis_floor else np.float64
     # the refinement computes the residual in double precision after every cycle: GMRES
     # need not apply the single-precision operator once more for its own
     if budget[0] <= 0:
-        return gmres(op32, pre, r, rtol=rtol, basis_dtype=basis, true_residual=False)
+        return gmres(op32, pre, r, rtol=rtol, basis_dtype=basis, true_residual=False,
+                     workspace=workspace)
     sol = gmres(op32, pre, r, rtol=rtol, maxiter=budget[0], basis_dtype=basis,
-                true_residual=False)
+                true_residual=False, workspace=workspace)
     budget[0] -= sol.iterations
     if sol.residual > rtol:
         _to_hermitian(kernels)

@@ -28,7 +28,7 @@ class GmresResult:
 def gmres(matvec: Callable[[np.ndarray], np.ndarray], psolve: Callable[[np.ndarray], np.ndarray],
           b: np.ndarray, x0: np.ndarray | None = None, rtol: float = 1e-10, restart: int = 40,
           maxiter: int = 400, basis_dtype: type = np.float64,
-          true_residual: bool = True) -> GmresResult:
+          true_residual: bool = True, workspace: dict | None = None) -> GmresResult:
     """Solve ``A x = b`` with right preconditioning ``A P y = b``, ``x = P y``.
 
     ``basis_dtype``: the precision of the Krylov vectors and their orthogonalisation
@@ -39,6 +39,10 @@ def gmres(matvec: Callable[[np.ndarray], np.ndarray], psolve: Callable[[np.ndarr
     ``maxiter``) returns that estimate instead of applying ``A`` once more for ``b − A x``
     (for a caller that computes the residual itself, e.g. in higher precision); a cycle
     that ends at the restart length still restarts from the true residual.
+    ``workspace``: a dict in which the Krylov bases are kept between calls (grown as
+    needed, one per dtype) instead of allocated per cycle: the bases of a 1024² map's
+    contact set are tens of MB, and the pages of a fresh array are new to the process at
+    every allocation (their faults cost ~5 % of a map solve, ``benchmarks/maps.md``).
     """
     bnorm = float(np.linalg.norm(b))
     x = np.zeros_like(b) if x0 is None else x0.copy()
@@ -49,8 +53,7 @@ def gmres(matvec: Callable[[np.ndarray], np.ndarray], psolve: Callable[[np.ndarr
     its = 0
     while beta > rtol * bnorm and its < maxiter:
         m = min(restart, maxiter - its)
-        v = np.empty((m + 1, b.size), basis_dtype)
-        z = np.empty((m, b.size), basis_dtype)
+        v, z = _bases(workspace, m, b.size, basis_dtype)
         h = np.zeros((m + 1, m))
         cs = np.zeros(m)
         sn = np.zeros(m)
@@ -96,3 +99,16 @@ def gmres(matvec: Callable[[np.ndarray], np.ndarray], psolve: Callable[[np.ndarr
         if abs(g[kk]) <= rtol * bnorm and beta > 10 * rtol * bnorm and its >= maxiter:
             break
     return GmresResult(x, its, beta / bnorm)
+
+
+def _bases(workspace: dict | None, m: int, n: int, dtype: type) -> tuple[np.ndarray, np.ndarray]:
+    """Arrays ``(m + 1) × n`` and ``m × n`` of ``dtype`` for the Krylov vectors, views of
+    ``workspace``'s buffers (grown when too small) or fresh ones without a workspace."""
+    if workspace is None:
+        return np.empty((m + 1, n), dtype), np.empty((m, n), dtype)
+    key = np.dtype(dtype).str
+    bufs = workspace.get(key)
+    if bufs is None or bufs[0].size < (m + 1) * n:
+        bufs = (np.empty((m + 1) * n, dtype), np.empty(m * n, dtype))
+        workspace[key] = bufs
+    return bufs[0][:(m + 1) * n].reshape(m + 1, n), bufs[1][:m * n].reshape(m, n)

@@ -171,6 +171,20 @@ class SolverOptions:
         Maps: the GMRES tolerance of a Newton step is at least ``0.01 tol/res`` (a step need
         not solve its linear system further than the tolerance asks); ``False``: at least
         ``tol`` (:func:`~rubbercontact.halfspace.newton._newton_rtol`).
+    tight_krylov32_2d : bool, default True
+        With ``single_krylov_2d``: the single-precision cycles tighter than 1e-3 (the last
+        Newton steps) keep a float32 Krylov basis too, down to the cycles' floor 1e-5;
+        a tight cycle whose double-precision residual ends more than ten times above its
+        target leaves the rest of that solve to a float64 basis. The same iterations and
+        answers to round-off on the maps of ``benchmarks/maps.md`` (the 1024² linear law:
+        786 iterations either way, CGS2 on half the bytes); the Lennard-Jones wall alone,
+        whose Newton once stalled with float32 tight cycles, converges (512²: 3113 against
+        3117 FFT pairs). ``False``: float64 bases below 1e-3.
+    krylov_workspace_2d : bool, default True
+        Maps (the single-precision cycles): the GMRES bases are kept between a problem's
+        contact-set solves instead of allocated per restart cycle (tens of MB on a 1024²
+        contact set, whose pages the system hands out afresh, with a fault per page, at
+        every allocation); bitwise the same iterates.
     single_precision_2d : bool, default True
         Maps of at least 256² points: the GMRES iterations of the contact-set systems apply
         the operator and the
@@ -210,6 +224,8 @@ class SolverOptions:
     soft_law_scaled_2d: bool = True
     reuse_response_2d: bool = True
     wall_soft_coarse_min_side_2d: int | None = 64
+    tight_krylov32_2d: bool = True
+    krylov_workspace_2d: bool = True
 
     def __post_init__(self) -> None:
         for f in fields(self):

@@ -103,6 +103,7 @@ class Problem:
     #: ``(set's index bytes, float32 LU factor)`` of the last dense contact-set solve
     _dense_lu: tuple | None = None
     _compliance32: np.ndarray | None = None
+    _krylov: dict | None = None
 
     @property
     def size(self) -> int:
@@ -130,6 +131,15 @@ class Problem:
         if self._compliance32 is None:
             self._compliance32 = kn.single(self.compliance)
         return self._compliance32
+
+    def krylov_workspace(self) -> dict | None:
+        """The GMRES bases kept between this problem's contact-set solves
+        (``options.krylov_workspace_2d``; see :func:`~.krylov.gmres`), else ``None``."""
+        if not self.options.krylov_workspace_2d:
+            return None
+        if self._krylov is None:
+            self._krylov = {}
+        return self._krylov
 
     def displacement(self, sigma: np.ndarray) -> np.ndarray:
         return self.apply(self.compliance, sigma)
