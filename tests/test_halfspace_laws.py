@@ -313,3 +313,25 @@ def test_wall_soft_coarse_grid_start_gives_the_single_grid_answer():
     assert fast.mean_separation == pytest.approx(ref.mean_separation, rel=1e-7)
     rel = np.linalg.norm(fast.pressure - ref.pressure) / np.linalg.norm(ref.pressure)
     assert rel < 1e-7
+
+
+def test_pressure_and_stiffness_in_one_pass_are_the_separate_ones():
+    # the solver's combined evaluation (one pass of a table) returns bitwise the arrays of
+    # pressure() and stiffness(), for a table, the wall, their sum and a protocol law
+    table = TabulatedLaw([0.001, 0.002, 0.004, 0.006], [5.0, 2.0, 0.4, 0.0])
+    wall = LennardJonesRepulsion(length=1e-4, reference_pressure=1.0)
+
+    class Linear:
+        kind = "soft"
+
+        def pressure(self, u):
+            return np.maximum(1.0 - u, 0.0)
+
+        def stiffness(self, u):
+            return (u < 1.0).astype(float)
+
+    u = np.linspace(-0.001, 0.008, 401)
+    for law in (table, wall, wall + table, wall + Linear()):
+        f, k = law.pressure_and_stiffness(u)
+        np.testing.assert_array_equal(f, law.pressure(u))
+        np.testing.assert_array_equal(k, law.stiffness(u))

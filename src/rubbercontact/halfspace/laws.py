@@ -62,6 +62,11 @@ class InteractionLaw:
         """Stiffness ``k(u) = −dσ/du`` [MPa/mm], >= 0."""
         raise NotImplementedError
 
+    def pressure_and_stiffness(self, u: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
+        """``(σ(u), k(u))`` [MPa, MPa/mm], the same arrays as :meth:`pressure` and
+        :meth:`stiffness`; a law that computes both in one pass overrides it."""
+        return self.pressure(u), self.stiffness(u)
+
     def contact_fraction(self, u: np.ndarray) -> np.ndarray | None:
         """Local contact fraction ``α(u)`` in [0, 1], or ``None`` when the law carries none."""
         return None
@@ -496,6 +501,9 @@ class TabulatedLaw(InteractionLaw):
     def stiffness(self, u):
         return self._eval(u)[1]
 
+    def pressure_and_stiffness(self, u):
+        return self._eval(u)   # the stiffness is computed with the pressure anyway
+
     def _companion(self, name: str, u) -> np.ndarray | None:
         interp = self._cache["companions"][name]
         if interp is None:
@@ -554,6 +562,10 @@ class SumLaw(InteractionLaw):
 
     def stiffness(self, u):
         return sum(law.stiffness(u) for law in self.laws)
+
+    def pressure_and_stiffness(self, u):
+        pairs = [law.pressure_and_stiffness(u) for law in self.laws]
+        return sum(p for p, _ in pairs), sum(k for _, k in pairs)
 
     def _first(self, name: str, u):
         for law in self.laws:

@@ -52,10 +52,16 @@ def shift_for_law(law: InteractionLaw, u: np.ndarray, sigma0: float,
     ``guess``: a shift near the root (the start state's ``ū``): the bracket then grows from
     ``guess ± 1e-6 span`` by factors of 8 (one pass per growth) instead of starting from
     ``±span``, ``span`` the range of ``u``; Brent's method then starts close to the root.
-    The tolerance is the same either way (``1e-12 span``).
+    The tolerance is the same either way (``1e-12 span``). Each shift is evaluated once
+    (a pass of the law over the grid; the bracket's ends were passed again to Brent's
+    method: 18 passes instead of 14 on the 1024² map of ``benchmarks/maps.md``).
     """
+    seen: dict[float, float] = {}
+
     def mean_p(s):
-        return float(np.mean(law.pressure(u + s)))
+        if s not in seen:
+            seen[s] = float(np.mean(law.pressure(u + s)))
+        return seen[s]
     span = float(np.ptp(u)) + 1e-12
     if guess is not None and np.isfinite(guess):
         lo, hi = _bracket_near(mean_p, sigma0, float(guess), span)
@@ -143,7 +149,7 @@ def newton_law(prob: Problem, law: InteractionLaw, tol: float, max_iter: int,
     m_diag = prob.compliance_diagonal
     w = prob.displacement(sigma)
     u = ubar + w - z
-    f = law.pressure(u)
+    f, k_next = law.pressure_and_stiffness(u)
     r = sigma - f
     snorm = float(np.linalg.norm(sigma)) or 1.0
     rnorm = float(np.linalg.norm(r))
@@ -155,7 +161,8 @@ def newton_law(prob: Problem, law: InteractionLaw, tol: float, max_iter: int,
         if rnorm <= tol * snorm:
             it -= 1
             break
-        k = law.stiffness(u)
+        # the stiffness at u, from the pass that computed f there (the full step's) if any
+        k = law.stiffness(u) if k_next is None else k_next
         rhs_inv = None
         if inverse is not None and soft is not None:
             # the first step from the hard wall + soft law state: its pressure is close to
@@ -219,7 +226,10 @@ def newton_law(prob: Problem, law: InteractionLaw, tol: float, max_iter: int,
         for _ in range(40):
             s_t = sigma + t * dsig
             u_t = u + t * du
-            f_t = law.pressure(u_t)
+            if t == 1.0:
+                f_t, k_next = law.pressure_and_stiffness(u_t)
+            else:
+                f_t, k_next = law.pressure(u_t), None
             r_t = s_t - f_t
             if float(np.linalg.norm(wgt * r_t)) <= (1 - 1e-4 * t) * phi0:
                 break

@@ -95,8 +95,7 @@ def wall_soft_active_set(prob: Problem, soft: InteractionLaw, tol: float, max_it
     # the soft law is only evaluated at u >= 0: penetration is the wall's business (it
     # enters the set at the next update); its steep extrapolation below u = 0 would
     # otherwise dominate the line-search merit
-    f = soft.pressure(np.maximum(u, 0.0))
-    k = soft.stiffness(np.maximum(u, 0.0))
+    f, k = soft.pressure_and_stiffness(np.maximum(u, 0.0))
     if active is None:
         active = (sigma - f) / (k + 1.0 / m_diag) > u
     lin_its = 0
@@ -133,16 +132,21 @@ def wall_soft_active_set(prob: Problem, soft: InteractionLaw, tol: float, max_it
         wgt = 1.0 / (k + 1.0 / m_diag)
         phi0 = float(np.linalg.norm(merit(sigma, u, f, wgt)))
         t = 1.0
+        k_t = None
         for _ in range(30):
             s_t = sigma + t * dsig
             u_t = u + t * du
-            f_t = soft.pressure(np.maximum(u_t, 0.0))
+            if t == 1.0:   # the full step, nearly always taken: its stiffness in the same pass
+                f_t, k_t = soft.pressure_and_stiffness(np.maximum(u_t, 0.0))
+            else:
+                f_t, k_t = soft.pressure(np.maximum(u_t, 0.0)), None
             phi = float(np.linalg.norm(merit(s_t, u_t, f_t, wgt)))
             if phi <= (1 - 1e-4 * t) * phi0 or phi <= 1e-3 * tol * zscale:
                 break
             t *= 0.5
         sigma, ubar, u, w = s_t, ubar + t * lin.multiplier, u_t, w + t * dw
-        k_t = soft.stiffness(np.maximum(u, 0.0))
+        if k_t is None:
+            k_t = soft.stiffness(np.maximum(u, 0.0))
         wgt = 1.0 / (k_t + 1.0 / m_diag)
         lam = sigma - f_t
         res = float(np.linalg.norm(merit(sigma, u, f_t, wgt))) / zscale / np.sqrt(n)
