@@ -393,8 +393,9 @@ def test_scaled_soft_law_preconditioner_keeps_the_answer(rough, monkeypatch):
 @pytest.mark.slow
 def test_float32_krylov_basis_keeps_the_lennard_jones_wall_converging():
     # the 512² map of benchmarks/maps.md, Lennard-Jones wall alone: with float32 bases in
-    # the tight cycles too its last Newton steps stalled at 1.76e-8 (tol 1e-8); the loose
-    # cycles alone in float32 converge, to the float64 basis's answer
+    # the tight cycles too its last Newton steps once stalled at 1.76e-8 (tol 1e-8); the
+    # defaults (float32 in the tight cycles as well, guarded by the float64 residual:
+    # options.tight_krylov32_2d) converge, to the float64 basis's answer
     hm = self_affine_map((512, 512), 2.0, 0.8, rms_gradient=0.5, seed=1)
     args = (hm.heights, hm.lengths, MAT, 10.0, 0.3)
     new = solve_sliding(*args, law=LennardJonesRepulsion())
@@ -431,10 +432,11 @@ def test_step_displacement_is_the_transform_of_the_step(rough):
 def test_response_reuse_and_the_coarser_wall_soft_start_keep_the_answer(rough):
     # the steps' displacements from the solves' responses, the hard wall + soft law stage
     # started from 64² (256 -> 128 -> 64) instead of 128², against both off; measured at
-    # 256²: μ, A, ū within 3e-16, pressure 7e-15, 729 against 839 FFT pairs
+    # 256²: μ, A, ū within 3e-16, pressure 7e-15, 729 against 839 FFT pairs (every level
+    # run: wall_soft_skip_level_2d off, tested in test_halfspace_maps_krylov)
     args = (rough.heights, rough.lengths, MAT, 10.0, 0.3)
     law = LennardJonesRepulsion() + _cell_like()
-    new = solve_sliding(*args, law=law)
+    new = solve_sliding(*args, law=law, options=SolverOptions(wall_soft_skip_level_2d=False))
     old = solve_sliding(*args, law=law, options=SolverOptions(
         reuse_response_2d=False, wall_soft_coarse_min_side_2d=None))
     assert new.info["coarse_levels"] == 2 and old.info["coarse_levels"] == 1

@@ -185,6 +185,11 @@ class SolverOptions:
         contact-set solves instead of allocated per restart cycle (tens of MB on a 1024²
         contact set, whose pages the system hands out afresh, with a fault per page, at
         every allocation); bitwise the same iterates.
+    wall_soft_skip_level_2d : bool, default True
+        Maps: the finest grid of the hard wall + soft law stage starts from the grid 4×
+        coarser per axis (the level between is skipped; coarser levels keep halving):
+        that level's updates cost more than the one finest update they spare
+        (:func:`~rubbercontact.halfspace.walls._start_grid`). ``False``: every level.
     single_precision_2d : bool, default True
         Maps of at least 256² points: the GMRES iterations of the contact-set systems apply
         the operator and the
@@ -226,6 +231,7 @@ class SolverOptions:
     wall_soft_coarse_min_side_2d: int | None = 64
     tight_krylov32_2d: bool = True
     krylov_workspace_2d: bool = True
+    wall_soft_skip_level_2d: bool = True
 
     def __post_init__(self) -> None:
         for f in fields(self):

@@ -196,20 +196,27 @@ def _with_soft_start(act: Solution, soft_newton_iterations: int, linear_iteratio
 
 
 def _hard_wall_soft(prob: Problem, soft: InteractionLaw, tol: float,
-                    max_iter: int) -> Solution | None:
+                    max_iter: int, finest: bool = True) -> Solution | None:
     """Hard wall + soft law (steps 1–3 of the active-set path); ``None`` on failure.
 
     On grids that can be coarsened (``options.wall_soft_coarse_min_points``) it starts from
     the interpolated solution on a 4× coarser grid (recursively), as the viscoelastic hard wall.
+    On a map the ``finest`` grid starts from the grid 4× coarser per axis where that one
+    exists (``options.wall_soft_skip_level_2d``; :func:`_start_grid`).
     """
-    if prob.can_coarsen(prob.options.wall_soft_coarse_min_points,
-                        prob.options.wall_soft_coarse_min_side_2d):
-        coarse = prob.coarse()
-        out_c = _hard_wall_soft(coarse, soft, _coarse_tol(prob, tol), max_iter)
+    min_points = prob.options.wall_soft_coarse_min_points
+    min_side = prob.options.wall_soft_coarse_min_side_2d
+    if prob.can_coarsen(min_points, min_side):
+        levels = _start_grid(prob, finest)
+        coarse = levels[-1]
+        out_c = _hard_wall_soft(coarse, soft, _coarse_tol(prob, tol), max_iter, finest=False)
         prob.matvecs += coarse.matvecs
         if out_c is not None:
-            act = wall_soft_active_set(prob, soft, tol, min(max_iter, 100),
-                                       prob.refine(out_c.sigma), out_c.ubar)
+            start = out_c.sigma
+            for level in reversed([prob, *levels[:-1]]):
+                start = level.refine(start)
+            act = wall_soft_active_set(prob, soft, tol, min(max_iter, 100), start,
+                                       out_c.ubar)
             if act.converged:
                 return _with_soft_start(act, out_c.info.get("soft_newton_iterations", 0),
                                         out_c.info["linear_iterations"],
@@ -234,6 +241,25 @@ def _hard_wall_soft(prob: Problem, soft: InteractionLaw, tol: float,
     if not act.converged:
         return None
     return _with_soft_start(act, so.iterations, so.info["linear_iterations"])
+
+
+def _start_grid(prob: Problem, finest: bool) -> list[Problem]:
+    """The coarser grids from ``prob`` down to the one its hard wall + soft law starts
+    from: ``[prob.coarse()]``, or on the ``finest`` grid of a map with
+    ``options.wall_soft_skip_level_2d`` ``[prob.coarse(), prob.coarse().coarse()]`` when
+    the first can itself be coarsened: the finest grid then starts from the grid 4× coarser
+    per axis. On the 1024² linear-law case of ``benchmarks/maps.md`` the 512² stage took 8
+    updates (0.5 s) to spare the 1024² grid one (0.25–0.35 s); from 256² it takes 10
+    instead of 9. Coarser levels keep halving: skipping there too (1024² from 256² from
+    64²) cost the 1024² grid more updates than it saved.
+    """
+    coarse = prob.coarse()
+    opts = prob.options
+    if finest and len(prob.shape) == 2 and opts.wall_soft_skip_level_2d \
+            and coarse.can_coarsen(opts.wall_soft_coarse_min_points,
+                                   opts.wall_soft_coarse_min_side_2d):
+        return [coarse, coarse.coarse()]
+    return [coarse]
 
 
 def _active_set_path(prob: Problem, law: InteractionLaw, soft: InteractionLaw, tol: float,
