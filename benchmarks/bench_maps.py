@@ -124,8 +124,11 @@ PREVIOUS = SolverOptions(coarse_min_side_2d=None, single_precision_2d=False, mul
                           newton_forcing_target_2d=False, wall_soft_linear_rtol_2d=1e-3)
 #: The defaults of commit 1fba2c7 (the start of the 2026-12-06 09:00 UTC round): the
 #: single-precision cycles tighter than 1e-3 on a float64 Krylov basis, the GMRES bases
-#: allocated per restart cycle.
-ROUND_BEFORE = SolverOptions(tight_krylov32_2d=False, krylov_workspace_2d=False)
+#: allocated per restart cycle, the finest hard wall + soft law started from the next
+#: grid (the round's change without a switch, a law's pressure and stiffness in one pass,
+#: runs in both columns: bitwise the same answers).
+ROUND_BEFORE = SolverOptions(tight_krylov32_2d=False, krylov_workspace_2d=False,
+                             wall_soft_skip_level_2d=False)
 #: The three solvers of ``--bem``, interleaved in one run.
 BEM_VARIANTS = {"previous": PREVIOUS, "before": ROUND_BEFORE, "current": None}
 BEM_HEADING = "## 2D BEM: the previous solver against the current one"
@@ -248,7 +251,9 @@ def bem_markdown(visco: list[dict], elastic: dict | None, info: str) -> str:
              "`previous` the solver before the "
              "2D speed-ups (`PREVIOUS` options), `before` the defaults "
              "of commit 1fba2c7 (`ROUND_BEFORE`: the single-precision cycles tighter than "
-             "1e-3 on a float64 Krylov basis, the GMRES bases allocated per restart cycle), "
+             "1e-3 on a float64 Krylov basis, the GMRES bases allocated per restart cycle, "
+             "the finest hard wall + soft law started from the next grid; the round's "
+             "change without a switch, a law's pressure and stiffness in one pass, in both), "
              "`current` the defaults. CPU time "
              "of the process (the machine is shared: the steadier figure), wall time in "
              "brackets; FFT pairs of any precision on all grids (a multi-shift "
@@ -315,6 +320,9 @@ def run_bem(args) -> int:
     visco = bem_viscoelastic(args.repeat, args.quick)
     elastic = bem_elastic(128 if args.quick else 512, repeat=3 if args.quick else 7)
     print(elastic, flush=True)
+    load = os.getloadavg()
+    info = info[:-2] + (f"; {load[0]:.1f} / {load[1]:.1f} / {load[2]:.1f} at the end, "
+                        f"{datetime.datetime.now(datetime.UTC):%H:%M} UTC).")
     text = bem_markdown(visco, elastic, info)
     print(text)
     if args.output:
