@@ -356,7 +356,7 @@ def _set_residual(prob: Problem, idx: np.ndarray, rhs: np.ndarray, c: np.ndarray
 #: at most this factor each (float32 FFTs round at ~1e-7 relative).
 _SINGLE_FLOOR = 1e-5
 #: Single-precision cycles to at least this tolerance keep a float32 Krylov basis
-#: (``options.single_krylov_2d``).
+#: (``options.single_krylov_2d``; the tighter ones too with ``options.tight_krylov32_2d``).
 _KRYLOV32_MIN_RTOL = 1e-3
 #: ``options.tight_krylov32_2d``: a cycle tighter than ``_KRYLOV32_MIN_RTOL`` whose
 #: double-precision residual ends above this many times its target leaves the solve's

@@ -94,8 +94,9 @@ class SolverOptions:
         With ``single_precision_2d``: the GMRES iterations of a single-precision cycle to a
         tolerance of at least 1e-3 (the loose steps) keep their Krylov basis in float32 as
         well (their operator rounds to float32; the double-precision residual still ends
-        the solve); ``False``: a float64 basis. Tighter cycles keep float64: on the
-        Lennard-Jones wall alone float32 ones stalled the last Newton steps.
+        the solve); ``False``: a float64 basis. Tighter cycles keep float64 unless
+        ``tight_krylov32_2d`` (on the Lennard-Jones wall alone unguarded float32 ones once
+        stalled the last Newton steps).
     soft_law_preconditioner_2d : bool, default True
         Maps of at least 256² points: contact-set systems of which at least a tenth of the
         rows carry a local compliance ``c`` above the diagonal of ``M`` (a soft law) are
