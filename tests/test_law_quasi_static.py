@@ -103,3 +103,42 @@ def test_a_run_carries_the_check_on_its_law_pressures_and_warns_once_where_it_fa
     assert "-0.3 at 0.1 MPa" in str(seen[0].message)
     np.testing.assert_array_equal(out["law_quasi_static_friction"], [-0.3, 0.0, 0.001])
     assert out.attrs["law_quasi_static"].endswith("2 of 3 law pressures pass; 0.1 MPa fail")
+
+
+def test_the_law_and_its_check_go_to_the_workers_in_one_sweep(monkeypatch):
+    """The check's points share the law's sweep (they fill the workers while the law's
+    longest speed path runs) and each part reads back exactly its own answers."""
+    from rubbercontact.config import parse_config
+    from rubbercontact.pipeline import lawstage
+
+    cfg = parse_config({"surface": {"preset": "section3"}, "velocities": [10.0, 50.0],
+                        "loads": {"pressures": [0.2]},
+                        "law": {"pressures": [0.1, 0.5]}, "fem": {"mesh": [24, 12]}})
+    calls, seen = [], {}
+
+    def runner(tasks):
+        calls.append([t.label for t in tasks])
+        return [f"answer {t.label}" for t in tasks]
+
+    def law_from(answers):
+        seen["law"] = answers
+        return "raw"
+
+    monkeypatch.setattr(lawstage, "_stage", lambda law, *a, quasi_static=None, **k:
+                        (law, quasi_static))
+    real = lawstage.law_batch
+
+    def spy(*a, **k):
+        batch = real(*a, **k)
+        return lawstage.Batch(batch.tasks, law_from)
+
+    monkeypatch.setattr(lawstage, "law_batch", spy)
+    raw, qs = lawstage.build_law(cfg, rc.roughness.high_slope_wave(), rc.materials.sbr(),
+                                 np.array([0.2]), runner)
+    assert len(calls) == 1
+    law_labels = [c for c in calls[0] if "quasi-static" not in c]
+    qs_labels = [c for c in calls[0] if "quasi-static" in c]
+    assert calls[0] == law_labels + qs_labels and len(qs_labels) == 2
+    assert raw == "raw" and seen["law"] == [f"answer {c}" for c in law_labels]
+    # the check read its own two answers (strings: failures, in the pressures' order)
+    assert qs.pressure.tolist() == [0.1, 0.5] and qs.stopped.all()

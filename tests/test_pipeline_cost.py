@@ -65,6 +65,21 @@ def test_the_law_cells_quasi_static_check_is_one_point_per_law_pressure():
     off = resolve(parse_config({**CONFIG, "law": {**CONFIG["law"],
                                                   "quasi_static_check": False}}))
     assert not [s for s in estimate_cost(off).stages if "quasi-static" in s.name]
+    assert check.same_sweep           # sent with the law's own points (lawstage.build_law)
+
+
+def test_stages_sent_in_one_sweep_share_the_workers():
+    """Two tasks of 5 s after one of 10 s: in one sweep the second worker takes both while
+    the first runs the long one (10 s); in two sweeps the short ones wait (15 s)."""
+    from rubbercontact.pipeline.cost import CostEstimate
+
+    long = Stage("long", 1, 10.0)
+    short = Stage("short", 2, 5.0)
+    apart = CostEstimate((long, short), workers=2)
+    together = CostEstimate((long, Stage("short", 2, 5.0, same_sweep=True)), workers=2)
+    assert apart.wall_s - OVERHEAD_S == pytest.approx(15.0)
+    assert together.wall_s - OVERHEAD_S == pytest.approx(10.0)
+    assert together.cpu_s == apart.cpu_s
 
 
 def test_prices_scale_from_the_measured_points():
@@ -169,7 +184,8 @@ def test_wall_time_shares_the_solves_between_the_workers():
     setup = resolve(parse_config(CONFIG))
     est = estimate_cost(setup)
     assert est.compute_s == pytest.approx(sum(s.count * s.each_s for s in est.stages))
-    assert est.wall_s == pytest.approx(sum(s.wall_s(2) for s in est.stages) + OVERHEAD_S)
+    # stages sent in one sweep share the workers: never slower than one after the other
+    assert est.wall_s <= sum(s.wall_s(2) for s in est.stages) + OVERHEAD_S
     assert est.compute_s / 2 + OVERHEAD_S <= est.wall_s <= est.compute_s + OVERHEAD_S
     assert est.cpu_s == pytest.approx(est.compute_s + OVERHEAD_S)
     text = est.describe()

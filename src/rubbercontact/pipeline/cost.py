@@ -186,28 +186,40 @@ class Stage:
         Expected cost of each task [s], in the order the run hands them to the workers,
         when the solves run as fewer tasks than solves (a law by continuation: one task per
         pressure); empty: one task per solve.
+    same_sweep
+        Its tasks go to the workers in the previous stage's sweep, after that stage's.
     """
 
     name: str
     count: int
     each_s: float
     tasks: tuple[float, ...] = ()
+    same_sweep: bool = False
 
     @property
     def total_s(self) -> float:
         """Expected CPU time of the stage [s]."""
         return self.count * self.each_s
 
+    @property
+    def task_s(self) -> tuple[float, ...]:
+        """Expected cost of each of its tasks [s], in the order they are sent."""
+        return self.tasks or (self.each_s,) * self.count
+
     def wall_s(self, workers: int) -> float:
         """Expected wall time of the stage on ``workers`` [s]: each task to the first free
         worker, in order."""
-        tasks = self.tasks or (self.each_s,) * self.count
-        if not tasks:
-            return 0.0
-        free = [0.0] * max(1, min(workers, len(tasks)))
-        for t in tasks:
-            free[free.index(min(free))] += t
-        return max(free)
+        return _scheduled(self.task_s, workers)
+
+
+def _scheduled(tasks: tuple[float, ...], workers: int) -> float:
+    """Wall time [s] of ``tasks`` [s] on ``workers``, each to the first free one in order."""
+    if not tasks:
+        return 0.0
+    free = [0.0] * max(1, min(workers, len(tasks)))
+    for t in tasks:
+        free[free.index(min(free))] += t
+    return max(free)
 
 
 @dataclass(frozen=True)
@@ -235,9 +247,15 @@ class CostEstimate:
 
     @property
     def wall_s(self) -> float:
-        """Expected wall time [s]: each stage's tasks in rounds of the workers, plus
-        set-up."""
-        return sum(s.wall_s(self.workers) for s in self.stages) + OVERHEAD_S
+        """Expected wall time [s]: each sweep's tasks (a stage's, or several stages' sent
+        together) in rounds of the workers, plus set-up."""
+        sweeps: list[tuple[float, ...]] = []
+        for s in self.stages:
+            if s.same_sweep and sweeps:
+                sweeps[-1] += s.task_s
+            else:
+                sweeps.append(s.task_s)
+        return sum(_scheduled(t, self.workers) for t in sweeps) + OVERHEAD_S
 
     @property
     def cpu_s(self) -> float:
@@ -314,21 +332,21 @@ def estimate_cost(setup: RunSetup) -> CostEstimate:
         each = np.array([law_point_seconds(setup, p) for p in pressures])
         how = " (auto)" if cfg.fem.mesh == "auto" else ""
         if uses_continuation(cfg, speeds):
-            # one task per pressure, highest first (lawstage.fem_points)
+            # one task per pressure, highest first (lawstage.law_batch)
             how = f"{how}, by continuation in speed"
-            paths = tuple(float(t) * CONTINUATION_FACTOR * speeds for t in each[::-1])
-            stages.append(Stage(f"law FEM points ({mesh[0]} x {mesh[1]}{how})",
-                                len(pressures) * speeds, sum(paths) / (len(paths) * speeds),
-                                paths))
+            tasks = tuple(float(t) * CONTINUATION_FACTOR * speeds for t in each[::-1])
         else:
-            stages.append(Stage(f"law FEM points ({mesh[0]} x {mesh[1]}{how})",
-                                len(pressures) * speeds, float(each.mean()),
-                                tuple(np.tile(each, speeds).tolist())))
+            tasks = tuple(np.tile(each, speeds).tolist())
+        stages.append(Stage(f"law FEM points ({mesh[0]} x {mesh[1]}{how})",
+                            len(pressures) * speeds, sum(tasks) / (len(pressures) * speeds),
+                            tasks))
         if cfg.law.quasi_static_check:
-            # one fresh point per law pressure at the quasi-static speed (.lawcheck)
+            # one fresh point per law pressure at the quasi-static speed (.lawcheck), sent
+            # in the law's sweep after its own tasks
             qs = QS_POINT_FACTOR * each
             stages.append(Stage("law cell quasi-static check (one point per law pressure)",
-                                len(pressures), float(qs.mean()), tuple(qs[::-1].tolist())))
+                                len(pressures), float(qs.mean()), tuple(qs[::-1].tolist()),
+                                same_sweep=True))
         notes.append("the law's extension, if the local pressures go past its FEM points "
                      "(FEM points and the law models once more, the run says so)")
         above = pressures[pressures > e_inf]

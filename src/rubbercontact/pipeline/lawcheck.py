@@ -20,6 +20,7 @@ import xarray as xr
 from ..fem.options import FemOptions
 from ..materials import GeneralizedMaxwell
 from ..roughness import SineSeries
+from .batch import Batch
 from .setup import task_material
 
 #: |μ_hs| at the quasi-static speed within which a law pressure passes (issue 41's
@@ -145,8 +146,15 @@ def check_quasi_static(options: FemOptions, hs0: SineSeries, material: Generaliz
     """Run the quasi-static point of the law cell at each of ``pressures`` [MPa]: one
     cached sweep task each, on the law's FEM ``options`` without the transient fallback
     (``runner(tasks)`` returns the tasks' results in order)."""
+    batch = quasi_static_batch(options, hs0, material, pressures)
+    return batch.collect(runner(batch.tasks))
+
+
+def quasi_static_batch(options: FemOptions, hs0: SineSeries, material: GeneralizedMaxwell,
+                       pressures) -> Batch:
+    """The tasks of :func:`check_quasi_static` and how to read the check from them, to run
+    in one sweep with the law's own points (:func:`.batch.run_batches`)."""
     from ..sweep import Task
-    from .assemble import failure_message
 
     p = np.sort(np.asarray(pressures, float))
     speed = quasi_static_speed(material, float(hs0.wavelengths.min()))
@@ -156,12 +164,18 @@ def check_quasi_static(options: FemOptions, hs0: SineSeries, material: Generaliz
                           "velocity": speed, "mean_pressure": float(pj), "options": opts},
                   label=f"law cell quasi-static p={pj:g} MPa")
              for pj in p]
-    friction, status = [], []
-    for res in runner(tasks):
-        why = failure_message(res)
-        friction.append(float(res["friction"]) if why is None else np.nan)
-        status.append("ok" if why is None else why)
-    return QuasiStaticCheck(speed, p, np.array(friction), tuple(status))
+
+    def collect(answers: list) -> QuasiStaticCheck:
+        from .assemble import failure_message
+
+        friction, status = [], []
+        for res in answers:
+            why = failure_message(res)
+            friction.append(float(res["friction"]) if why is None else np.nan)
+            status.append("ok" if why is None else why)
+        return QuasiStaticCheck(speed, p, np.array(friction), tuple(status))
+
+    return Batch(tasks, collect)
 
 
 def add_quasi_static(ds: xr.Dataset, check: QuasiStaticCheck) -> xr.Dataset:

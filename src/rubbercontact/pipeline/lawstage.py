@@ -26,7 +26,8 @@ from ..hybrid.law import (
 )
 from ..materials import GeneralizedMaxwell
 from ..roughness import SineSeries
-from .lawcheck import QuasiStaticCheck, check_quasi_static
+from .batch import Batch, run_batches
+from .lawcheck import QuasiStaticCheck, quasi_static_batch
 from .lawcover import NOT_NEEDED, merge_points
 from .setup import task_material
 
@@ -115,9 +116,13 @@ def build_law(cfg: RunConfig, hs0: SineSeries, material: GeneralizedMaxwell,
         return _stage(law, None, hs0, material, speeds, cfg, raw=None, progress=progress)
     t0 = time.perf_counter()
     at = law_pressures(cfg, pressures)
-    raw = fem_law(cfg, hs0, material, at, speeds, runner)
-    qs = (check_quasi_static(_fem_options(cfg, material), hs0, material, at, runner)
-          if cfg.law.quasi_static_check else None)
+    v = np.unique(speeds)
+    # the quasi-static points in the same sweep: they fill the workers while the law's
+    # longest speed path runs
+    raw, qs = run_batches(runner, [
+        law_batch(cfg, hs0, material, {float(p): v.tolist() for p in at}, v,
+                  continuation=uses_continuation(cfg, v.size)),
+        _quasi_static(cfg, hs0, material, at, None)])
     return _stage(raw, time.perf_counter() - t0, hs0, material, speeds, cfg, raw=raw,
                   progress=progress, quasi_static=qs)
 
@@ -135,16 +140,14 @@ def extend_law(stage: LawStage, points: dict[float, list[float]], cfg: RunConfig
     # no transient fallback for an added point: where the steady solve (and its barrier
     # rescue) stops, the extension stops and says so, instead of minutes of a transient test
     # at a load past the cell's steady range (impaled on speed_sweep.toml's cell at 3.16 MPa)
-    new = fem_points(cfg, hs0, material, points, v, runner,
-                     continuation=uses_continuation(cfg, np.unique(speeds).size),
-                     fallback=False)
+    new, qs = run_batches(runner, [
+        law_batch(cfg, hs0, material, points, v,
+                  continuation=uses_continuation(cfg, np.unique(speeds).size),
+                  fallback=False),
+        _quasi_static(cfg, hs0, material, list(points), stage.quasi_static)])
     raw = merge_points(stage.raw, new)
-    qs = stage.quasi_static
-    if qs is not None:
-        fresh = [p for p in points if p not in set(qs.pressure.tolist())]
-        if fresh:
-            qs = qs.merged(check_quasi_static(_fem_options(cfg, material), hs0, material,
-                                              fresh, runner))
+    if stage.quasi_static is not None:
+        qs = stage.quasi_static if qs is None else stage.quasi_static.merged(qs)
     fem_time = (stage.fem_time or 0.0) + time.perf_counter() - t0
     return _stage(raw, fem_time, hs0, material, speeds, cfg, raw=raw, progress=progress,
                   before=stage, quasi_static=qs)
@@ -196,14 +199,36 @@ def fem_law(cfg: RunConfig, hs0: SineSeries, material: GeneralizedMaxwell,
                       continuation=uses_continuation(cfg, v.size))
 
 
+def _quasi_static(cfg: RunConfig, hs0: SineSeries, material: GeneralizedMaxwell,
+                  pressures, before: QuasiStaticCheck | None) -> Batch | None:
+    """The quasi-static check's batch at ``pressures`` not checked ``before`` (None: the
+    check is off, or nothing new to check)."""
+    if not cfg.law.quasi_static_check:
+        return None
+    done = set() if before is None else set(before.pressure.tolist())
+    fresh = [float(p) for p in pressures if float(p) not in done]
+    return (quasi_static_batch(_fem_options(cfg, material), hs0, material, fresh)
+            if fresh else None)
+
+
 def fem_points(cfg: RunConfig, hs0: SineSeries, material: GeneralizedMaxwell,
                points: dict[float, list[float]], speeds: np.ndarray, runner,
                continuation: bool, fallback: bool = True) -> xr.Dataset:
     """The raw law table of the FEM points ``{pressure [MPa]: speeds [mm/s]}`` on the
-    grid ``speeds × pressures``; the grid points not asked for have the status
-    :data:`~.lawcover.NOT_NEEDED`. ``continuation``: one task per pressure following its
-    speeds (steady solver), else one task per point; ``fallback=False``: no transient test
-    where the steady solve stops (``steady.fallback``)."""
+    grid ``speeds × pressures``, run by ``runner`` (:func:`law_batch`)."""
+    batch = law_batch(cfg, hs0, material, points, speeds, continuation, fallback)
+    return batch.collect(runner(batch.tasks))
+
+
+def law_batch(cfg: RunConfig, hs0: SineSeries, material: GeneralizedMaxwell,
+              points: dict[float, list[float]], speeds: np.ndarray,
+              continuation: bool, fallback: bool = True) -> Batch:
+    """The tasks of the FEM points ``{pressure [MPa]: speeds [mm/s]}`` and how to read
+    the raw law table on the grid ``speeds × pressures`` from them; the grid points not
+    asked for have the status :data:`~.lawcover.NOT_NEEDED`. ``continuation``: one task
+    per pressure following its speeds (steady solver), else one task per point;
+    ``fallback=False``: no transient test where the steady solve stops
+    (``steady.fallback``)."""
     from ..sweep import Task
 
     options = _fem_options(cfg, material)                       # fails here, not per task
@@ -225,9 +250,12 @@ def fem_points(cfg: RunConfig, hs0: SineSeries, material: GeneralizedMaxwell,
                       label=f"law FEM p={p[j]:g} MPa, {int(wanted[:, j].sum())} speeds by "
                             f"continuation")
                  for j in order]
-        for j, path in zip(order, runner(tasks), strict=True):
-            for k, i in enumerate(np.flatnonzero(wanted[:, j])):
-                results[i, j] = _path_point(path, k)
+
+        def collect(answers: list) -> xr.Dataset:
+            for j, path in zip(order, answers, strict=True):
+                for k, i in enumerate(np.flatnonzero(wanted[:, j])):
+                    results[i, j] = _path_point(path, k)
+            return assemble_law(results.ravel().tolist(), p, v, hs0, material, opts)
     else:
         at = np.argwhere(wanted)
         tasks = [Task(function="rubbercontact.hybrid.tasks:fem_task",
@@ -236,9 +264,12 @@ def fem_points(cfg: RunConfig, hs0: SineSeries, material: GeneralizedMaxwell,
                               "options": opts},
                       label=f"law FEM v={v[i]:g} mm/s p={p[j]:g} MPa")
                  for i, j in at]
-        for (i, j), res in zip(at, runner(tasks), strict=True):
-            results[i, j] = res
-    return assemble_law(results.ravel().tolist(), p, v, hs0, material, opts)
+
+        def collect(answers: list) -> xr.Dataset:
+            for (i, j), res in zip(at, answers, strict=True):
+                results[i, j] = res
+            return assemble_law(results.ravel().tolist(), p, v, hs0, material, opts)
+    return Batch(tasks, collect)
 
 
 def _fem_options(cfg: RunConfig, material: GeneralizedMaxwell):
