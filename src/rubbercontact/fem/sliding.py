@@ -266,8 +266,14 @@ def _barrier_rescue(surface, material, p, v, rescue: FemOptions, why: str
                     ) -> SlidingTestResult:
     """The steady solve again with the barrier contact (raises :class:`SteadyFailure`)."""
     wall0 = time.perf_counter()
-    # afresh: a penalty state penetrates the surface, where the barrier is infinite
-    sol = solve_steady(surface, material, p, v, rescue, None)
+    try:
+        # afresh: a penalty state penetrates the surface, where the barrier is infinite
+        sol = solve_steady(surface, material, p, v, rescue, None)
+    except SteadyFailure as fail:
+        # its budget is what the penalty solve left of steady.newton_budget: say so
+        left = rescue.steady.newton_budget
+        raise SteadyFailure(f"with the {left} Newton iterations left, {fail.reason}",
+                            fail.tried, fail.counters) from None
     res = steady_result(sol, surface, material, p, v, rescue, time.perf_counter() - wall0)
     return replace(res, stats=replace(res.stats, solver="steady (barrier rescue)",
                                       tried=(f"{why}; barrier rescue",)
