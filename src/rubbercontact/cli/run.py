@@ -50,13 +50,9 @@ def command(
     if cfg.surface.map is not None:
         _run_map(cfg, output, overwrite, figures and cfg.output.figures)
         return
-    outdir = output if output is not None else cfg.output.directory
-    outdir = Path(outdir)
-    results_path = outdir / "results.nc"
     overwrite = overwrite or cfg.output.overwrite
-    if results_path.exists() and not overwrite:
-        raise FileExistsError(f"{results_path} exists; pass --overwrite to replace it")
-    outdir.mkdir(parents=True, exist_ok=True)
+    results_path = _results_path(cfg, output, overwrite)
+    outdir = results_path.parent
 
     if config is None:
         # The built-in default also shows the roughness analysis of paper §2.2/§4.1.
@@ -68,15 +64,8 @@ def command(
         # covers only the stage under way
         typer.echo(run_estimate(cfg), err=True)
 
-    with warnings.catch_warnings(record=True) as caught:
-        warnings.simplefilter("always")
-        # Dask's local cluster leaves sockets to the garbage collector: not the user's concern
-        warnings.simplefilter("ignore", ResourceWarning)
-        ds = run(cfg, progress=False if quiet else "auto", retry_failed=retry_failed)
-    # one line per distinct warning: the law's reading warns once per speed and solve
-    said = Counter(str(w.message) for w in caught)
-    for message, times in said.items():
-        typer.echo(f"warning: {message}" + (f" (×{times})" if times > 1 else ""), err=True)
+    ds = _saying_warnings(run, cfg, progress=False if quiet else "auto",
+                          retry_failed=retry_failed)
     write_results(ds, results_path, overwrite=overwrite)
     typer.echo(summary_table(ds))
     if config is None:
@@ -99,24 +88,39 @@ def command(
         raise typer.Exit(1)
 
 
+def _results_path(cfg, output: Path | None, overwrite: bool) -> Path:
+    """The run's ``results.nc`` in its output directory (created); refused if it exists
+    and ``overwrite`` is off."""
+    outdir = Path(output if output is not None else cfg.output.directory)
+    path = outdir / "results.nc"
+    if path.exists() and not overwrite:
+        raise FileExistsError(f"{path} exists; pass --overwrite to replace it")
+    outdir.mkdir(parents=True, exist_ok=True)
+    return path
+
+
+def _saying_warnings(solve, *args, **kwargs):
+    """``solve(*args, **kwargs)``, its warnings printed after it, one line per distinct
+    message with its count (the law's reading warns once per speed and solve)."""
+    with warnings.catch_warnings(record=True) as caught:
+        warnings.simplefilter("always")
+        # Dask's local cluster leaves sockets to the garbage collector: not the user's concern
+        warnings.simplefilter("ignore", ResourceWarning)
+        out = solve(*args, **kwargs)
+    for message, times in Counter(str(w.message) for w in caught).items():
+        typer.echo(f"warning: {message}" + (f" (×{times})" if times > 1 else ""), err=True)
+    return out
+
+
 def _run_map(cfg, output: Path | None, overwrite: bool, figures: bool) -> None:
     """A run on ``[surface.map]`` (:mod:`rubbercontact.pipeline.maprun`): results and table."""
     from ..io.results import write_results
     from ..pipeline.maprun import map_summary, run_map
 
-    outdir = Path(output if output is not None else cfg.output.directory)
-    results_path = outdir / "results.nc"
     overwrite = overwrite or cfg.output.overwrite
-    if results_path.exists() and not overwrite:
-        raise FileExistsError(f"{results_path} exists; pass --overwrite to replace it")
-    outdir.mkdir(parents=True, exist_ok=True)
-    with warnings.catch_warnings(record=True) as caught:
-        warnings.simplefilter("always")
-        ds = run_map(cfg)
-    # one line per distinct warning: the law's reading warns once per speed and solve
-    said = Counter(str(w.message) for w in caught)
-    for message, times in said.items():
-        typer.echo(f"warning: {message}" + (f" (×{times})" if times > 1 else ""), err=True)
+    results_path = _results_path(cfg, output, overwrite)
+    outdir = results_path.parent
+    ds = _saying_warnings(run_map, cfg)
     write_results(ds, results_path, overwrite=overwrite)
     typer.echo(map_summary(ds))
     typer.echo(f"results: {results_path}")
