@@ -91,3 +91,33 @@ def test_fem_options_of_the_penalty_contact_keep_their_arguments():
     barrier = FemOptions(contact="barrier")
     assert FemOptions.from_dict(barrier.to_dict()) == barrier
     assert FemOptions.from_dict(FemOptions().to_dict()) == FemOptions()
+
+
+def test_an_accepted_fem_solve_is_seeded_under_the_key_of_todays_options(tmp_path):
+    # An entry written before an option existed (steady.newton_budget) must be found by
+    # the task today's code makes, which carries that option at its default: the
+    # equivalence check recomputed it with the default (fem_task reads its options through
+    # FemOptions.from_dict). Without it every accepted FEM solve was unreachable.
+    from rubbercontact.fem import FemOptions
+    from rubbercontact.sweep.codehash import code_digest
+
+    fn = "rubbercontact.hybrid.tasks:fem_task"
+    today = FemOptions(mesh=(120, 23), grading=8.0).to_dict()
+    old = json.loads(json.dumps(today))
+    del old["steady"]["newton_budget"]
+    args = {"surface": {"wavelengths": [0.0625], "amplitudes": [0.01867], "phases": [0.0]},
+            "material": {"preset": "sbr"}, "velocity": 10.0, "mean_pressure": 1.0}
+    stored = Task(fn, {**args, "options": old})
+    ref = ResultCache(tmp_path / "reference")
+    ref.store(stored.key(code="old"), stored, xr.Dataset({"friction": ((), 0.5)}), 1.0)
+    (path,) = ref.directory.glob("sweep-v1/*/*.nc")
+    with netCDF4.Dataset(path, "a") as nc:
+        nc.setncattr("rc_cache_code", "old")
+    (ref.directory / "equivalence.json").write_text(json.dumps({"accepted": [
+        {"function": fn, "stored": "old", "current": code_digest(fn), "why": "test",
+         "checked": "test"}]}))
+    assert eq.seed(ref.directory, tmp_path / "work", ("fem_task",)).copied == 1
+    work = ResultCache(tmp_path / "work")
+    hit = work.load(Task(fn, {**args, "options": today}).key())
+    assert hit is not None and hit.result.attrs["code_accepted_from"] == "old"
+    assert float(hit.result["friction"]) == 0.5

@@ -10,7 +10,8 @@ accepted as answers of code B*, with the reason and the check that supports it. 
 recomputes a sample of the entries with code B and compares every variable
 (:func:`check_sample`); :func:`accept` refuses to record an equivalence the check does not
 support. :func:`seed` copies a reference cache into a working cache, re-keying the accepted
-entries under the current code's keys; an entry of any other code is not copied.
+entries under the current code's keys (their arguments as the current code writes them,
+:data:`CURRENT_ARGUMENTS`); an entry of any other code is not copied.
 """
 
 from __future__ import annotations
@@ -97,6 +98,27 @@ def _task_of(ds: xr.Dataset) -> Task:
     return Task(desc["function"], plain(desc["kwargs"]), desc.get("label", ""))
 
 
+def _fem_arguments(kwargs: dict) -> dict:
+    from ..fem import FemOptions
+
+    return {**kwargs, "options": FemOptions.from_dict(kwargs.get("options") or {}).to_dict()}
+
+
+#: The arguments of a stored task as the current code writes them, by function: an option
+#: added since the entry was written takes its default, one the current code leaves out at
+#: its default is left out. That is the task :func:`check_sample` recomputes (the task reads
+#: its options the same way), so an accepted entry is seeded under the key of the task the
+#: current code makes; without it, a new option in the key (``steady.newton_budget``) made
+#: every accepted FEM solve unreachable and ``make validate`` recomputed them all.
+CURRENT_ARGUMENTS = {"rubbercontact.hybrid.tasks:fem_task": _fem_arguments}
+
+
+def _current_task(task: Task) -> Task:
+    rewrite = CURRENT_ARGUMENTS.get(task.function)
+    return task if rewrite is None else Task(task.function, rewrite(dict(task.kwargs)),
+                                             task.label)
+
+
 def seed(reference: Path, cache: Path, functions: tuple[str, ...]) -> CopyReport:
     """Copy the entries of ``functions`` from ``reference`` that ``cache`` lacks: those of
     the current code as they are, those of an accepted code under the current key (with
@@ -115,7 +137,7 @@ def seed(reference: Path, cache: Path, functions: tuple[str, ...]) -> CopyReport
         if entry is None:
             corrupt += 1
             continue
-        task = _task_of(xr.load_dataset(path))
+        task = _current_task(_task_of(xr.load_dataset(path)))
         key = task.key(code=now)
         if dest.load(key) is not None:
             present += 1
