@@ -113,7 +113,8 @@ def steady_sentence(ds, solves: list[dict] | None) -> str:
     if solves:
         full = [s for s in solves if s["kind"] == "full"]
         law = [s for s in solves if s["kind"] == "law"]
-        bad = not_steady(solves)
+        # the law cell's quasi-static check points are said by the run's law lines
+        bad = not_steady(full + law)
         newton = [s["newton_iterations"] for s in full if s["solver"] == "steady"]
         cases = "; ".join(f"{s['label']} ({s['solver']}: {s['status']})" for s in bad)
         text += " " + _s3(

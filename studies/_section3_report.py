@@ -42,6 +42,7 @@ from ._validation_report import (
     cost_lines,
     interval_text,
     joined,
+    law_lines,
     percent_off,
     repo_path,
     warning_lines,
@@ -213,5 +214,7 @@ def section3_report(ds, wall, figs, msgs, level, phase_data: dict | None = None,
     if "pressure" in ds.dims and "hybrid" in models:
         out += _linear_law_table(ds)
     out += ["", *cost_lines(ds), ""]
+    if law_lines(ds):
+        out += [*law_lines(ds), ""]
     out += [f"![{f.stem}]({repo_path(f)})" for f in figs]
     return out + warning_lines(msgs) + [""]

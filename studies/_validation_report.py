@@ -67,10 +67,25 @@ def cost_lines(ds) -> list[str]:
     return lines
 
 
+#: Label of the law cell's quasi-static check points (pipeline/lawcheck.py): FEM solves
+#: of the law cell, but not law points.
+QUASI_STATIC_LABEL = "law cell quasi-static"
+
+
+def law_lines(ds) -> list[str]:
+    """The run's own lines on its law cell (crests, quasi-static check, coverage), as
+    Markdown list items."""
+    law = [ds.attrs.get("law_cell_note"), ds.attrs.get("law_quasi_static") and
+           f"law cell: {ds.attrs['law_quasi_static']}",
+           ds.attrs.get("law_coverage") and f"law: {ds.attrs['law_coverage']}"]
+    return [f"- {line}" for line in law if line]
+
+
 def fem_solves(cache: Path, keys) -> list[dict]:
     """Every FEM solve among the task ``keys`` found in the result cache ``cache``.
 
-    One dict per solve: ``label`` (the task's), ``kind`` ("law" or "full"), ``solver``
+    One dict per solve: ``label`` (the task's), ``kind`` ("law", "check": the law cell's
+    quasi-static point, or "full"), ``solver``
     ("steady", "transient", "transient (fallback)", or "failed"), ``status``, ``wall_time``
     [s] and ``newton_iterations`` (a speed-path task gives one entry per speed).
     """
@@ -87,7 +102,8 @@ def fem_solves(cache: Path, keys) -> list[dict]:
         if "fem_" not in str(attrs.get("rc_cache_task", "")):
             continue
         label = str(attrs.get("rc_cache_label", key[:12]))
-        kind = "law" if label.startswith("law") else "full"
+        kind = ("check" if label.startswith(QUASI_STATIC_LABEL) else
+                "law" if label.startswith("law") else "full")
         if entry.status != "ok":
             out.append({"label": label, "kind": kind, "solver": "failed",
                         "status": entry.result.message, "wall_time": entry.wall_time,
@@ -307,6 +323,8 @@ def asphalt_report(ds, wall, figs, msgs, level, short_share,
     out += ["", *cost_lines(ds), ""]
     if solves:
         out += [fem_solves_line(solves), ""]
+    if law_lines(ds):
+        out += [*law_lines(ds), ""]
     out += [f"![{f.stem}]({repo_path(f)})" for f in figs]
     return out + warning_lines(msgs) + [""]
 
@@ -336,10 +354,6 @@ def captif_report(ds, wall, figs, msgs, solves: list[dict] | None = None) -> lis
             out.append(f"| {v:g} | {p:g} | " + " | ".join(cells) + " |")
     if solves:
         out += ["", fem_solves_line(solves)]
-    # the run's own lines on its law cell: crests, quasi-static check, coverage
-    law = [ds.attrs.get("law_cell_note"), ds.attrs.get("law_quasi_static") and
-           f"law cell: {ds.attrs['law_quasi_static']}",
-           ds.attrs.get("law_coverage") and f"law: {ds.attrs['law_coverage']}"]
-    out += [""] + [f"- {line}" for line in law if line]
+    out += ["", *law_lines(ds)]
     out += [""] + [f"![{f.stem}]({repo_path(f)})" for f in figs]
     return out + warning_lines(msgs) + [""]

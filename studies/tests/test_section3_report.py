@@ -40,3 +40,29 @@ def test_phase_curves_figure_is_drawn(tmp_path, phase_data):
 def test_beta_text_names_the_fitted_beta_of_an_offset_fem(phase_data):
     # FEM = VHS − offset: the fitted β is exactly 1 (tests/test_validate_phase.py)
     assert "β = 1.00 (0.000 → 0.000)" in s3report.beta_text({10.0: phase_data()})
+
+
+def test_the_law_cells_quasi_static_points_are_not_counted_as_law_points():
+    # The law cell's quasi-static check (pipeline/lawcheck.py) solves the law cell at
+    # 1e-3 mm/s; a point it cannot solve is a failed check, said by the run's law line
+    # ("6 of 9 law pressures pass; 4, 6, 8 MPa did not converge"), not a law point that
+    # "fell back to the transient test".
+    import xarray as xr
+
+    from studies._section3_prose import steady_sentence
+    from studies._validation_report import law_lines
+
+    def solve(label, kind, solver="steady"):
+        return {"label": label, "kind": kind, "solver": solver, "status": "ok",
+                "wall_time": 1.0, "newton_iterations": 10.0}
+
+    solves = [solve("fem v=10 r=0 p=0.35", "full"), solve("law p=1", "law"),
+              solve("law cell quasi-static p=1 MPa", "check"),
+              solve("law cell quasi-static p=8 MPa", "check", "failed")]
+    text = steady_sentence(xr.Dataset(), solves)
+    assert "of the 1 law points 1;" in text and "quasi-static" not in text
+    assert "none fell back" in text
+    ds = xr.Dataset(attrs={"law_quasi_static": "quasi-static check: 1 of 2 law pressures "
+                                               "pass; 8 MPa did not converge"})
+    assert law_lines(ds) == ["- law cell: quasi-static check: 1 of 2 law pressures pass; "
+                             "8 MPa did not converge"]
