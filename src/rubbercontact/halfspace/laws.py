@@ -113,7 +113,8 @@ class Law(Protocol):
     """What the solvers need of an interaction law (see the module docstring).
 
     The optional members of :class:`InteractionLaw` (``contact_fraction``,
-    ``shear_stress``, ``in_contact``, ``resolve``, ``members``, ``inverse``, ``describe``)
+    ``shear_stress``, ``in_contact``, ``resolve``, ``members``, ``inverse``, ``describe``,
+    ``pressure_and_stiffness``)
     are used when present; :func:`check_law` supplies the defaults otherwise.
     """
 
@@ -139,7 +140,7 @@ _LAW_MEMBERS = {
 _LAW_METHODS = ("pressure", "stiffness")
 #: The members :func:`check_law` fills from :class:`InteractionLaw` when a law lacks them.
 _OPTIONAL_MEMBERS = ("contact_fraction", "shear_stress", "in_contact", "resolve", "members",
-                     "inverse", "describe")
+                     "inverse", "describe", "pressure_and_stiffness")
 
 
 def _missing(law: object) -> list[str]:
@@ -191,6 +192,9 @@ class _ProtocolLaw(InteractionLaw):
     def _optional(self, name: str, *args):
         own = getattr(self.law, name, None)
         return getattr(super(), name)(*args) if own is None else own(*args)
+
+    def pressure_and_stiffness(self, u):
+        return self._optional("pressure_and_stiffness", u)
 
     def contact_fraction(self, u):
         return self._optional("contact_fraction", u)
