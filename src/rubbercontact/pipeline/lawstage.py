@@ -116,13 +116,10 @@ def build_law(cfg: RunConfig, hs0: SineSeries, material: GeneralizedMaxwell,
         return _stage(law, None, hs0, material, speeds, cfg, raw=None, progress=progress)
     t0 = time.perf_counter()
     at = law_pressures(cfg, pressures)
-    v = np.unique(speeds)
     # the quasi-static points in the same sweep: they fill the workers while the law's
     # longest speed path runs
-    raw, qs = run_batches(runner, [
-        law_batch(cfg, hs0, material, {float(p): v.tolist() for p in at}, v,
-                  continuation=uses_continuation(cfg, v.size)),
-        _quasi_static(cfg, hs0, material, at, None)])
+    raw, qs = run_batches(runner, [_grid_batch(cfg, hs0, material, at, speeds),
+                                   _quasi_static(cfg, hs0, material, at, None)])
     return _stage(raw, time.perf_counter() - t0, hs0, material, speeds, cfg, raw=raw,
                   progress=progress, quasi_static=qs)
 
@@ -193,10 +190,15 @@ def fem_law(cfg: RunConfig, hs0: SineSeries, material: GeneralizedMaxwell,
             pressures: np.ndarray, speeds: np.ndarray, runner) -> xr.Dataset:
     """Run the FEM law points on ``pressures × speeds``, by continuation in speed where
     :func:`uses_continuation`."""
+    return run_batches(runner, [_grid_batch(cfg, hs0, material, pressures, speeds)])[0]
+
+
+def _grid_batch(cfg: RunConfig, hs0: SineSeries, material: GeneralizedMaxwell,
+                pressures, speeds) -> Batch:
+    """:func:`law_batch` of every point of ``pressures × speeds``."""
     v = np.unique(speeds)
-    points = {float(p): v.tolist() for p in pressures}
-    return fem_points(cfg, hs0, material, points, v, runner,
-                      continuation=uses_continuation(cfg, v.size))
+    return law_batch(cfg, hs0, material, {float(p): v.tolist() for p in pressures}, v,
+                     continuation=uses_continuation(cfg, v.size))
 
 
 def _quasi_static(cfg: RunConfig, hs0: SineSeries, material: GeneralizedMaxwell,
@@ -209,15 +211,6 @@ def _quasi_static(cfg: RunConfig, hs0: SineSeries, material: GeneralizedMaxwell,
     fresh = [float(p) for p in pressures if float(p) not in done]
     return (quasi_static_batch(_fem_options(cfg, material), hs0, material, fresh)
             if fresh else None)
-
-
-def fem_points(cfg: RunConfig, hs0: SineSeries, material: GeneralizedMaxwell,
-               points: dict[float, list[float]], speeds: np.ndarray, runner,
-               continuation: bool, fallback: bool = True) -> xr.Dataset:
-    """The raw law table of the FEM points ``{pressure [MPa]: speeds [mm/s]}`` on the
-    grid ``speeds × pressures``, run by ``runner`` (:func:`law_batch`)."""
-    batch = law_batch(cfg, hs0, material, points, speeds, continuation, fallback)
-    return batch.collect(runner(batch.tasks))
 
 
 def law_batch(cfg: RunConfig, hs0: SineSeries, material: GeneralizedMaxwell,
