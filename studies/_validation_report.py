@@ -11,6 +11,8 @@ from pathlib import Path
 
 import numpy as np
 
+from rubbercontact.pipeline.lawcheck import QS_LABEL
+
 from ._compare import RESAMPLES, SHORT_WAVE_CUTOFF
 from ._templates import render
 
@@ -67,9 +69,6 @@ def cost_lines(ds) -> list[str]:
     return lines
 
 
-#: Label of the law cell's quasi-static check points (pipeline/lawcheck.py): FEM solves
-#: of the law cell, but not law points.
-QUASI_STATIC_LABEL = "law cell quasi-static"
 
 
 def law_lines(ds) -> list[str]:
@@ -102,7 +101,7 @@ def fem_solves(cache: Path, keys) -> list[dict]:
         if "fem_" not in str(attrs.get("rc_cache_task", "")):
             continue
         label = str(attrs.get("rc_cache_label", key[:12]))
-        kind = ("check" if label.startswith(QUASI_STATIC_LABEL) else
+        kind = ("check" if label.startswith(QS_LABEL) else
                 "law" if label.startswith("law") else "full")
         if entry.status != "ok":
             out.append({"label": label, "kind": kind, "solver": "failed",

@@ -31,6 +31,10 @@ QS_TOL = 0.005
 #: cell counts as relaxed: the hysteretic friction of a slope-1 wave is of that order.
 QS_LOSS_TANGENT = 1e-3
 
+#: Label of the check's sweep tasks (followed by the pressure): FEM solves of the law cell
+#: that are not law points (the validation report tells them apart by it).
+QS_LABEL = "law cell quasi-static"
+
 #: Slowest speed tried for the quasi-static point [mm/s] (decades down from 1 mm/s).
 SLOWEST = 1e-12
 
@@ -162,7 +166,7 @@ def quasi_static_batch(options: FemOptions, hs0: SineSeries, material: Generaliz
     tasks = [Task(function="rubbercontact.hybrid.tasks:fem_task",
                   kwargs={"surface": hs0.as_dict(), "material": task_material(material),
                           "velocity": speed, "mean_pressure": float(pj), "options": opts},
-                  label=f"law cell quasi-static p={pj:g} MPa")
+                  label=f"{QS_LABEL} p={pj:g} MPa")
              for pj in p]
 
     def collect(answers: list) -> QuasiStaticCheck:
