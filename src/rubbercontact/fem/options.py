@@ -75,7 +75,9 @@ class SteadyOptions:
     newton_per_step
         Newton iterations per continuation step before the step is halved.
     first_step
-        First continuation step in the homotopy parameter ``λ`` (0 … 1).
+        First continuation step in the homotopy parameter ``λ`` (0 … 1). Small: on the
+        steep cells the larger first steps fail before this one converges, and the step
+        grows after easy steps (benchmarks/steady.md, "The press's first step").
     min_step
         Smallest continuation step before the path is declared failed.
     max_steps
@@ -105,7 +107,7 @@ class SteadyOptions:
     max_krylov: int = 200
     refactor_krylov: int = 0
     newton_per_step: int = 15
-    first_step: float = 0.25
+    first_step: float = 0.0625
     min_step: float = 1.0 / 512
     max_steps: int = 60
     coarse_elements: int = 16
@@ -207,7 +209,7 @@ class FemOptions:
         ``"auto"``: from the surface (:func:`~.resolution.auto_mesh`: ``columns_per_wave``
         columns on the shortest wave, rows and grading from the cell's height), resolved
         per test (:meth:`resolved`); a test whose narrowest contact patch is below
-        ``patch_columns`` columns is then re-solved once with ``nx`` doubled.
+        ``patch_columns`` columns is then re-solved on a finer mesh (1.5x or 2x the columns).
     height_ratio
         Cell height / width (paper: 0.75).
     grading
