@@ -17,11 +17,13 @@ from rubbercontact.fem.options import FemOptions
 from rubbercontact.fem.resolution import (
     FACE_ASPECT,
     MIN_ROWS,
+    REFINE_FACTORS,
     TOP_ROWS_PER_WIDTH,
     auto_mesh,
     auto_nx,
     graded_rows,
     patch_widths,
+    refine_factor,
 )
 
 #: The high-slope cell of both CAPTIF stations (examples/captif_road.toml).
@@ -124,6 +126,45 @@ def test_narrow_patch_is_flagged_and_refined_once():
     assert auto.stats.patch_columns == pytest.approx(width * 80, abs=1.5)
     assert auto.stats.tried[0].startswith("refined to 80x")
     assert auto.contact_fraction == pytest.approx(width, abs=2 / 80)
+
+
+def test_refine_factor_is_the_smallest_that_widens_the_patch_enough():
+    assert refine_factor(3.0, 4) == 1.5      # 4.5 columns after 1.5x
+    assert refine_factor(2.6, 4) == 2.0      # 3.9 after 1.5x: too few
+    assert refine_factor(0.5, 4) == REFINE_FACTORS[-1]   # beyond every factor: the largest
+    assert refine_factor(np.nan, 4) == REFINE_FACTORS[-1]
+
+
+def test_a_patch_a_third_too_narrow_is_refined_by_half_not_doubled():
+    # 2a/λ = 0.080: 3.2 columns of 40 (3.8 measured) against 4 needed -> 60 columns, where
+    # the patch is 4.8 wide (4.4 measured, edges resolved to about a column) and resolved
+    surf, mat, pbar, width = _westergaard(0.0157)
+    auto = rc.fem.sliding_test(surf, mat, pbar, 0.0, mesh="auto", columns_per_wave=40,
+                               patch_columns=4)
+    assert auto.mesh[0] == 60 and auto.stats.refined and not auto.stats.under_resolved
+    assert auto.stats.patch_columns == pytest.approx(width * 60, abs=1.5)
+    assert auto.stats.tried[0].startswith("refined to 60x")
+    assert auto.contact_fraction == pytest.approx(width, abs=2 / 60)
+
+
+def test_a_refinement_still_too_narrow_goes_on_to_the_largest_factor(monkeypatch):
+    # the first factor chosen too small (as a patch narrowing with the mesh would make
+    # it): 40 -> 50 columns leave the 2.6-column patch at 3.2, below 6; the test goes on to
+    # 80 columns and keeps that answer, flagged, as the plain 2x refinement gives it
+    import rubbercontact.fem.sliding as sliding
+
+    surf, mat, pbar, _ = _westergaard(0.01)
+    monkeypatch.setattr(sliding, "REFINE_FACTORS", (1.25, 2.0))
+    monkeypatch.setattr(sliding, "refine_factor", lambda patch, need: 1.25)
+    with pytest.warns(RuntimeWarning, match="under-resolved"):
+        auto = rc.fem.sliding_test(surf, mat, pbar, 0.0, mesh="auto", columns_per_wave=40,
+                                   patch_columns=6)
+    monkeypatch.undo()
+    with pytest.warns(RuntimeWarning, match="under-resolved"):
+        doubled = rc.fem.sliding_test(surf, mat, pbar, 0.0, mesh="auto", columns_per_wave=40,
+                                      patch_columns=6)
+    assert auto.mesh == doubled.mesh and auto.mesh[0] == 80 and auto.stats.refined
+    assert auto.contact_fraction == doubled.contact_fraction
 
 
 def test_config_mesh_is_auto_by_default_and_explicit_still_works():

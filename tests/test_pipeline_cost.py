@@ -155,17 +155,19 @@ def test_an_automatic_mesh_budgets_the_refined_points():
 
 @pytest.mark.parametrize("columns", [16, 64])
 def test_the_refined_points_are_priced_on_the_mesh_the_solver_refines_to(columns):
-    # The budget of a re-solved point is the FEM's own refined mesh (fem.sliding's
-    # _doubled): nx doubled and the rows of the rule for twice the columns per wave, which
-    # keeps the face rows' aspect and so has more rows than the first mesh.
-    from rubbercontact.fem.sliding import _doubled
+    # The budget of a re-solved point is the FEM's own refined mesh for the largest factor
+    # (fem.sliding's _refined, the most a refinement costs): nx doubled and the rows of the
+    # rule for twice the columns per wave, which keeps the face rows' aspect and so has
+    # more rows than the first mesh.
+    from rubbercontact.fem.resolution import REFINE_FACTORS
+    from rubbercontact.fem.sliding import _refined
 
     cfg = {**CONFIG, "fem": {"full_mesh": [64, 48], "realizations": 2,
                              "columns_per_wave": columns}}
     setup = resolve(parse_config(cfg))
     first = setup.config.fem.options(setup.material).resolved(setup.hs0)
     fine = law_refined_mesh(setup)
-    assert fine == tuple(_doubled(setup.hs0, first).mesh)
+    assert fine == tuple(_refined(setup.hs0, first, REFINE_FACTORS[-1]).mesh)
     assert fine[0] == 2 * law_mesh(setup)[0] and fine[1] > law_mesh(setup)[1]
     assert law_point_seconds(setup, 1.0) == pytest.approx(
         fem_point_seconds(law_mesh(setup), "steady", 1.0, setup.material.equilibrium_modulus)

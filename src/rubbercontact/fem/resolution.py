@@ -4,9 +4,10 @@
 surface's shortest wave, rows at the face about as tall as a column is wide, and grades
 them geometrically up to rows of a small fraction of the cell width at the plate. After a
 test, :func:`narrowest_patch` measures its contact patches in columns; a test on an
-automatic mesh whose narrowest patch is below ``patch_columns`` is re-solved once with
-``nx`` doubled (:mod:`.sliding`). N and the patch width come from the convergence study
-``studies/mesh_resolution.py`` (docs/validation/mesh_resolution.md).
+automatic mesh whose narrowest patch is below ``patch_columns`` is re-solved on a finer
+mesh (:func:`refine_factor`: 1.5x or 2x the columns, :mod:`.sliding`). N and the patch
+width come from the convergence study ``studies/mesh_resolution.py``
+(docs/validation/mesh_resolution.md).
 """
 
 from __future__ import annotations
@@ -27,6 +28,11 @@ FACE_ASPECT = 1.5
 TOP_ROWS_PER_WIDTH = 8
 #: Fewest rows of an automatic mesh.
 MIN_ROWS = 8
+#: Factors of the columns per wave a test with a too narrow patch is re-solved with, the
+#: smallest that suffices first: on the station 1 cell's under-resolved 1 mm/s points
+#: (patches of about 3 columns) 1.5x resolves them at a quarter to four fifths of the
+#: Newton iterations of 2x (docs/validation/mesh_resolution.md).
+REFINE_FACTORS = (1.5, 2.0)
 #: Most rows an automatic mesh tries before it takes the last (a bound, never reached by
 #: the cells of the rule's range).
 MAX_ROWS = 400
@@ -99,13 +105,20 @@ def auto_mesh(surface: SineSeries, height_ratio: float, columns_per_wave: int) -
     return AutoMesh(nx, ny, grading)
 
 
-def refined_mesh(surface: SineSeries, height_ratio: float, columns_per_wave: int
-                 ) -> AutoMesh:
+def refine_factor(patch_columns: float, need: int) -> float:
+    """The factor of the columns per wave a test whose narrowest patch is ``patch_columns``
+    wide is re-solved with: the smallest of :data:`REFINE_FACTORS` that widens the patch to
+    ``need`` columns if its width in mm holds, else the largest."""
+    return next((f for f in REFINE_FACTORS if patch_columns * f >= need), REFINE_FACTORS[-1])
+
+
+def refined_mesh(surface: SineSeries, height_ratio: float, columns_per_wave: int,
+                 factor: float = REFINE_FACTORS[-1]) -> AutoMesh:
     """The mesh a test on the automatic mesh of ``columns_per_wave`` is re-solved on when
-    its narrowest patch is too narrow: the rule's mesh for twice the columns per wave
-    (``nx`` doubled; rows and grading the rule's for it, so the face rows keep their
-    aspect, with at least as many rows as the first mesh)."""
-    return auto_mesh(surface, height_ratio, 2 * columns_per_wave)
+    its narrowest patch is too narrow: the rule's mesh for ``factor`` times the columns per
+    wave (rows and grading the rule's for it, so the face rows keep their aspect). The
+    default, the largest factor, is the most a refinement costs."""
+    return auto_mesh(surface, height_ratio, int(round(factor * columns_per_wave)))
 
 
 def patch_widths(x: np.ndarray, gap: np.ndarray, width: float) -> np.ndarray:

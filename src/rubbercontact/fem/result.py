@@ -100,7 +100,7 @@ class SolverStats:
     under_resolved
         ``patch_columns`` is below ``FemOptions.patch_columns`` (:mod:`.resolution`).
     refined
-        The automatic mesh was refined (``nx`` doubled) after the first solve's check.
+        The automatic mesh was refined (1.5x or 2x the columns) after the first solve's check.
 
     Notes
     -----

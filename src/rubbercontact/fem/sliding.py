@@ -27,7 +27,13 @@ from ..roughness.sines import SineSeries
 from .constitutive import cauchy_from_pk2
 from .contact import face_contact_fraction, mean_separation, segment_penetration
 from .options import RESCUE_NEWTON, FemOptions, SteadyOptions, TransientOptions
-from .resolution import narrowest_patch, refined_mesh, under_resolved_message
+from .resolution import (
+    REFINE_FACTORS,
+    narrowest_patch,
+    refine_factor,
+    refined_mesh,
+    under_resolved_message,
+)
 from .result import (
     BULK_SHEAR_LIMIT,
     SEGMENT_PENETRATION_LIMIT,
@@ -163,39 +169,47 @@ def sliding_test(surface: SineSeries, material: GeneralizedMaxwell, mean_pressur
     return _resolved_steady(surface, material, p, v, opts, start)
 
 
-def _doubled(surface, opts: FemOptions) -> FemOptions:
-    """The resolved automatic ``opts`` on the rule's mesh for twice the columns per wave
-    (``nx`` doubled, rows and grading the rule's for it: the face rows keep their aspect),
-    the nested iteration still starting at the old ``nx``."""
-    m = refined_mesh(surface, opts.height_ratio, opts.columns_per_wave)
+def _refined(surface, opts: FemOptions, factor: float) -> FemOptions:
+    """The resolved automatic ``opts`` on the rule's mesh for ``factor`` times the columns
+    per wave (rows and grading the rule's for it: the face rows keep their aspect); the
+    nested iteration starts at the old ``nx`` where the new one halves onto it."""
+    m = refined_mesh(surface, opts.height_ratio, opts.columns_per_wave, factor)
     return opts.with_(mesh=(m.nx, m.ny), grading=m.grading)
 
 
 def _resolved_steady(surface, material, p, v, opts: FemOptions, start) -> SlidingTestResult:
     """The steady test on an automatic mesh: solved, its narrowest contact patch checked,
-    and where that is below ``opts.patch_columns`` re-solved once on the mesh with ``nx``
-    doubled (:func:`_doubled`). A neighbour that was refined starts this test on the
-    refined mesh directly."""
-    fine = _doubled(surface, opts)
-    if start is not None and tuple(start.mesh) == fine.mesh:
-        res = _steady(surface, material, p, v, fine, start)
-        return _say_resolution(_mark_refined(res, "on the neighbour's refined mesh"), opts)
+    and where that is below ``opts.patch_columns`` re-solved on a finer mesh: the smallest
+    of :data:`~.resolution.REFINE_FACTORS` that widens the patch enough, then the larger
+    ones while the patch stays too narrow. A neighbour that was refined starts this test on
+    the refined mesh directly."""
+    for factor in REFINE_FACTORS:
+        fine = _refined(surface, opts, factor)
+        if start is not None and tuple(start.mesh) == fine.mesh:
+            res = _steady(surface, material, p, v, fine, start)
+            return _say_resolution(_mark_refined(res, "on the neighbour's refined mesh"),
+                                   opts)
     res = _steady(surface, material, p, v, opts, start)
-    if not res.stats.under_resolved:
-        return _say_resolution(res, opts)
     first = res.stats.patch_columns
-    try:
-        # afresh, nested from the first mesh's columns: carrying the first solution over
-        # onto the finer rows cost 4x more on the steep CAPTIF cell (mesh_resolution.md)
-        again = _steady(surface, material, p, v, fine.with_(steady={"fallback": False}),
-                        None)
-    except ConvergenceError as exc:
-        note = (f"refine {fine.mesh[0]}x{fine.mesh[1]} (narrowest patch {first:.1f} columns) "
-                f"failed: {exc}")
-        res = replace(res, stats=replace(res.stats, tried=res.stats.tried + (note,)))
-        return _say_resolution(res, opts)
-    return _say_resolution(_mark_refined(again, f"narrowest patch {first:.1f} columns on "
-                                                 f"{opts.mesh[0]}x{opts.mesh[1]}"), opts)
+    tried: tuple[str, ...] = ()
+    factors = [f for f in REFINE_FACTORS if f >= refine_factor(first, opts.patch_columns)]
+    for factor in factors if res.stats.under_resolved else ():
+        fine = _refined(surface, opts, factor)
+        try:
+            # afresh, nested from the first mesh's columns: carrying the first solution over
+            # onto the finer rows cost 4x more on the steep CAPTIF cell (mesh_resolution.md)
+            again = _steady(surface, material, p, v, fine.with_(steady={"fallback": False}),
+                            None)
+        except ConvergenceError as exc:
+            tried += (f"refine {fine.mesh[0]}x{fine.mesh[1]} (narrowest patch {first:.1f} "
+                      f"columns) failed: {exc}",)
+            continue
+        res = _mark_refined(again, f"narrowest patch {first:.1f} columns on "
+                                   f"{opts.mesh[0]}x{opts.mesh[1]}")
+        if not res.stats.under_resolved:
+            break
+    res = replace(res, stats=replace(res.stats, tried=res.stats.tried + tried))
+    return _say_resolution(res, opts)
 
 
 def _say_resolution(res: SlidingTestResult, opts: FemOptions) -> SlidingTestResult:
