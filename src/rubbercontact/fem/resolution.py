@@ -31,7 +31,7 @@ MIN_ROWS = 8
 #: Factors of the columns per wave a test with a too narrow patch is re-solved with, the
 #: smallest that suffices first: on the station 1 cell's under-resolved 1 mm/s points
 #: (patches of about 3 columns) 1.5x resolves them at a quarter to four fifths of the
-#: Newton iterations of 2x (docs/validation/mesh_resolution.md).
+#: Newton iterations of 2x (docs/validation/steep_cells.md, "Refining by the factor").
 REFINE_FACTORS = (1.5, 2.0)
 #: Most rows an automatic mesh tries before it takes the last (a bound, never reached by
 #: the cells of the rule's range).
