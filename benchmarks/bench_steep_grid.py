@@ -12,7 +12,9 @@ to the profiles' sampling, the automatic mesh, no transient fallback) at the law
   bound the benchmark's time), in the same process.
 
 CPU seconds per point (``time.process_time``) and the 1-minute load at the end of each.
-Run single-threaded::
+``--baseline REV`` runs each pressure's path with the library of commit ``REV`` first (its
+``src`` exported to a temporary directory, in a child process), so old and new stand side
+by side in one run, interleaved pressure by pressure. Run single-threaded::
 
     OMP_NUM_THREADS=1 .venv/bin/python benchmarks/bench_steep_grid.py \\
         --output benchmarks/steep_grid.md
@@ -21,10 +23,12 @@ Run single-threaded::
 from __future__ import annotations
 
 import argparse
+import json
 import os
 import platform
 import subprocess
 import sys
+import tempfile
 import time
 import warnings
 from pathlib import Path
@@ -84,6 +88,17 @@ def _row(mode: str, p: float, v: float, res, err, cpu: float) -> dict:
             "neighbour": "neighbour" in " ".join(res.stats.tried[:1])}
 
 
+def baseline_path(src: Path, rev: str, p: float) -> list[dict]:
+    """The ``paths`` rows of pressure ``p`` with the library exported to ``src`` (commit
+    ``rev``), run in a child process."""
+    out = src.parent / "rows.json"
+    env = {**os.environ, "PYTHONPATH": str(src), "OMP_NUM_THREADS": "1"}
+    subprocess.run([sys.executable, __file__, "--pressures", str(p), "--fresh",
+                    "--json", str(out)], env=env, check=True, stdout=subprocess.DEVNULL)
+    rows = json.loads(out.read_text())
+    return [{**r, "mode": f"paths [{rev}]"} for r in rows]
+
+
 def table(rows: list[dict]) -> list[str]:
     out = ["| mode | p̄ [MPa] | v [mm/s] | CPU [s] | Newton | μ | A | status | load |",
            "|---|---|---|---|---|---|---|---|---|"]
@@ -98,7 +113,7 @@ def table(rows: list[dict]) -> list[str]:
 
 def summary(rows: list[dict]) -> list[str]:
     lines = []
-    for mode in ("paths", "fresh"):
+    for mode in dict.fromkeys(r["mode"] for r in rows):
         sel = [r for r in rows if r["mode"] == mode]
         if not sel:
             continue
@@ -108,7 +123,7 @@ def summary(rows: list[dict]) -> list[str]:
                      f"median point {np.median(cpu):.1f} s (bar: {BAR_TOTAL:.0f} s for the "
                      f"25 points, median {BAR_MEDIAN:.0f} s)")
         both = sorted({r["pressure"] for r in rows if r["mode"] == "fresh"})
-        if mode == "paths" and both:
+        if mode.startswith("paths") and both:
             same = cpu[[r["pressure"] in both for r in sel]].sum()
             lines.append(f"  - the paths' CPU at {', '.join(f'{p:g}' for p in both)} MPa: "
                          f"{same:.0f} s")
@@ -120,17 +135,29 @@ def main(argv: list[str] | None = None) -> int:
     ap.add_argument("--pressures", type=float, nargs="*", default=list(PRESSURES))
     ap.add_argument("--fresh", type=float, nargs="*", default=[0.3, 1.0])
     ap.add_argument("--output", type=Path, default=None)
+    ap.add_argument("--baseline", default=None, metavar="REV",
+                    help="run each path with the library of commit REV first")
+    ap.add_argument("--json", type=Path, default=None, help=argparse.SUPPRESS)
     args = ap.parse_args(argv)
     surface = cells()["station 1"]
     options = make_options(**ROUNDED, fallback=False)
     rows: list[dict] = []
     warnings.simplefilter("ignore")
-    for p in args.pressures:
-        rows += run_path(surface, options, p)
-        print("\n".join(table(rows)[-len(VELOCITIES):]), flush=True)
+    with tempfile.TemporaryDirectory() as tmp:
+        if args.baseline:
+            subprocess.run(f"git -C {ROOT} archive {args.baseline} src | tar -x -C {tmp}",
+                           shell=True, check=True)
+        for p in args.pressures:
+            if args.baseline:
+                rows += baseline_path(Path(tmp) / "src", args.baseline, p)
+            rows += run_path(surface, options, p)
+            print("\n".join(table(rows)[-2 * len(VELOCITIES):]), flush=True)
     for p in args.fresh:
         rows += run_fresh(surface, options, p)
         print("\n".join(table(rows)[-len(VELOCITIES):]), flush=True)
+    if args.json:               # a baseline child: its rows only
+        args.json.write_text(json.dumps(rows))
+        return 0
     commit = subprocess.run(["git", "rev-parse", "--short", "HEAD"], capture_output=True,
                             text=True, cwd=ROOT).stdout.strip()
     head = [f"Machine: {platform.node()} ({platform.processor() or platform.machine()}, "
