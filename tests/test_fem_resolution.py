@@ -167,6 +167,30 @@ def test_a_refinement_still_too_narrow_goes_on_to_the_largest_factor(monkeypatch
     assert auto.contact_fraction == doubled.contact_fraction
 
 
+def test_a_refinement_that_fails_keeps_the_first_answer_and_tries_no_finer_mesh(monkeypatch):
+    # the press of the 1.5x mesh stops: the 2x mesh (harder still) is not tried, and the
+    # first mesh's answer stands, flagged, with the failure in its stages
+    import rubbercontact.fem.sliding as sliding
+    from rubbercontact.errors import ConvergenceError
+
+    surf, mat, pbar, _ = _westergaard(0.0157)
+    meshes, steady = [], sliding._steady
+
+    def failing_when_refined(surface, material, p, v, opts, start):
+        meshes.append(opts.mesh[0])
+        if opts.mesh[0] != 40:
+            raise ConvergenceError("press stopped (test)")
+        return steady(surface, material, p, v, opts, start)
+
+    monkeypatch.setattr(sliding, "_steady", failing_when_refined)
+    with pytest.warns(RuntimeWarning, match="under-resolved"):
+        auto = rc.fem.sliding_test(surf, mat, pbar, 0.0, mesh="auto", columns_per_wave=40,
+                                   patch_columns=4)
+    assert meshes == [40, 60]
+    assert auto.mesh[0] == 40 and auto.stats.under_resolved and not auto.stats.refined
+    assert any(t.startswith("refine 60x") and "failed" in t for t in auto.stats.tried)
+
+
 def test_config_mesh_is_auto_by_default_and_explicit_still_works():
     base = {"surface": {"preset": "section3"}, "velocities": [10.0],
             "loads": {"pressures": [0.2]}}

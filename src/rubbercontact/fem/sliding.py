@@ -181,8 +181,8 @@ def _resolved_steady(surface, material, p, v, opts: FemOptions, start) -> Slidin
     """The steady test on an automatic mesh: solved, its narrowest contact patch checked,
     and where that is below ``opts.patch_columns`` re-solved on a finer mesh: the smallest
     of :data:`~.resolution.REFINE_FACTORS` that widens the patch enough, then the larger
-    ones while the patch stays too narrow. A neighbour that was refined starts this test on
-    the refined mesh directly."""
+    ones while the patch stays too narrow (not after a refinement that fails). A neighbour
+    that was refined starts this test on the refined mesh directly."""
     for factor in REFINE_FACTORS:
         fine = _refined(surface, opts, factor)
         if start is not None and tuple(start.mesh) == fine.mesh:
@@ -201,9 +201,10 @@ def _resolved_steady(surface, material, p, v, opts: FemOptions, start) -> Slidin
             again = _steady(surface, material, p, v, fine.with_(steady={"fallback": False}),
                             None)
         except ConvergenceError as exc:
+            # a finer mesh would not fare better: the press only gets harder with columns
             tried += (f"refine {fine.mesh[0]}x{fine.mesh[1]} (narrowest patch {first:.1f} "
                       f"columns) failed: {exc}",)
-            continue
+            break
         res = _mark_refined(again, f"narrowest patch {first:.1f} columns on "
                                    f"{opts.mesh[0]}x{opts.mesh[1]}")
         if not res.stats.under_resolved:
