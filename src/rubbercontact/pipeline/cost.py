@@ -44,6 +44,7 @@ from dataclasses import dataclass
 
 from ..models.planning import PER_LOAD, PER_REALIZATION
 from ..models.registry import planning
+from ..sweep.progress import scheduled
 from .setup import RunSetup
 
 # --- Measured costs: the one place ------------------------------------------------------
@@ -209,17 +210,7 @@ class Stage:
     def wall_s(self, workers: int) -> float:
         """Expected wall time of the stage on ``workers`` [s]: each task to the first free
         worker, in order."""
-        return _scheduled(self.task_s, workers)
-
-
-def _scheduled(tasks: tuple[float, ...], workers: int) -> float:
-    """Wall time [s] of ``tasks`` [s] on ``workers``, each to the first free one in order."""
-    if not tasks:
-        return 0.0
-    free = [0.0] * max(1, min(workers, len(tasks)))
-    for t in tasks:
-        free[free.index(min(free))] += t
-    return max(free)
+        return scheduled(self.task_s, workers)
 
 
 @dataclass(frozen=True)
@@ -255,7 +246,7 @@ class CostEstimate:
                 sweeps[-1] += s.task_s
             else:
                 sweeps.append(s.task_s)
-        return sum(_scheduled(t, self.workers) for t in sweeps) + OVERHEAD_S
+        return sum(scheduled(t, self.workers) for t in sweeps) + OVERHEAD_S
 
     @property
     def cpu_s(self) -> float:
@@ -305,12 +296,64 @@ def law_point_seconds(setup: RunSetup, pressure: float) -> float:
     """Expected cost of one fresh law FEM point at ``pressure`` [MPa] [s]: on the law
     cell's mesh, and on an automatic mesh the share of points re-solved on the refined
     mesh (:func:`law_refined_mesh`)."""
-    cfg, e_inf = setup.config, setup.material.equilibrium_modulus
-    t = fem_point_seconds(law_mesh(setup), cfg.fem.solver, pressure, e_inf)
-    if cfg.fem.mesh == "auto":
-        t += AUTO_REFINED_SHARE * fem_point_seconds(law_refined_mesh(setup), cfg.fem.solver,
-                                                    pressure, e_inf)
+    return law_point_seconds_on(setup.config.fem.options(setup.material), setup.hs0,
+                                pressure, setup.material.equilibrium_modulus)
+
+
+# --- Per task: what run --check adds up, and each sweep task's cost hint (Task.cost) ----
+def law_point_seconds_on(options, surface, pressure: float, modulus: float) -> float:
+    """:func:`law_point_seconds` from the law cell's own terms: its
+    :class:`~rubbercontact.fem.FemOptions`, its surface (the high-slope waves), the
+    point's pressure [MPa] and the rubber's E∞ [MPa]."""
+    from ..fem.resolution import refined_mesh
+
+    mesh = tuple(options.resolved(surface).mesh)
+    t = fem_point_seconds(mesh, options.solver, pressure, modulus)
+    if options.auto:
+        m = refined_mesh(surface, options.height_ratio, options.columns_per_wave)
+        t += AUTO_REFINED_SHARE * fem_point_seconds((m.nx, m.ny), options.solver, pressure,
+                                                    modulus)
     return t
+
+
+def law_task_seconds(options, surface, pressure: float, modulus: float, speeds: int = 1,
+                     continuation: bool = False) -> float:
+    """Expected cost of one law FEM task [s]: a fresh point, or a path of ``speeds`` by
+    continuation (``CONTINUATION_FACTOR`` of a fresh point per speed)."""
+    fresh = law_point_seconds_on(options, surface, pressure, modulus)
+    return fresh * CONTINUATION_FACTOR * speeds if continuation else fresh
+
+
+def quasi_static_seconds(options, surface, pressure: float, modulus: float) -> float:
+    """Expected cost of the law cell's quasi-static point at ``pressure`` [s]
+    (``QS_POINT_FACTOR`` times a law point)."""
+    return QS_POINT_FACTOR * law_point_seconds_on(options, surface, pressure, modulus)
+
+
+def full_fem_seconds(setup: RunSetup, pressure: float) -> float:
+    """Expected cost of one full FEM test at ``pressure`` [MPa] [s] (``FULL_FEM_FACTOR``
+    times a point of the full mesh)."""
+    cfg = setup.config
+    return FULL_FEM_FACTOR * fem_point_seconds(cfg.fem.full_mesh_or_default, cfg.fem.solver,
+                                               pressure, setup.material.equilibrium_modulus)
+
+
+def meanfield_point_seconds(model: str) -> float:
+    """Expected cost of one mean-field point of ``model`` [s] (``MEANFIELD_POINT_S``; a
+    model not listed priced as the strips)."""
+    return MEANFIELD_POINT_S.get(model, MEANFIELD_POINT_S["meanfield-strips"])
+
+
+def model_task_seconds(setup: RunSetup, model: str, pressures) -> float:
+    """Expected cost of one model task at ``pressures`` [MPa] [s], as the model's planning
+    (:mod:`rubbercontact.models.planning`) runs it: half-space solves over its loads, a
+    mean-field point, or a full FEM test."""
+    per = planning(model).per
+    if per == PER_REALIZATION:
+        return len(pressures) * halfspace_solve_seconds(setup.config.halfspace.n)
+    if per == PER_LOAD:
+        return len(pressures) * meanfield_point_seconds(model)
+    return sum(full_fem_seconds(setup, float(p)) for p in pressures)
 
 
 def estimate_cost(setup: RunSetup) -> CostEstimate:
@@ -329,12 +372,14 @@ def estimate_cost(setup: RunSetup) -> CostEstimate:
     if setup.needs_law and cfg.law.file is None:
         pressures = np.sort(law_pressures(cfg, np.ones(1)))
         mesh = law_mesh(setup)
+        opts = cfg.fem.options(setup.material)
         each = np.array([law_point_seconds(setup, p) for p in pressures])
         how = " (auto)" if cfg.fem.mesh == "auto" else ""
         if uses_continuation(cfg, speeds):
             # one task per pressure, highest first (lawstage.law_batch)
             how = f"{how}, by continuation in speed"
-            tasks = tuple(float(t) * CONTINUATION_FACTOR * speeds for t in each[::-1])
+            tasks = tuple(law_task_seconds(opts, setup.hs0, p, e_inf, speeds, True)
+                          for p in pressures[::-1])
         else:
             tasks = tuple(np.tile(each, speeds).tolist())
         stages.append(Stage(f"law FEM points ({mesh[0]} x {mesh[1]}{how})",
@@ -343,7 +388,7 @@ def estimate_cost(setup: RunSetup) -> CostEstimate:
         if cfg.law.quasi_static_check:
             # one fresh point per law pressure at the quasi-static speed (.lawcheck), sent
             # in the law's sweep after its own tasks
-            qs = QS_POINT_FACTOR * each
+            qs = np.array([quasi_static_seconds(opts, setup.hs0, p, e_inf) for p in pressures])
             stages.append(Stage("law cell quasi-static check (one point per law pressure)",
                                 len(pressures), float(qs.mean()), tuple(qs[::-1].tolist()),
                                 same_sweep=True))
@@ -367,9 +412,7 @@ def estimate_cost(setup: RunSetup) -> CostEstimate:
         load = (float(np.mean(cfg.loads.pressures)) if cfg.loads.pressures is not None
                 else e_inf / 4)
         stages.append(Stage(f"full FEM tests ({mesh[0]} x {mesh[1]})",
-                            speeds * setup.n_fem * loads,
-                            FULL_FEM_FACTOR * fem_point_seconds(mesh, cfg.fem.solver, load,
-                                                                e_inf)))
+                            speeds * setup.n_fem * loads, full_fem_seconds(setup, load)))
     hs_models = [m for m in setup.models if planning(m).per == PER_REALIZATION]
     if hs_models:
         stages.append(Stage(f"half-space solves ({', '.join(hs_models)}; "
@@ -378,7 +421,7 @@ def estimate_cost(setup: RunSetup) -> CostEstimate:
                             halfspace_solve_seconds(cfg.halfspace.n)))
     for m in (m for m in setup.models if planning(m).per == PER_LOAD):
         stages.append(Stage(f"mean-field points ({m})", speeds * loads,
-                            MEANFIELD_POINT_S.get(m, MEANFIELD_POINT_S["meanfield-strips"])))
+                            meanfield_point_seconds(m)))
     if cfg.friction.flash_temperature.enabled:
         stages += flash_stages(setup, loads)
     return CostEstimate(tuple(stages), cfg.execution.workers, tuple(notes))

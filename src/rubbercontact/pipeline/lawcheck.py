@@ -21,6 +21,7 @@ from ..fem.options import FemOptions
 from ..materials import GeneralizedMaxwell
 from ..roughness import SineSeries
 from .batch import Batch
+from .cost import quasi_static_seconds
 from .setup import task_material
 
 #: |μ_hs| at the quasi-static speed within which a law pressure passes (issue 41's
@@ -166,7 +167,9 @@ def quasi_static_batch(options: FemOptions, hs0: SineSeries, material: Generaliz
     tasks = [Task(function="rubbercontact.hybrid.tasks:fem_task",
                   kwargs={"surface": hs0.as_dict(), "material": task_material(material),
                           "velocity": speed, "mean_pressure": float(pj), "options": opts},
-                  label=f"{QS_LABEL} p={pj:g} MPa")
+                  label=f"{QS_LABEL} p={pj:g} MPa",
+                  cost=quasi_static_seconds(options, hs0, float(pj),
+                                            material.equilibrium_modulus))
              for pj in p]
 
     def collect(answers: list) -> QuasiStaticCheck:

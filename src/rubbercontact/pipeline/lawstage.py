@@ -27,6 +27,7 @@ from ..hybrid.law import (
 from ..materials import GeneralizedMaxwell
 from ..roughness import SineSeries
 from .batch import Batch, run_batches
+from .cost import halfspace_solve_seconds, law_task_seconds
 from .lawcheck import QuasiStaticCheck, quasi_static_batch
 from .lawcover import NOT_NEEDED, merge_points
 from .setup import task_material
@@ -232,6 +233,7 @@ def law_batch(cfg: RunConfig, hs0: SineSeries, material: GeneralizedMaxwell,
     v = np.sort(np.asarray(speeds, float))
     wanted = np.array([[float(vi) in set(points[float(pj)]) for pj in p] for vi in v])
     results = np.full(wanted.shape, NOT_NEEDED, dtype=object)
+    e_inf = material.equilibrium_modulus
     if continuation:
         # highest pressure first: the paths at the highest loads take the longest (most
         # Newton iterations per speed), and started last they would leave workers idle
@@ -241,7 +243,10 @@ def law_batch(cfg: RunConfig, hs0: SineSeries, material: GeneralizedMaxwell,
                               "velocities": v[wanted[:, j]].tolist(),
                               "mean_pressure": float(p[j]), "options": opts},
                       label=f"law FEM p={p[j]:g} MPa, {int(wanted[:, j].sum())} speeds by "
-                            f"continuation")
+                            f"continuation",
+                      # the progress ETA's hint: run --check's price of the task
+                      cost=law_task_seconds(options, hs0, float(p[j]), e_inf,
+                                            int(wanted[:, j].sum()), continuation=True))
                  for j in order]
 
         def collect(answers: list) -> xr.Dataset:
@@ -255,7 +260,8 @@ def law_batch(cfg: RunConfig, hs0: SineSeries, material: GeneralizedMaxwell,
                       kwargs={"surface": hs0.as_dict(), "material": material.as_dict(),
                               "velocity": float(v[i]), "mean_pressure": float(p[j]),
                               "options": opts},
-                      label=f"law FEM v={v[i]:g} mm/s p={p[j]:g} MPa")
+                      label=f"law FEM v={v[i]:g} mm/s p={p[j]:g} MPa",
+                      cost=law_task_seconds(options, hs0, float(p[j]), e_inf))
                  for i, j in at]
 
         def collect(answers: list) -> xr.Dataset:
@@ -294,7 +300,9 @@ def add_vhs(law: xr.Dataset, hs: SineSeries, material: GeneralizedMaxwell, cfg: 
                           "mean_pressures": [float(p) for p in law["pressure"].values],
                           "n": min(cfg.halfspace.n, 4096), "nu": cfg.material.nu,
                           "law": cfg.halfspace.law, "tol": cfg.halfspace.tol},
-                  label=f"vhs on z_hs v={v:g}")
+                  label=f"vhs on z_hs v={v:g}",
+                  cost=law.sizes["pressure"] * halfspace_solve_seconds(min(cfg.halfspace.n,
+                                                                           4096)))
              for v in law["velocity"].values]
     res = runner(tasks)
     mu = np.full((law.sizes["velocity"], law.sizes["pressure"]), np.nan)

@@ -23,6 +23,7 @@ from ..models.fem import FEM_TASK, config_kwargs
 from ..models.meanfield import config_call
 from ..models.planning import PER_LOAD, PER_REALIZATION, RunPoint
 from ..roughness import SineSeries
+from .cost import model_task_seconds
 from .setup import RunSetup
 
 if TYPE_CHECKING:
@@ -70,7 +71,8 @@ def model_tasks(setup: RunSetup, material: GeneralizedMaxwell, pressures: np.nda
                 p = pressures if ip is None else pressures[ip:ip + 1]
                 fn, kw = cls.run_task(m, RunPoint(setup, material, float(v), p, table, ir,
                                                   shared))
-                tasks.append(Task(function=fn, kwargs=kw, label=_label(m, v, ir, p, ip)))
+                tasks.append(Task(function=fn, kwargs=kw, label=_label(m, v, ir, p, ip),
+                                  cost=model_task_seconds(setup, m, p)))
                 slots.append(Slot(m, iv, ir, ip))
     return slots, tasks
 

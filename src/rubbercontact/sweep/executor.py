@@ -48,7 +48,7 @@ import xarray as xr
 from ..errors import ConvergenceError, InputError
 from .cache import ResultCache
 from .codehash import code_digest, package_digest
-from .progress import make_reporter
+from .progress import Workload, make_reporter
 from .results import SweepResult, TaskFailure, jsonable
 from .tasks import Task, resolve_function, task_key
 
@@ -323,8 +323,15 @@ def run_sweep(tasks: Sequence[Task], cache: ResultCache | None = None,
         else:
             todo.append(i)
 
+    # the ETA weighs the tasks to compute by their cost hints, shared by the tasks that run
+    # at once; ``slot`` is each one's index in that list (the order they are sent)
+    slot = {i: k for k, i in enumerate(todo)}
+    mode, address, workers = config.resolved() if todo else ("sync", None, 1)
+    workload = Workload(tuple(tasks[i].cost for i in todo),
+                        1 if mode == "sync" else workers * config.threads_per_worker)
     reporter = make_reporter(progress, description)
-    reporter.start(len(first), cached=len(first) - len(todo), cached_failed=n_cached_failed)
+    reporter.start(len(first), cached=len(first) - len(todo), cached_failed=n_cached_failed,
+                   workload=workload)
 
     warned = []
 
@@ -352,11 +359,10 @@ def run_sweep(tasks: Sequence[Task], cache: ResultCache | None = None,
         result.task_times[i] = dt
         failed = isinstance(payload, TaskFailure)
         reporter.advance(failed=failed, label=tasks[i].name,
-                         message=str(payload) if failed else "")
+                         message=str(payload) if failed else "", task=slot[i], seconds=dt)
 
     try:
         if todo:
-            mode, address, workers = config.resolved()
             if mode == "sync":
                 for i in todo:
                     finish(i, *_execute(tasks[i].function, dict(tasks[i].kwargs)))

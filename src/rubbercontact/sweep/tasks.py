@@ -194,6 +194,11 @@ class Task:
         numpy arrays of numbers, dicts with string keys).
     label
         Human-readable name for progress and failure reports (not in the key).
+    cost
+        Expected seconds of the task, or None: a hint for the progress ETA
+        (:mod:`.progress`), which weighs the tasks done and left by it; not in the key,
+        not stored with the result (a hint changes no answer). The pipeline takes it from
+        the per-task estimates of ``run --check`` (:mod:`rubbercontact.pipeline.cost`).
 
     Raises
     ------
@@ -204,6 +209,7 @@ class Task:
     function: str
     kwargs: Mapping[str, Any] = field(default_factory=dict)
     label: str = ""
+    cost: float | None = field(default=None, compare=False)
 
     def __post_init__(self) -> None:
         if not isinstance(self.function, str) or not _PATH_RE.match(self.function):
@@ -215,6 +221,11 @@ class Task:
         canonical(self.kwargs)  # fail early, with the field named, on non-plain data
         if not isinstance(self.label, str):
             raise InputError(f"label: expected a string, got {self.label!r}")
+        if self.cost is not None and not (isinstance(self.cost, (int, float))
+                                          and not isinstance(self.cost, bool)
+                                          and math.isfinite(self.cost) and self.cost >= 0):
+            raise InputError(f"cost: expected expected seconds >= 0 or None, "
+                             f"got {self.cost!r}")
 
     def key(self, code: str | None = None) -> str:
         """Content-addressed cache key (the code part read from the function's source)."""
