@@ -18,6 +18,8 @@ measured. The model, kept simple:
 - the law's tables, continued past the top FEM pressure with the linear law's shape,
   ``LAW_TABLE_SPEED_S`` per computed speed, serial in the run's own process;
 - mean-field points per model, ``MEANFIELD_POINT_S``;
+- the law cell's quasi-static check, one point per law pressure, ``QS_POINT_FACTOR``
+  times a law point, ``QS_GRADED_FACTOR`` on an explicit mesh graded toward its face;
 - with the flash temperature, per half-space model, run temperature and load one task of
   ``FLASH_SOLVE_FACTOR`` times its isothermal solves; per mean-field model, temperature
   and load one μ(v), ``MEANFIELD_FLASH_CURVE_S`` (``meanfield-hybrid``'s a task,
@@ -59,8 +61,21 @@ FEM_POINT_S = 1.3
 #: A law cell's quasi-static point (:mod:`.lawcheck`) against a law point at the same
 #: pressure: the relaxed rubber indents deeper, in more continuation steps. Measured on the
 #: built-in default (2026-12-06, load 15): its 6 quasi-static points took 113 s of wall
-#: against 72 s for its 12 law points, about 3x a point.
+#: against 72 s for its 12 law points, about 3x a point; examples/captif_road.toml's
+#: automatic cell (128 x 16, graded 9.9 by the rule), in process at 0.3 MPa (2026-12-06,
+#: load 2, b3cfdcd): 7.9 s of CPU against 3.1 s, 2.5x.
 QS_POINT_FACTOR = 3.0
+#: The same on an explicit mesh graded toward the face by more than ``QS_GRADING``: the
+#: section 3 law cell (120 x 23, ``fem.grading = 8``; examples/asphalt.toml, dma_compound,
+#: section3). examples/asphalt.toml from an empty cache (2026-12-06 12:09 UTC, b3cfdcd,
+#: load 4-6): its 5 quasi-static points took 272-970 Newton iterations and 553 s of wall
+#: together, against 22-92 iterations and 52 s for its 10 law points (10-17x the iterations
+#: at the same pressure); in process at 0.1 MPa (load 2): 23.5 s of CPU against 1.7 s,
+#: 14x. The same cell at 0.1 MPa graded 1, 2, 4 and 8: 34, 57, 331 and 272 iterations
+#: (a law point 24-33), so the grading does it, not the cell's size; the automatic mesh's
+#: grading (its face rows sized by the rule) does not (captif_road above). Taken as 15.
+QS_GRADED_FACTOR = 15.0
+QS_GRADING = 2.0
 
 #: The reference mesh (nx, ny): the law cell of examples/asphalt.toml and section3.toml.
 FEM_REFERENCE_MESH = (120, 23)
@@ -325,9 +340,12 @@ def law_task_seconds(options, surface, pressure: float, modulus: float, speeds: 
 
 
 def quasi_static_seconds(options, surface, pressure: float, modulus: float) -> float:
-    """Expected cost of the law cell's quasi-static point at ``pressure`` [s]
-    (``QS_POINT_FACTOR`` times a law point)."""
-    return QS_POINT_FACTOR * law_point_seconds_on(options, surface, pressure, modulus)
+    """Expected cost of the law cell's quasi-static point at ``pressure`` [s]:
+    ``QS_POINT_FACTOR`` times a law point, ``QS_GRADED_FACTOR`` on an explicit mesh graded
+    by more than ``QS_GRADING``."""
+    graded = not options.auto and options.grading > QS_GRADING
+    factor = QS_GRADED_FACTOR if graded else QS_POINT_FACTOR
+    return factor * law_point_seconds_on(options, surface, pressure, modulus)
 
 
 def full_fem_seconds(setup: RunSetup, pressure: float) -> float:
