@@ -86,6 +86,25 @@ def solve_times(results_nc: Path) -> str:
     return "; ".join(parts)
 
 
+def quasi_static_times(cache: Path) -> str:
+    """The law cell's quasi-static points by their own clocks, read from the run's cache
+    entries (results.nc keeps their friction, not their time): how many, their sum, the
+    slowest."""
+    import xarray as xr
+
+    from rubbercontact.pipeline.lawcheck import QS_LABEL
+
+    wall = []
+    for entry in cache.rglob("*.nc"):
+        with xr.open_dataset(entry) as ds:
+            if str(ds.attrs.get("rc_cache_label", "")).startswith(QS_LABEL):
+                wall.append(float(ds.attrs.get("rc_cache_wall_time_s", float("nan"))))
+    if not wall:
+        return ""
+    return (f"law quasi-static check {len(wall)} points, {sum(wall):.0f} s "
+            f"(slowest {max(wall):.0f} s)")
+
+
 def run(example: Path, workers: int) -> Timing:
     """Run ``example`` from an empty cache into a temporary directory."""
     guess = estimate(example, workers)
@@ -98,7 +117,8 @@ def run(example: Path, workers: int) -> Timing:
                               cwd=ROOT, capture_output=True, text=True)
         wall = time.perf_counter() - t0
         cpu1 = resource.getrusage(resource.RUSAGE_CHILDREN)
-        solves = solve_times(Path(tmp) / "out" / "results.nc")
+        solves = "; ".join(x for x in (solve_times(Path(tmp) / "out" / "results.nc"),
+                                       quasi_static_times(Path(tmp) / "cache")) if x)
     if proc.returncode != 0:
         raise SystemExit(f"{example.name}: run failed ({proc.returncode}): "
                          f"{proc.stderr.strip().splitlines()[-1:]}")
