@@ -142,3 +142,23 @@ def test_the_law_and_its_check_go_to_the_workers_in_one_sweep(monkeypatch):
     assert raw == "raw" and seen["law"] == [f"answer {c}" for c in law_labels]
     # the check read its own two answers (strings: failures, in the pressures' order)
     assert qs.pressure.tolist() == [0.1, 0.5] and qs.stopped.all()
+
+
+def test_the_check_sends_the_highest_pressure_first_and_reads_each_answer_at_its_own():
+    # the costliest point first (pipeline/cost.py prices it so, and a graded cell's top
+    # point takes minutes): the answers come back in the order sent, the check in p order
+    import xarray as xr
+
+    from rubbercontact.pipeline.lawcheck import quasi_static_batch
+
+    cell = rc.roughness.high_slope_wave()
+    batch = quasi_static_batch(make_options(mesh=(32, 8)), cell, rc.materials.sbr(),
+                               [0.5, 0.1, 2.0])
+    sent = [t.kwargs["mean_pressure"] for t in batch.tasks]
+    assert sent == [2.0, 0.5, 0.1]
+    assert [t.cost for t in batch.tasks] == sorted(t.cost for t in batch.tasks)[::-1]
+    answers = [xr.Dataset({"friction": p / 100}) if p != 0.5 else None for p in sent]
+    check = batch.collect(answers)
+    assert check.pressure.tolist() == [0.1, 0.5, 2.0]
+    assert check.friction[[0, 2]].tolist() == [0.001, 0.02] and np.isnan(check.friction[1])
+    assert check.status[0] == check.status[2] == "ok" and check.status[1] != "ok"

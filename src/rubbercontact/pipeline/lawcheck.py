@@ -170,13 +170,15 @@ def quasi_static_batch(options: FemOptions, hs0: SineSeries, material: Generaliz
                   label=f"{QS_LABEL} p={pj:g} MPa",
                   cost=quasi_static_seconds(options, hs0, float(pj),
                                             material.equilibrium_modulus))
-             for pj in p]
+             # highest pressure first, as the law's own paths: the costliest point (up to
+             # minutes on a graded cell) started last would run alone at the sweep's end
+             for pj in p[::-1]]
 
     def collect(answers: list) -> QuasiStaticCheck:
         from .assemble import failure_message
 
         friction, status = [], []
-        for res in answers:
+        for res in answers[::-1]:                   # back to increasing pressure
             why = failure_message(res)
             friction.append(float(res["friction"]) if why is None else np.nan)
             status.append("ok" if why is None else why)
