@@ -225,8 +225,9 @@ def longest_first(slots: list) -> list[int]:
     """The order to hand the model tasks to the workers: the tasks of the models planned
     per speed, realization and load (the full FEM: minutes each) first, then the rest
     (half-space and mean-field solves: seconds). Long tasks first keep every worker busy
-    to the end, and the progress ETA, extrapolated from the tasks done, then errs high
-    instead of low."""
+    to the end; the progress ETA weighs the tasks by their cost hints
+    (:mod:`rubbercontact.sweep.progress`), so the short ones after them are not priced as
+    long."""
     from ..models.planning import PER_REALIZATION_LOAD
     from ..models.registry import planning
 
