@@ -236,7 +236,8 @@ def test_each_mean_field_model_has_its_own_price():
 
 def test_law_points_above_the_relaxed_modulus_are_said_not_budgeted():
     said = estimate_cost(resolve(parse_config(CONFIG))).describe()
-    assert "not budgeted: the law's extension" in said and "above the rubber" not in said
+    assert "law extension, if the local pressures pass the law" in said
+    assert "above the rubber" not in said
     high = {**CONFIG, "law": {"pressures": [0.1, 2.0, 8.0, 16.0]}}
     said = estimate_cost(resolve(parse_config(high))).describe()
     assert "law FEM points at 8, 16 MPa, above the rubber's E∞" in said
@@ -268,3 +269,21 @@ def test_a_full_fem_test_is_priced_as_the_full_factor_times_a_point_of_its_mesh_
     assert cost["full FEM tests"].each_s == pytest.approx(
         FULL_FEM_FACTOR * fem_point_seconds(tuple(mesh), "steady", mean, e_inf), rel=1e-12)
 
+
+
+def test_the_laws_extension_is_priced_as_one_round_at_its_worst():
+    # law pressures 0.1-2 MPa, E∞ 4.17: the ladder's next rung 3.16 MPa at both speeds, its
+    # quasi-static point, the tables of both speeds and hybrid-windowed's solves again
+    setup = resolve(parse_config(CONFIG))
+    ext, qs, tables, again = [s for s in estimate_cost(setup).stages
+                              if s.name.startswith("law extension")]
+    assert ext.count == 2 and "3.16 MPa" in ext.name
+    assert ext.task_s == pytest.approx([law_point_seconds(setup, 10 ** 0.5)] * 2)
+    assert qs.count == 1 and qs.same_sweep and "quasi-static" in qs.name
+    assert qs.total_s == pytest.approx(QS_POINT_FACTOR * law_point_seconds(setup, 10 ** 0.5))
+    assert tables.count == 2 and "tables" in tables.name
+    assert again.count == 2 * 4 * 3                 # hybrid-windowed only: vhs reads no law
+    # nothing to price: the extension off, or no rung at or below E∞ above the law's top
+    for law in ({**CONFIG["law"], "extend": False}, {"pressures": [0.1, 2.0, 8.0]}):
+        stages = estimate_cost(resolve(parse_config({**CONFIG, "law": law}))).stages
+        assert not [s for s in stages if s.name.startswith("law extension")]

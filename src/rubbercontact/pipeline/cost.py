@@ -27,8 +27,9 @@ measured. The model, kept simple:
 - the wall time: each stage's tasks in rounds of ``workers`` (a law by continuation has one
   task per pressure, so 5 pressures on 2 workers take 3 rounds), plus ``OVERHEAD_S``.
 
-Not foreseen: the law's extension when the local pressures go past its FEM points (a few
-FEM points and the law models once more, up to three rounds, :mod:`.lawcover`), a steady
+The law's extension when the local pressures go past its FEM points (:mod:`.lawcover`) is
+priced as one round at its worst: every speed at every pressure it may add.
+Not foreseen: further rounds of the extension (up to three), a steady
 solve that stops and runs the barrier rescue or the transient fallback (minutes a point),
 the steepness of a law cell (steep cells' points cost several times what this model
 gives at the same p / E∞: docs/validation/steep_cells.md), a steady point that needs many
@@ -378,6 +379,7 @@ def estimate_cost(setup: RunSetup) -> CostEstimate:
     """Count the solves of a resolved run (:func:`~.setup.resolve`) and price them."""
     import numpy as np
 
+    from .costext import extension_stages
     from .lawstage import law_pressures, uses_continuation
 
     cfg = setup.config
@@ -410,8 +412,6 @@ def estimate_cost(setup: RunSetup) -> CostEstimate:
             stages.append(Stage("law cell quasi-static check (one point per law pressure)",
                                 len(pressures), float(qs.mean()), tuple(qs[::-1].tolist()),
                                 same_sweep=True))
-        notes.append("the law's extension, if the local pressures go past its FEM points "
-                     "(FEM points and the law models once more, the run says so)")
         above = pressures[pressures > e_inf]
         if above.size:
             notes.append(f"law FEM points at {', '.join(f'{p:g}' for p in above)} MPa, "
@@ -423,6 +423,7 @@ def estimate_cost(setup: RunSetup) -> CostEstimate:
         stages.append(Stage("half-space solves of the high-slope waves (Fig. 7)",
                             len(pressures) * speeds,
                             halfspace_solve_seconds(min(cfg.halfspace.n, 4096))))
+        stages += extension_stages(setup, float(pressures.max()), loads)
     if "fem" in setup.models:
         mesh = cfg.fem.full_mesh_or_default
         # loads given as contact areas: priced at E∞/4, about 1 MPa for the SBR, inside
