@@ -64,11 +64,11 @@ FEM_POINT_S = 1.3
 #: built-in default (2026-12-06, load 15): its 6 quasi-static points took 113 s of wall
 #: against 72 s for its 12 law points, about 3x a point; examples/captif_road.toml's
 #: automatic cell (128 x 16, graded 9.9 by the rule), in process at 0.3 MPa (2026-12-06,
-#: load 2, b3cfdcd): 7.9 s of CPU against 3.1 s, 2.5x.
+#: load 2, the FEM of 632bec3): 7.9 s of CPU against 3.1 s, 2.5x.
 QS_POINT_FACTOR = 3.0
 #: The same on an explicit mesh graded toward the face by more than ``QS_GRADING``: the
 #: section 3 law cell (120 x 23, ``fem.grading = 8``; examples/asphalt.toml, dma_compound,
-#: section3). examples/asphalt.toml from an empty cache (2026-12-06 12:09 UTC, b3cfdcd,
+#: section3). examples/asphalt.toml from an empty cache (2026-12-06 12:09 UTC, 632bec3's FEM,
 #: load 4-6): its 5 quasi-static points took 272-970 Newton iterations and 553 s of wall
 #: together, against 22-92 iterations and 52 s for its 10 law points (10-17x the iterations
 #: at the same pressure); in process at 0.1 MPa (load 2): 23.5 s of CPU against 1.7 s,

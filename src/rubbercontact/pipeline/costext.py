@@ -37,7 +37,7 @@ def extension_stages(setup: RunSetup, top: float, loads: int) -> list[Stage]:
     same sweep), the law's tables and the law models once more. A run whose local pressures
     stay inside the law, or whose cell would shear as a whole at the rung, does none of it
     (examples/asphalt.toml), and one that needs it pays it all: dma_compound (2026-12-06,
-    05001c5) added 3.16 MPa at 23 of its 33 speeds, 175 s for the path and 199 s for its
+    632bec3's FEM) added 3.16 MPa at 23 of its 33 speeds, 175 s for the path and 199 s for its
     quasi-static point by their clocks at load 3-4, then its tables and models again; with
     the extension unpriced its CPU was 2.8x the estimate."""
     from .lawstage import uses_continuation
