@@ -5,6 +5,7 @@ import io
 
 import numpy as np
 import pytest
+from test_pipeline_cost import CONFIG  # the same run: its --check stages are priced there
 
 from rubbercontact.config import parse_config
 from rubbercontact.errors import InputError
@@ -145,13 +146,6 @@ def test_run_sweep_hands_the_hints_and_each_tasks_time_to_the_reporter(capsys):
     assert "[hinted] 0/3 done (0 from cache, 0 failed), elapsed 00:00, ETA 00:03" in err
     assert "[hinted] 3/3 done" in err and err.rstrip().endswith("ETA 00:00")
 
-
-CONFIG = {"surface": {"preset": "section3"}, "velocities": [10.0, 50.0],
-          "loads": {"pressures": [0.15, 0.25, 0.35]}, "realizations": 4,
-          "models": ["vhs", "hybrid-windowed", "fem", "meanfield"],
-          "fem": {"mesh": [40, 30], "full_mesh": [64, 48], "realizations": 2},
-          "law": {"pressures": [0.1, 0.5, 2.0]}, "halfspace": {"n": 2048},
-          "execution": {"workers": 2}}
 
 
 @pytest.mark.parametrize("speeds", [[10.0, 50.0], [1.0, 3.0, 10.0, 50.0]])
