@@ -29,7 +29,7 @@ SPEEDS = (1.0, 100.0, 1e4, 1e5)
 
 @pytest.fixture(autouse=True)
 def _no_continuation(monkeypatch):
-    monkeypatch.setattr("rubbercontact.pipeline.lawstage.continue_with_linear_shape",
+    monkeypatch.setattr("rubbercontact.hybrid.lawtask.continue_with_linear_shape",
                         lambda table, *args, **kwargs: table)
 
 

@@ -42,7 +42,7 @@ MODELS = (*HYBRIDS, "meanfield-hybrid")
 
 @pytest.fixture(autouse=True)
 def _no_continuation(monkeypatch):
-    monkeypatch.setattr("rubbercontact.pipeline.lawstage.continue_with_linear_shape",
+    monkeypatch.setattr("rubbercontact.hybrid.lawtask.continue_with_linear_shape",
                         lambda table, *args, **kwargs: table)
 
 

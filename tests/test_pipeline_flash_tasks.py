@@ -35,7 +35,7 @@ VARIABLES = ("friction_flash", "contact_fraction_flash", "flash_temperature",
 
 @pytest.fixture(autouse=True)
 def _no_continuation(monkeypatch):
-    monkeypatch.setattr("rubbercontact.pipeline.lawstage.continue_with_linear_shape",
+    monkeypatch.setattr("rubbercontact.hybrid.lawtask.continue_with_linear_shape",
                         lambda table, *args, **kwargs: table)
 
 

@@ -13,6 +13,7 @@ import xarray as xr
 
 import rubbercontact as rc
 from rubbercontact.pipeline import execute, lawstage
+from rubbercontact.roughness import SineSeries
 
 SPEEDS = (1.0, 10.0)
 
@@ -34,27 +35,40 @@ def _law(extra_at_10: bool = False) -> xr.Dataset:
                       attrs={"hs_max_height_mm": 0.02})
 
 
+HS = SineSeries([0.0625], [0.01])
+
+
+def _material():
+    from rubbercontact.materials.maxwell import sbr
+
+    return sbr()
+
+
 @pytest.fixture
-def tabulate(monkeypatch):
-    """``lawstage._stage`` with the continuation replaced by a marker that records the
-    speeds it was asked for (the continuation's numbers are tested in test_hybrid)."""
-    asked = []
+def tabulate():
+    """``lawstage._stage`` with a runner in place of the sweep that records the speeds
+    and stage of the law table tasks and answers each with its reading (the
+    continuation's numbers are tested in test_hybrid)."""
+    asked, stages = [], []
 
-    def continuation(table, hs, material, velocity, nu=0.5):
-        asked.append(velocity)
-        return {**table, "continued_at": velocity}
+    def runner(tasks, description="sweep"):
+        stages.append(description)
+        asked.extend(t.kwargs["velocity"] for t in tasks)
+        assert {t.function for t in tasks} == {"rubbercontact.hybrid.lawtask:law_table_task"}
+        return [xr.Dataset({k: ("row", np.asarray(t.kwargs["reading"][k]))
+                            for k in ("separation", "pressure", "contact_fraction",
+                                      "shear_stress")}) for t in tasks]
 
-    monkeypatch.setattr(lawstage, "continue_with_linear_shape", continuation)
     cfg = SimpleNamespace(material=SimpleNamespace(nu=0.5))      # what _stage reads
 
-    def run(law, before=None, progress=False):
-        return lawstage._stage(law, None, None, None, np.array(SPEEDS), cfg, raw=law,
-                               progress=progress, before=before)
-    return run, asked
+    def run(law, before=None):
+        return lawstage._stage(law, None, HS, _material(), np.array(SPEEDS), cfg, raw=law,
+                               before=before, runner=runner)
+    return run, asked, stages
 
 
 def test_an_extension_recomputes_only_the_tables_whose_reading_changed(tabulate):
-    run, asked = tabulate
+    run, asked, _ = tabulate
     first = run(_law())
     assert asked == list(SPEEDS)
     asked.clear()
@@ -66,12 +80,40 @@ def test_an_extension_recomputes_only_the_tables_whose_reading_changed(tabulate)
     assert extended.tables[10.0]["pressure"][0] == 2.0      # the new top point, read
 
 
-def test_the_law_tables_are_a_stage_with_progress_lines(tabulate, capsys):
-    run, _ = tabulate
-    first = run(_law(), progress="log")
-    assert "[law tables] 2/2 done" in capsys.readouterr().err
-    run(_law(), before=first, progress="log")                # nothing to compute: silent
-    assert capsys.readouterr().err == ""
+def test_the_law_tables_are_a_stage_of_their_own(tabulate):
+    run, _, stages = tabulate
+    first = run(_law())
+    assert stages == ["law tables"]
+    run(_law(), before=first)                                # nothing to compute: no sweep
+    assert stages == ["law tables"]
+
+
+def test_a_repeat_reads_the_law_tables_the_first_run_computed(tmp_path, monkeypatch):
+    """The tables' half-space solves differ in their last bits with the process's BLAS
+    thread count; the hybrid tasks' keys hold the tables, so a repeat that computed them
+    again (other threads: a run from the cache against the run that computed the FEM)
+    gave those tasks other keys and re-ran them. The tables are cached tasks now."""
+    from rubbercontact.hybrid import lawtask
+    from rubbercontact.sweep import ExecutorConfig, ResultCache, run_sweep
+
+    calls = []
+
+    def noisy(table, hs, material, velocity, nu=0.5):      # another last bit each time
+        calls.append(velocity)
+        return {k: [x * (1 + len(calls) * 2.0 ** -52) for x in vals]
+                for k, vals in table.items()}
+
+    monkeypatch.setattr(lawtask, "continue_with_linear_shape", noisy)
+    cache = ResultCache(tmp_path / "cache")
+
+    def runner(tasks, description="sweep"):
+        return run_sweep(tasks, cache=cache, executor=ExecutorConfig(workers=1)).results
+
+    cfg = SimpleNamespace(material=SimpleNamespace(nu=0.5))
+    first, again = (lawstage._stage(_law(), None, HS, _material(), np.array(SPEEDS), cfg,
+                                    raw=_law(), runner=runner) for _ in range(2))
+    assert calls == list(SPEEDS)                           # the repeat computed none
+    assert again.tables == first.tables
 
 
 def test_named_gives_the_stage_to_runners_that_take_it():

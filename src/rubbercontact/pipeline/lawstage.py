@@ -20,7 +20,6 @@ from ..hybrid.law import (
     as_law,
     assemble_law,
     check_law_matches,
-    continue_with_linear_shape,
     law_at_velocity,
     screen_monotone,
 )
@@ -114,7 +113,8 @@ def build_law(cfg: RunConfig, hs0: SineSeries, material: GeneralizedMaxwell,
     if law is not None:
         law = as_law(law, source)
         check_law_matches(law, hs0, material, speeds, source)
-        return _stage(law, None, hs0, material, speeds, cfg, raw=None, progress=progress)
+        return _stage(law, None, hs0, material, speeds, cfg, raw=None, progress=progress,
+                      runner=runner)
     t0 = time.perf_counter()
     at = law_pressures(cfg, pressures)
     # the quasi-static points in the same sweep: they fill the workers while the law's
@@ -122,7 +122,7 @@ def build_law(cfg: RunConfig, hs0: SineSeries, material: GeneralizedMaxwell,
     raw, qs = run_batches(runner, [_grid_batch(cfg, hs0, material, at, speeds),
                                    _quasi_static(cfg, hs0, material, at, None)])
     return _stage(raw, time.perf_counter() - t0, hs0, material, speeds, cfg, raw=raw,
-                  progress=progress, quasi_static=qs)
+                  progress=progress, quasi_static=qs, runner=runner)
 
 
 def extend_law(stage: LawStage, points: dict[float, list[float]], cfg: RunConfig,
@@ -148,35 +148,61 @@ def extend_law(stage: LawStage, points: dict[float, list[float]], cfg: RunConfig
         qs = stage.quasi_static if qs is None else stage.quasi_static.merged(qs)
     fem_time = (stage.fem_time or 0.0) + time.perf_counter() - t0
     return _stage(raw, fem_time, hs0, material, speeds, cfg, raw=raw, progress=progress,
-                  before=stage, quasi_static=qs)
+                  before=stage, quasi_static=qs, runner=runner)
 
 
 def _stage(law: xr.Dataset, fem_time: float | None, hs0: SineSeries,
            material: GeneralizedMaxwell, speeds: np.ndarray, cfg: RunConfig,
            raw: xr.Dataset | None, progress: bool | str = False,
            before: LawStage | None = None,
-           quasi_static: QuasiStaticCheck | None = None) -> LawStage:
+           quasi_static: QuasiStaticCheck | None = None, runner=None) -> LawStage:
     """Screen ``law`` for monotonicity and tabulate it at each speed (``before``: a
-    speed read as there keeps its table)."""
-    from ..sweep.progress import make_reporter
-
+    speed read as there keeps its table); the tables are sweep tasks of ``runner``
+    (:func:`law_tables`)."""
     law = screen_monotone(law)
     readings = {float(v): law_at_velocity(law, float(v)) for v in speeds}
     old = before or LawStage(law, {}, None)
     todo = [v for v, r in readings.items()
             if v not in old.tables or not _same_reading(r, old.readings.get(v))]
-    reporter = make_reporter(progress if todo else False, "law tables")
-    reporter.start(len(todo))
-    tables = {}
-    for v, reading in readings.items():
-        if v in todo:
-            tables[v] = continue_with_linear_shape(reading, hs0, material, v,
-                                                   nu=cfg.material.nu)
-            reporter.advance(label=f"law table v={v:g} mm/s")
-        else:
-            tables[v] = old.tables[v]
-    reporter.close()
+    tables = {v: old.tables[v] for v in readings if v not in todo}
+    if todo:
+        tables.update(law_tables(todo, readings, hs0, material, cfg, runner))
+    tables = {v: tables[v] for v in readings}
     return LawStage(law, tables, fem_time, raw, readings, quasi_static)
+
+
+def law_tables(speeds, readings: dict, hs0: SineSeries, material: GeneralizedMaxwell,
+               cfg: RunConfig, runner) -> dict:
+    """``{speed: table}`` of ``readings`` at ``speeds``, each a cached sweep task
+    (:func:`~rubbercontact.hybrid.lawtask.law_table_task`): a table is computed once for
+    its reading, so the hybrid tasks that read it keep their keys from run to run (its
+    half-space solves differ in their last bits with the thread count of the process)."""
+    from ..hybrid.lawtask import table_from_dataset
+    from ..sweep import Task
+    from .assemble import failure_message
+
+    speeds = [float(v) for v in speeds]
+    tasks = [Task(function="rubbercontact.hybrid.lawtask:law_table_task",
+                  kwargs={"reading": readings[v], "surface": hs0.as_dict(),
+                          "material": task_material(material), "velocity": v,
+                          "nu": float(cfg.material.nu)},
+                  label=f"law table v={v:g} mm/s")
+             for v in speeds]
+    if runner is None:                       # no sweep: in this process, not cached
+        from ..sweep import run_sweep
+
+        answers = run_sweep(tasks, cache=None).results
+    else:
+        from .execute import named
+
+        answers = named(runner, "law tables")(tasks)
+    out = {}
+    for v, res in zip(speeds, answers, strict=True):
+        why = failure_message(res)
+        if why is not None:
+            raise RuntimeError(f"law table at v={v:g} mm/s failed: {why}")
+        out[v] = table_from_dataset(res)
+    return out
 
 
 def _same_reading(a: dict, b: dict | None) -> bool:
