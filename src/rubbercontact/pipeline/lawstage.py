@@ -100,8 +100,8 @@ def build_law(cfg: RunConfig, hs0: SineSeries, material: GeneralizedMaxwell,
         The speeds to tabulate [mm/s] (default ``cfg.velocities``; a run with temperatures
         passes its reduced speeds).
     progress
-        Progress display of the tables (``"auto"``, True, False): they are computed in this
-        process, seconds a speed, and shown as the stage "law tables".
+        Progress display of the tables (``"auto"``, True, False) when ``runner`` is None
+        (computed in this process); a runner shows them as its stage "law tables".
     """
     speeds = np.asarray(cfg.velocities if velocities is None else velocities, float)
     if law is None and cfg.law.file is not None:
@@ -166,13 +166,13 @@ def _stage(law: xr.Dataset, fem_time: float | None, hs0: SineSeries,
             if v not in old.tables or not _same_reading(r, old.readings.get(v))]
     tables = {v: old.tables[v] for v in readings if v not in todo}
     if todo:
-        tables.update(law_tables(todo, readings, hs0, material, cfg, runner))
+        tables.update(law_tables(todo, readings, hs0, material, cfg, runner, progress))
     tables = {v: tables[v] for v in readings}
     return LawStage(law, tables, fem_time, raw, readings, quasi_static)
 
 
 def law_tables(speeds, readings: dict, hs0: SineSeries, material: GeneralizedMaxwell,
-               cfg: RunConfig, runner) -> dict:
+               cfg: RunConfig, runner, progress: bool | str = False) -> dict:
     """``{speed: table}`` of ``readings`` at ``speeds``, each a cached sweep task
     (:func:`~rubbercontact.hybrid.lawtask.law_table_task`): a table is computed once for
     its reading, so the hybrid tasks that read it keep their keys from run to run (its
@@ -191,7 +191,8 @@ def law_tables(speeds, readings: dict, hs0: SineSeries, material: GeneralizedMax
     if runner is None:                       # no sweep: in this process, not cached
         from ..sweep import run_sweep
 
-        answers = run_sweep(tasks, cache=None).results
+        answers = run_sweep(tasks, cache=None, progress=progress,
+                            description="law tables").results
     else:
         from .execute import named
 
