@@ -8,6 +8,7 @@ highest FEM point, the rubber's loss peak at each temperature) and returns the n
 
 from __future__ import annotations
 
+import json
 import math
 
 import numpy as np
@@ -88,7 +89,19 @@ def _law_resolution(model: str, law: xr.Dataset | None) -> list[Note]:
     return [Note(model, "law_resolution",
                  f"{int(flag.sum())} of {flag.size} law FEM points under-resolved, narrowest "
                  f"contact patch {cols[i, j]:.1f} columns (p = {p:g} MPa, v = {v:g} mm/s); "
-                 f"a finer fem.columns_per_wave resolves them ({RESOLUTION_STUDY})")]
+                 f"{_finer(law)} resolves them ({RESOLUTION_STUDY})")]
+
+
+def _finer(law: xr.Dataset) -> str:
+    """The option that refines the law's cell: ``columns_per_wave`` applies only to the
+    automatic mesh, so a law on a given mesh is told to take a finer one (or "auto")."""
+    try:
+        mesh = json.loads(law.attrs.get("fem_options", "{}")).get("mesh", "auto")
+    except (TypeError, ValueError):
+        mesh = "auto"
+    if mesh == "auto":
+        return "a larger fem.columns_per_wave"
+    return f'fem.mesh = "auto" or a finer fem.mesh than {mesh[0]} x {mesh[1]}'
 
 
 def _temperatures(ds: xr.Dataset, setup) -> list[tuple[float | None, float]]:
