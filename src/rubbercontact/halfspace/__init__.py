@@ -5,9 +5,10 @@
 :mod:`.newton` and :mod:`.walls`, their common linear solve in :mod:`.contact_set`.
 """
 
-from .laws import InteractionLaw, Law, LennardJonesRepulsion, SumLaw, TabulatedLaw, check_law
+from .laws import InteractionLaw, Law, LennardJonesRepulsion, SumLaw, check_law
 from .options import SolverOptions
 from .solver import SlidingResult, solve_sliding
+from .tabulated import TabulatedLaw
 
 __all__ = ["InteractionLaw", "Law", "LennardJonesRepulsion", "SlidingResult", "SolverOptions",
            "SumLaw", "TabulatedLaw", "check_law", "solve_sliding"]
