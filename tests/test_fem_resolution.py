@@ -261,10 +261,10 @@ def test_under_resolved_law_points_are_one_line_in_the_notes():
     assert "2 of 6 law FEM points under-resolved" in note.text
     assert "2.5 columns (p = 0.3 MPa, v = 1 mm/s)" in note.text
     # the advice names the option that refines this law's mesh
-    assert "a larger fem.columns_per_wave resolves" in note.text
+    assert "a larger fem.columns_per_wave refines" in note.text
     law.attrs["fem_options"] = '{"mesh": [40, 30]}'
     (pinned,) = _law_resolution("hybrid", law)
-    assert 'fem.mesh = "auto" or a finer fem.mesh than 40 x 30 resolves' in pinned.text
+    assert 'fem.mesh = "auto" or a finer fem.mesh than 40 x 30 refines' in pinned.text
     assert "columns_per_wave" not in pinned.text
     assert _law_resolution("vhs", law) == []
     # the full FEM's tests likewise, in the FEM's note

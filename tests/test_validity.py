@@ -171,6 +171,22 @@ def test_departure_inside_the_class_and_the_reference():
     assert va.assess("vhs", stats, [_point(10.0, mu=(5.0,), mu_vhs=(1.0,))], SBR_PEAK) == ()
 
 
+def test_departure_names_the_runs_under_resolved_fem():
+    """A departure inside the class but with the run's FEM under-resolved (a note of the
+    run, not of the surface) names that as where the run leaves the class, instead of
+    "inside its validated class: check the run"; the run note itself is not returned."""
+    stats = va.SurfaceStats.from_series(rc.roughness.section3())
+    far = _point(10.0, mu=(0.34,), mu_vhs=(0.46,))
+    (inside,) = va.assess("fem", stats, [far], SBR_PEAK)
+    assert "inside its validated class" in inside.text
+    coarse = va.Note("fem", "fem_resolution", "6 of 6 FEM tests under-resolved",
+                     detail="6 of 6 FEM tests under-resolved")
+    (note,) = va.assess("fem", stats, [far], SBR_PEAK, [coarse])
+    assert note.condition == "vhs" and "inside its validated class" not in note.text
+    assert "outside its validated class" in note.text
+    assert note.text.endswith("6 of 6 FEM tests under-resolved")
+
+
 def test_departure_of_vanishing_friction_is_noise():
     """At the slowest speeds μ ~ 1e-5 on both sides is the grids' noise, not a departure; a
     hybrid keeping μ = 0.04 where the VHS has 4e-4 (issue 41) is one."""

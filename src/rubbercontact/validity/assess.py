@@ -222,7 +222,7 @@ def loss_peak_frequency(material) -> float:
 
 
 def assess(model: str, surface: SurfaceStats, points: Sequence[SpeedPoint] = (),
-           loss_peak: float | None = None) -> tuple[Note, ...]:
+           loss_peak: float | None = None, run_notes: Sequence[Note] = ()) -> tuple[Note, ...]:
     """The notes of ``model`` on ``surface`` at ``points``: one per condition outside its class.
 
     Parameters
@@ -237,6 +237,10 @@ def assess(model: str, surface: SurfaceStats, points: Sequence[SpeedPoint] = (),
         The run's rubber's loss-peak frequency [rad/s] (:func:`loss_peak_frequency`);
         ``math.inf`` for an elastic rubber, which has no hysteresis and so no speed bound;
         needed when ``points`` are given and the class bounds the speed.
+    run_notes
+        The run's own notes on ``model`` that are not about the surface or the speed (its
+        FEM tests under-resolved): they are not returned, but a departure from the VHS
+        names them as where the run leaves the class, not "inside its validated class".
 
     Returns
     -------
@@ -261,7 +265,7 @@ def assess(model: str, surface: SurfaceStats, points: Sequence[SpeedPoint] = (),
     if points:
         scale = None if loss_peak == math.inf else _frequency_scale(cls, loss_peak)
         for p in points:
-            notes.extend(_at_speed(cls, surface, p, scale, on_surface))
+            notes.extend(_at_speed(cls, surface, p, scale, on_surface + list(run_notes)))
     return tuple(notes)
 
 

@@ -44,14 +44,15 @@ def assess_run(ds: xr.Dataset, setup) -> tuple[Note, ...]:
     for model in setup.models:
         if model not in ds["model"].values:
             continue
+        # an under-resolved FEM explains a departure from the VHS as well as the class does
+        resolution = _law_resolution(model, law) + _fem_resolution(model, ds)
         for temperature, shift in _temperatures(ds, setup):
             points = [_point(ds, model, float(v), temperature, shift, law)
                       for v in ds["velocity"].values]
-            found = assess(model, stats, points, peak / shift)
+            found = assess(model, stats, points, peak / shift, resolution)
             # the surface's notes once per model, not once per temperature
             notes.extend(n for n in found if n.velocity is not None or n not in notes)
-        notes.extend(_law_resolution(model, law))
-        notes.extend(_fem_resolution(model, ds))
+        notes.extend(resolution)
     return tuple(notes)
 
 
@@ -65,10 +66,10 @@ def _fem_resolution(model: str, ds: xr.Dataset) -> list[Note]:
     if not flag.any():
         return []
     cols = float(np.nanmin(np.where(flag, ds["fem_patch_columns"].values, np.inf)))
-    return [Note(model, "fem_resolution",
-                 f"{int(flag.sum())} of {int(np.isfinite(ds['fem_under_resolved'].values).sum())}"
-                 f" FEM tests under-resolved, narrowest contact patch {cols:.1f} columns; a "
-                 f"finer fem.full_mesh resolves them ({RESOLUTION_STUDY})")]
+    reason = (f"{int(flag.sum())} of {int(np.isfinite(ds['fem_under_resolved'].values).sum())}"
+              f" FEM tests under-resolved, narrowest contact patch {cols:.1f} columns; a "
+              f"finer fem.full_mesh resolves them ({RESOLUTION_STUDY})")
+    return [Note(model, "fem_resolution", reason, detail=reason)]
 
 
 def _law_resolution(model: str, law: xr.Dataset | None) -> list[Note]:
@@ -86,10 +87,10 @@ def _law_resolution(model: str, law: xr.Dataset | None) -> list[Note]:
     cols = law["patch_columns"].values
     i, j = np.unravel_index(np.argmin(np.where(flag, cols, np.inf)), flag.shape)
     v, p = law["velocity"].values[i], law["pressure"].values[j]
-    return [Note(model, "law_resolution",
-                 f"{int(flag.sum())} of {flag.size} law FEM points under-resolved, narrowest "
-                 f"contact patch {cols[i, j]:.1f} columns (p = {p:g} MPa, v = {v:g} mm/s); "
-                 f"{_finer(law)} resolves them ({RESOLUTION_STUDY})")]
+    reason = (f"{int(flag.sum())} of {flag.size} law FEM points under-resolved, narrowest "
+              f"contact patch {cols[i, j]:.1f} columns (p = {p:g} MPa, v = {v:g} mm/s); "
+              f"{_finer(law)} refines them ({RESOLUTION_STUDY})")
+    return [Note(model, "law_resolution", reason, detail=reason)]
 
 
 def _finer(law: xr.Dataset) -> str:
