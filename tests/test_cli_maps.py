@@ -107,6 +107,46 @@ def test_bad_map_input_is_one_line(capsys, tmp_path, args, message):
     assert code == 2 and err.count("\n") == 1 and "truncated or corrupt" in err
 
 
+def test_halfspace_fills_a_map_with_dropouts_as_roughness_map_does(capsys, tmp_path):
+    """--map-nan fill reads the file as load_map(nan='fill') does (harmonic fill of the gap,
+    then the plane and the mirror): the solve is solve_map on that map; without it, the
+    dropouts are one error line."""
+    from rubbercontact.halfspace import LennardJonesRepulsion
+    from rubbercontact.io.mapload import load_map
+
+    z = np.array(self_affine_map((32, 32), 1.0, 0.8, rms_gradient=0.5, seed=4).heights)
+    z[10:13, 5:9] = np.nan
+    path = tmp_path / "gaps.npy"
+    np.save(path, z)
+    args = ["halfspace", "--map", str(path), "--map-dx", repr(1 / 32), "--velocity", "10",
+            "--pressure", "0.3", "--json"]
+    code, out, err = cli(args, capsys)
+    assert code == 2 and out == "" and err.count("\n") == 1 and "12 of 1024 points are NaN" in err
+    code, out, _ = cli([*args, "--map-nan", "fill"], capsys)
+    assert code == 0
+    hmap = load_map(path, dx=1 / 32, nan="fill")[1]
+    assert hmap.filled is not None and hmap.filled.sum() == 4 * 12   # mirrored 4 times
+    ref = solve_map(hmap, sbr(), 10.0, 0.3, LennardJonesRepulsion())
+    assert json.loads(out)["friction"] == pytest.approx(ref.friction, rel=1e-12)
+    code, _, err = cli([*args, "--map-nan", "drop"], capsys)
+    assert code == 2 and err.count("\n") == 1 and "--map-nan" in err
+
+
+@pytest.mark.parametrize("heights", ["constant", "plane"])
+def test_a_flat_map_file_is_one_line_not_a_failed_solve(capsys, tmp_path, heights):
+    """A constant or tilted map has nothing to solve once its plane is removed: the detrended
+    round-off is the flat map, refused in one line (it was a Newton failure on 1e-17 mm)."""
+    x = np.arange(16) * 0.01
+    z = np.full((16, 16), 1.234) if heights == "constant" else 0.3 * x[None, :] + 0.1 * x[:, None]
+    np.save(tmp_path / "flat.npy", z)
+    code, out, err = cli(["halfspace", "--map", str(tmp_path / "flat.npy"), "--map-dx", "0.01",
+                          "--velocity", "1", "--pressure", "0.1"], capsys)
+    assert code == 2 and out == "" and err.count("\n") == 1 and "flat surface" in err
+    code, out, _ = cli(["roughness", "map", str(tmp_path / "flat.npy"), "--dx", "0.01",
+                        "--json"], capsys)
+    assert code == 0 and json.loads(out)["rms_height_mm"] == 0.0
+
+
 def test_run_on_a_synthetic_map(capsys, tmp_path):
     import xarray as xr
 

@@ -85,6 +85,14 @@ def test_corrupt_npy_and_x3p_are_one_clear_error(tmp_path, hmap):
     assert _one_line(exc)
 
 
+def test_a_complex_npy_is_refused_not_cast(tmp_path, hmap):
+    """astype(float) would keep the real part with a warning; a height map is real."""
+    np.save(tmp_path / "c.npy", np.asarray(hmap.heights) * (1 + 1j))
+    with pytest.raises(InputError, match="real numeric array") as exc:
+        read_map(tmp_path / "c.npy", dx=0.05)
+    assert _one_line(exc)
+
+
 def test_unknown_format_and_existing_file(tmp_path, hmap):
     with pytest.raises(InputError, match="cannot write"):
         write_map(hmap, tmp_path / "m.xyz")

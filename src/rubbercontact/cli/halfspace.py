@@ -174,6 +174,8 @@ def command(
                                         "file that does not state it (.npy)."),
     periodize: str = typer.Option("mirror", "--periodize", help="Map: mirror (a measured "
                                   "map) or none (one period already, e.g. synthetic)."),
+    map_nan: str = typer.Option("error", "--map-nan", help="Map dropouts (NaN): error or "
+                                "fill (harmonic fill, as roughness map --nan)."),
 ) -> None:
     """Solve steady sliding of a rigid sine-series surface (or a height map) on the
     viscoelastic half-space."""
@@ -187,7 +189,9 @@ def command(
                               amplitudes=amplitudes, phases=phases, period=period, n=n)
         if periodize not in ("mirror", "none"):
             raise InputError(f"--periodize: expected 'mirror' or 'none', got {periodize!r}")
-        hmap = load_map(map_file, dx=map_dx, periodize=periodize)[1]
+        if map_nan not in ("error", "fill"):
+            raise InputError(f"--map-nan: expected 'error' or 'fill', got {map_nan!r}")
+        hmap = load_map(map_file, dx=map_dx, nan=map_nan, periodize=periodize)[1]
     ph = _floats("phases", phases) if phases is not None else cfg.get("phases")
     surf = None if map_file is not None else _surface(
         surface or cfg.get("surface"), _floats("wavelengths", wavelengths),

@@ -160,8 +160,9 @@ def _read_npy(path: Path) -> np.ndarray:
         raise InputError(f"{path.name}: not a readable .npy array ({type(exc).__name__}: "
                          f"{str(exc).splitlines()[0][:120]}); truncated or corrupt file"
                          ) from None
-    if not isinstance(z, np.ndarray) or z.ndim != 2 or not np.issubdtype(z.dtype, np.number):
-        raise InputError(f"{path.name}: expected a 2D numeric array (ny, nx), got "
+    if (not isinstance(z, np.ndarray) or z.ndim != 2 or not np.issubdtype(z.dtype, np.number)
+            or np.iscomplexobj(z)):     # complex: astype(float) would drop the imaginary part
+        raise InputError(f"{path.name}: expected a 2D real numeric array (ny, nx), got "
                          f"{getattr(z, 'shape', '?')} {getattr(z, 'dtype', '')}")
     return z.astype(float)
 

@@ -183,6 +183,8 @@ class HeightMap:
 
         A plane is fitted to the measured points only; on a periodic map it would add a
         seam jump, so ``"plane"`` is refused there (a periodic map has no tilt to remove).
+        What is left within round-off of the heights (a constant or a tilted plane) is the
+        flat map, zero heights, which the solvers refuse in one line.
         """
         if mode not in ("none", "mean", "plane"):
             raise InputError(f"detrend: expected 'none', 'mean' or 'plane', got {mode!r}")
@@ -191,15 +193,16 @@ class HeightMap:
         if mode == "none":
             return self
         if mode == "mean":
-            return self.replace(z - z[m].mean(), {"detrend": "mean"})
+            return self.replace(_flat_at_roundoff(z - z[m].mean(), z), {"detrend": "mean"})
         if self.periodic:
             raise InputError("detrend: 'plane' on a periodic map would open a seam; use 'mean'")
         yy, xx = np.meshgrid(self.y, self.x, indexing="ij")
         a = np.column_stack([np.ones(m.sum()), xx[m], yy[m]])
         coef, *_ = np.linalg.lstsq(a, z[m], rcond=None)
         plane = coef[0] + coef[1] * xx + coef[2] * yy
-        return self.replace(z - plane, {"detrend": "plane", "tilt_x": float(coef[1]),
-                                        "tilt_y": float(coef[2])})
+        return self.replace(_flat_at_roundoff(z - plane, z),
+                            {"detrend": "plane", "tilt_x": float(coef[1]),
+                             "tilt_y": float(coef[2])})
 
     def periodized(self, method: Literal["mirror", "none"] = "mirror") -> HeightMap:
         """One period of a periodic surface made of this map (module docstring).
@@ -259,6 +262,13 @@ class HeightMap:
                                         "y": ("y", self.y, {"units": "mm"})},
                           attrs={"periodic": int(self.periodic), "Lx_mm": self.lengths[1],
                                  "Ly_mm": self.lengths[0], "source": json.dumps(self.source)})
+
+
+def _flat_at_roundoff(residual: np.ndarray, heights: np.ndarray) -> np.ndarray:
+    """``residual``, or zeros when it is within round-off (1e-12) of the ``heights`` it was
+    detrended from: a constant or planar map leaves round-off, not a roughness to solve."""
+    scale = float(np.abs(heights).max())
+    return np.zeros_like(residual) if np.abs(residual).max() <= 1e-12 * scale else residual
 
 
 def _mirror(a: np.ndarray) -> np.ndarray:
