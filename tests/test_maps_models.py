@@ -5,6 +5,8 @@ uniform in y is a profile extruded along y, and every model must give the profil
 per unit width (the 2D kernel on q_y = 0 is the 1D one; the solvers run to tol 1e-8).
 """
 
+from dataclasses import replace
+
 import numpy as np
 import pytest
 
@@ -163,3 +165,29 @@ def test_box_average_of_a_field_uniform_in_y_is_the_1d_window():
     field = rng.random((16, 32))
     np.testing.assert_allclose(window_average_2d(field, (1.0, 1.0), 1.5), field.mean(),
                                rtol=1e-13)
+
+
+@pytest.mark.parametrize("window", [True, False])
+def test_the_lateral_force_of_waves_in_one_direction_points_along_them(window):
+    """Two waves along one direction q ∝ (2, 1), 1 mm and 1/8 mm apart along x (low and
+    high slope): the map is a function of 2x + y, the problem is one-dimensional along q, so
+    every force points along q — each row of the cell's law has Δτ_y = Δτ/2, the low-slope
+    pressure gives <σ ∂z/∂y> = <σ ∂z/∂x>/2 exactly (one mode each), and the hybrid's
+    lateral ratio is μ/2, pointwise or windowed, to the solves' tolerance."""
+    n, lx = 128, 1.0
+    x = np.arange(n) * lx / n
+    phase = 2 * np.pi * (2 * x[None, :] + x[:, None])             # (q_x, q_y) ∝ (2, 1)
+    hm = HeightMap(0.01 * np.sin(phase) + 0.003 * np.sin(8 * phase), (lx, lx), periodic=True)
+    split = split_map(hm, 0.15, cell_points=32, cell_periods=2)  # slopes x 0.089 and 0.21
+    law = linear_law_map(split.cell, MAT, V, points=12)
+    tau = np.asarray(law["shear_stress"])
+    assert np.all(tau[:-1] > 0)
+    np.testing.assert_allclose(law["shear_stress_y"], tau / 2, rtol=1e-6, atol=1e-14)
+    res = solve_map_hybrid(split, law, MAT, V, 0.2, MapHybridOptions(window=window))
+    assert res.friction_hs > 0.1 * res.friction
+    assert res.friction_y == pytest.approx(res.friction / 2, rel=1e-6)
+    # the high-slope wave alone: a flat low-slope map, the law at uniform pressure
+    flat = replace(split, low=split.low.replace(np.zeros((n, n)), {}))
+    res = solve_map_hybrid(flat, law, MAT, V, 0.2, MapHybridOptions(window=window))
+    assert res.low is None and res.friction_hs == res.friction > 0
+    assert res.friction_y == pytest.approx(res.friction / 2, rel=1e-6)

@@ -184,7 +184,9 @@ def solve_map_hybrid(split: MapSplit, law: dict, material: GeneralizedMaxwell,
     options
         :class:`MapHybridOptions`.
     """
+    from .law import tabulated_law_from_dict
     from .tasks import _flat_interface_solve, halfspace_law
+    from .windowing2d import lateral_table
 
     t0 = time.perf_counter()
     opts = options or MapHybridOptions()
@@ -201,9 +203,10 @@ def solve_map_hybrid(split: MapSplit, law: dict, material: GeneralizedMaxwell,
     if np.ptp(low.heights) <= 1e-14 * max(np.ptp(split.high.heights), 1e-300):
         # every band high-slope: uniform pressure, the law alone (the 1D flat solve)
         v = _flat_interface_solve(table, sigma0, velocity, opts.law, t0).values
-        tau_y = np.interp(sigma0, table["pressure"][::-1], table.get(
-            "shear_stress_y", np.zeros(len(table["pressure"])))[::-1])
-        return MapHybridResult(v["friction"], 0.0, v["friction_hs"], float(tau_y) / sigma0,
+        tau_y = (_flat_interface_solve(lateral_table(table), sigma0, velocity, opts.law,
+                                       t0).values["friction_hs"]
+                 if "shear_stress_y" in table else 0.0)
+        return MapHybridResult(v["friction"], 0.0, v["friction_hs"], tau_y,
                                v["contact_fraction"], v["mean_separation"], 0.0, None,
                                time.perf_counter() - t0)
     res = solve_map(low, material, velocity, sigma0, halfspace_law(opts.law, table),
@@ -216,6 +219,9 @@ def solve_map_hybrid(split: MapSplit, law: dict, material: GeneralizedMaxwell,
         window = split.cell_period
     else:
         mu_hs, area, window = res.friction_hs, res.contact_fraction, 0.0
+        if "shear_stress_y" in table:      # Δτ_hs,y(u), read as the solve reads Δτ_hs(u)
+            lateral = tabulated_law_from_dict(lateral_table(table))
+            mu_y += float(np.mean(lateral.shear_stress(res.separation))) / sigma0
     return MapHybridResult(res.friction_ls + mu_hs, res.friction_ls, mu_hs, mu_y, area,
                            res.mean_separation, window, res, time.perf_counter() - t0)
 

@@ -86,9 +86,13 @@ def windowed_hs_terms_2d(pressure: np.ndarray, lengths: tuple[float, float], win
            "contact_fraction": float(np.mean(np.interp(pbar, sig, alpha))),
            "friction_hs_y": 0.0}
     if "shear_stress_y" in table:
-        p_tab = np.asarray(table["pressure"], float)
-        order = np.argsort(p_tab)
-        tau_y = np.asarray(table["shear_stress_y"], float)[order]
-        out["friction_hs_y"] = float(np.mean(np.interp(pbar, p_tab[order], tau_y))
-                                     ) / mean_pressure
+        sig_y, _, tau_y = law_in_pressure(lateral_table(table))
+        out["friction_hs_y"] = float(np.mean(np.interp(pbar, sig_y, tau_y))) / mean_pressure
     return out
+
+
+def lateral_table(table: dict) -> dict:
+    """The law ``table`` with its lateral stress ``Δτ_hs,y`` (``shear_stress_y``) in place of
+    ``Δτ_hs``: read through it, ``Δτ_hs,y`` is interpolated as ``Δτ_hs`` is (the same
+    separations, pressures and interpolant)."""
+    return {**table, "shear_stress": table["shear_stress_y"]}
