@@ -54,6 +54,7 @@ def test_a_gentle_map_has_only_the_one_dimensional_note(gentle_run):
         assert len(lines) == 1, lines
         assert lines[0].startswith(f"{model}: outside its validated class")
         assert "one-dimensional" in lines[0] and classes.MAPS_REPORT in lines[0]
+        assert "docs/validation/maps_meanfield.md" in lines[0]   # the other map measurement
 
 
 def test_the_map_summary_prints_the_notes(gentle_run):

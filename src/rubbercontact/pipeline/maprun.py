@@ -1,4 +1,5 @@
-"""A run on an areal height map (``[surface.map]``): the VHS and the mean-field theory.
+"""A run on an areal height map (``[surface.map]``): the VHS, the mean-field theory and the
+hybrids with the linear law of the map's high-slope cell.
 
 The map is read (:func:`rubbercontact.io.read_map`, detrended, periodized as the table says)
 or synthesized (:func:`rubbercontact.roughness.self_affine_map`, periodic), then at every
@@ -17,8 +18,9 @@ speed and mean pressure of the run:
   not the FEM's. A map without a high-slope band has ``z_ls = z``: the hybrid is the VHS.
 
 The solves run one after the other in this process (no task cache, no Dask workers).
-What a map run does not do yet (the hybrids, target contact areas, temperatures,
-realizations, adhesion, the flash temperature) is refused when the config is loaded
+What a map run does not do yet (the ``fem`` and ``meanfield-hybrid`` models, a ``[law]``
+table, ``halfspace.n``, target contact areas, temperatures, realizations, adhesion, the
+flash temperature) is refused when the config is loaded
 (:class:`rubbercontact.config.RunConfig`). The results have dims ``model, velocity,
 pressure``, the map's provenance and statistics in ``attrs["surface"]`` and, per model,
 where the run leaves its validated class in ``attrs["validity_<model>"]``

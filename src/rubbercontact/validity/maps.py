@@ -2,8 +2,9 @@
 
 Every class was measured on one-dimensional surfaces (sine series, line scans): its
 ``dimension`` condition (:mod:`.classes`) gives each model on a map one note saying so,
-pointing at the one measurement on maps, docs/validation/maps_split.md (the hybrid's scale
-split with the linear law against the 2D VHS). The classes' other conditions are read off
+pointing at the two measurements on maps, docs/validation/maps_split.md (the hybrid's scale
+split with the linear law against the 2D VHS) and maps_meanfield.md (the mean-field against
+the 2D BEM). The classes' other conditions are read off
 the map's octave bands (:func:`rubbercontact.roughness.mapsplit.octave_bands`): a band
 stands for a wave of its wavelength with the band's rms slope along x (the sliding
 direction) as its per-wave m2 — the quantity the map's split compares with the threshold,
