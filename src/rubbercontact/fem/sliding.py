@@ -26,6 +26,7 @@ from ..roughness.protocol import check_waves
 from ..roughness.sines import SineSeries
 from .constitutive import cauchy_from_pk2
 from .contact import face_contact_fraction, mean_separation, segment_penetration
+from .loadrange import outside_range
 from .options import RESCUE_NEWTON, FemOptions, SteadyOptions, TransientOptions
 from .resolution import (
     REFINE_FACTORS,
@@ -104,10 +105,13 @@ def check_test(surface, material, mean_pressure, velocity, options: FemOptions
     if options.transient.steps_per_period is not None and options.solver == "steady":
         raise InputError("steps_per_period: the steady solver steps one column of travel; "
                          "refine the mesh instead, or pass solver='transient'")
-    if p > material.equilibrium_modulus:
-        warnings.warn(f"mean_pressure {p:g} MPa exceeds the relaxed modulus E∞ = "
-                      f"{material.equilibrium_modulus:g} MPa: very large strains, slow or "
-                      f"failing convergence", RuntimeWarning, stacklevel=3)
+    outside = outside_range(p, material.equilibrium_modulus)
+    if outside and options.auto:
+        raise InputError(f"FEM sliding test (p̄ = {p:g} MPa, v = {v:g} mm/s): outside the "
+                         f"cell's range, not tried on mesh = 'auto': {outside}")
+    if outside:
+        warnings.warn(f"mean_pressure: {outside}: slow or failing convergence",
+                      RuntimeWarning, stacklevel=3)
     return p, v
 
 
@@ -148,7 +152,8 @@ def sliding_test(surface: SineSeries, material: GeneralizedMaxwell, mean_pressur
     Raises
     ------
     InputError
-        Bad input (the message names the field).
+        Bad input (the message names the field), or on ``mesh = "auto"`` a mean pressure
+        outside the cell's range (above the relaxed modulus, :mod:`.loadrange`).
     ConvergenceError
         The solver failed (the steady solver first falls back to the transient one unless
         ``fallback=False``); ``diagnostics`` says what was tried.

@@ -21,6 +21,7 @@ from dataclasses import dataclass
 import numpy as np
 import xarray as xr
 
+from ..fem.loadrange import outside_range
 from ..fem.result import BULK_SHEAR_LIMIT, BULK_SHEAR_STUDY
 from ..hybrid.lawtable import NOT_COMPUTED, law_top
 from ..models.registry import needs_law
@@ -172,9 +173,9 @@ def _beyond_bounds(row: xr.Dataset, top: float, rung: float, max_pressure: float
     """Why the rung ``rung`` [MPa] above ``top`` is not computed (None: it is)."""
     if rung > max_pressure:
         return f"{rung:.3g} MPa is beyond law.max_pressure = {max_pressure:g} MPa"
-    if rung > relaxed_modulus:
-        return (f"{rung:.3g} MPa is above the relaxed modulus E∞ = {relaxed_modulus:.3g} MPa "
-                f"(very large strains in the cell)")
+    outside = outside_range(rung, relaxed_modulus)
+    if outside:
+        return outside
     predicted = predicted_shear(row, rung)
     if predicted > BULK_SHEAR_LIMIT:
         return (f"at {rung:.3g} MPa the cell would shear as a whole by about {predicted:.2g} "

@@ -1,0 +1,41 @@
+"""The loads the FEM cell holds: a law point's mean pressure stays at or below ``E∞``.
+
+In steady sliding the cell's mean compression is static, carried by the relaxed rubber, so
+above the relaxed modulus ``E∞`` its strains are very large. On steep cells the rubber then
+wraps the crests until the face is stretched two- or threefold and Newton stops after
+minutes of attempts: the CAPTIF station 1 cell's 10 MPa row (2.4 ``E∞``) stopped at every
+speed tried after 300–360 s of CPU each, and where the stations 0+1 cell converged there,
+it sheared as a whole by more than its height or ended with its face impaled
+(docs/validation/steep_cells.md, parts ``strain`` and ``rounded``).
+
+One rule, used twice: a run's law extension adds no pressure above it
+(:func:`rubbercontact.pipeline.lawcover.plan_extension`), and a test on the automatic mesh
+(the law's mesh) refuses such a load before any work (:func:`~.sliding.check_test`); on
+an explicit mesh the test is tried, with a warning.
+"""
+
+from __future__ import annotations
+
+#: The study behind the rule.
+LOAD_RANGE_STUDY = "docs/validation/steep_cells.md"
+
+
+def outside_range(mean_pressure: float, relaxed_modulus: float) -> str | None:
+    """Why a mean pressure is outside the FEM cell's range, or None if it is inside.
+
+    Parameters
+    ----------
+    mean_pressure
+        ``p̄`` [MPa].
+    relaxed_modulus
+        The rubber's relaxed (equilibrium) modulus ``E∞`` [MPa].
+
+    Returns
+    -------
+    str or None
+        One clause naming the pressure and ``E∞`` (None: ``p̄ <= E∞``).
+    """
+    if mean_pressure <= relaxed_modulus:
+        return None
+    return (f"{mean_pressure:.3g} MPa is above the relaxed modulus E∞ = "
+            f"{relaxed_modulus:.3g} MPa (very large strains in the cell; {LOAD_RANGE_STUDY})")
