@@ -241,6 +241,12 @@ def test_law_points_above_the_relaxed_modulus_are_said_not_budgeted():
     high = {**CONFIG, "law": {"pressures": [0.1, 2.0, 8.0, 16.0]}}
     said = estimate_cost(resolve(parse_config(high))).describe()
     assert "law FEM points at 8, 16 MPa, above the rubber's E∞" in said
+    # the automatic mesh does not try them (fem.loadrange): said so, and priced at nothing
+    auto = {**high, "fem": {**CONFIG["fem"], "mesh": "auto"}}
+    setup = resolve(parse_config(auto))
+    assert "8, 16 MPa, above the rubber's E∞ (4.17 MPa), not tried" in \
+        estimate_cost(setup).describe()
+    assert law_point_seconds(setup, 8.0) == 0.0 < law_point_seconds(setup, 2.0)
 
 
 def test_the_law_tables_cost_each_computed_speed_in_the_runs_own_process():

@@ -320,9 +320,13 @@ def law_point_seconds(setup: RunSetup, pressure: float) -> float:
 def law_point_seconds_on(options, surface, pressure: float, modulus: float) -> float:
     """:func:`law_point_seconds` from the law cell's own terms: its
     :class:`~rubbercontact.fem.FemOptions`, its surface (the high-slope waves), the
-    point's pressure [MPa] and the rubber's E∞ [MPa]."""
+    point's pressure [MPa] and the rubber's E∞ [MPa]. Zero for a pressure the automatic
+    mesh does not try (:mod:`rubbercontact.fem.loadrange`)."""
+    from ..fem.loadrange import outside_range
     from ..fem.resolution import refined_mesh
 
+    if options.auto and outside_range(pressure, modulus):
+        return 0.0
     mesh = tuple(options.resolved(surface).mesh)
     t = fem_point_seconds(mesh, options.solver, pressure, modulus)
     if options.auto:
@@ -414,9 +418,11 @@ def estimate_cost(setup: RunSetup) -> CostEstimate:
                                 same_sweep=True))
         above = pressures[pressures > e_inf]
         if above.size:
+            fate = ("not tried on the automatic mesh: outside the cell's range" if opts.auto
+                    else "may stop and run the barrier rescue or the transient fallback, "
+                         "minutes a point")
             notes.append(f"law FEM points at {', '.join(f'{p:g}' for p in above)} MPa, "
-                         f"above the rubber's E∞ ({e_inf:.3g} MPa), may stop and run the "
-                         f"barrier rescue or the transient fallback, minutes a point")
+                         f"above the rubber's E∞ ({e_inf:.3g} MPa), {fate}")
         stages.append(Stage("law tables past the top FEM pressure (linear-law shape, in "
                             "the run's own process)", speeds, LAW_TABLE_SPEED_S,
                             (speeds * LAW_TABLE_SPEED_S,)))
