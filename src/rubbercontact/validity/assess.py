@@ -331,9 +331,9 @@ def _what(c: Condition, values: np.ndarray, surface: SurfaceStats, p: SpeedPoint
         waves = "high-slope waves'" if c.quantity == "frequency_high" else "waves'"
         return f"its {waves} frequencies q·v leave the measured band; validated speeds {span}"
     if c.quantity == "dimension":
-        return ("validated on one-dimensional surfaces only; on maps only the hybrid's scale "
-                "split was measured, with the linear law against the 2D VHS, and the "
-                "mean-field against the 2D BEM (docs/validation/maps_meanfield.md)")
+        return ("validated on one-dimensional surfaces only; on maps the mean-field was "
+                "measured against the 2D BEM (docs/validation/maps_meanfield.md) and the "
+                "hybrid's scale split, with the linear law, against the 2D VHS")
     if c.quantity == "law_pressure":
         return (f"local pressures reach {p.local_pressure:.3g} MPa, the law's FEM points end "
                 f"at {p.law_top:.3g} MPa (the law is extrapolated)")
