@@ -73,14 +73,34 @@ class ProfileInput(Strict):
 
 
 class SyntheticMapInput(Strict):
-    """A synthetic periodic map (:func:`rubbercontact.roughness.self_affine_map`)."""
+    """A synthetic periodic map: self-affine (:func:`rubbercontact.roughness.self_affine_map`)
+    or with the isotropic spectrum of measured line scans
+    (:func:`rubbercontact.roughness.synthetic_map` on the scans' periodogram, which assumes
+    the road has no lay)."""
 
-    kind: Literal["self-affine"] = "self-affine"
+    kind: Literal["self-affine", "from-profiles"] = "self-affine"
     size: PositiveFloat = Field(description="side of the square map Lx = Ly [mm]")
     points: int = Field(ge=16, le=4096, description="points per side")
-    hurst: float = Field(gt=0, lt=1, description="Hurst exponent H [-]")
-    rms_gradient: PositiveFloat = Field(description="rms gradient of the map [-]")
+    hurst: float | None = Field(None, gt=0, lt=1, description="self-affine: Hurst exponent H")
+    rms_gradient: PositiveFloat | None = Field(
+        None, description="self-affine: rms gradient of the map [-]")
+    profiles: ProfileInput | None = Field(
+        None, description="from-profiles: the line scans whose spectrum the map takes "
+                          "(read as [surface.profiles]; lower/upper_cutoff bound the map's "
+                          "wavelengths; waves and method do not apply)")
     seed: int = Field(0, ge=0, description="seed of the phases")
+
+    @model_validator(mode="after")
+    def _kind_fields(self) -> SyntheticMapInput:
+        own = {"self-affine": ("hurst", "rms_gradient"), "from-profiles": ("profiles",)}
+        missing = [k for k in own[self.kind] if getattr(self, k) is None]
+        if missing:
+            raise ValueError(f"kind = {self.kind!r} needs {', '.join(missing)}")
+        other = [k for kind, keys in own.items() if kind != self.kind for k in keys
+                 if getattr(self, k) is not None]
+        if other:
+            raise ValueError(f"{', '.join(other)} do not apply to kind = {self.kind!r}")
+        return self
 
 
 class MapInput(Strict):

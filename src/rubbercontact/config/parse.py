@@ -65,14 +65,23 @@ def _resolve_paths(cfg: RunConfig, base: Path) -> RunConfig:
     def fix(p: Path | None) -> Path | None:
         return None if p is None else (p if p.is_absolute() else (base / p).resolve())
 
-    upd: dict[str, Any] = {}
-    if cfg.surface.profiles is not None:
-        prof = cfg.surface.profiles.model_copy(update={"files": [fix(f) for f in
-                                                                 cfg.surface.profiles.files]})
+    def fix_profiles(prof, where: str):
+        prof = prof.model_copy(update={"files": [fix(f) for f in prof.files]})
         missing = [str(f) for f in prof.files if not f.is_file()]
         if missing:
-            raise InputError(f"surface.profiles.files: file(s) not found: {', '.join(missing)}")
+            raise InputError(f"{where}.files: file(s) not found: {', '.join(missing)}")
+        return prof
+
+    upd: dict[str, Any] = {}
+    if cfg.surface.profiles is not None:
+        prof = fix_profiles(cfg.surface.profiles, "surface.profiles")
         upd["surface"] = cfg.surface.model_copy(update={"profiles": prof})
+    synthetic = cfg.surface.map.synthetic if cfg.surface.map is not None else None
+    if synthetic is not None and synthetic.profiles is not None:
+        prof = fix_profiles(synthetic.profiles, "surface.map.synthetic.profiles")
+        syn = synthetic.model_copy(update={"profiles": prof})
+        upd["surface"] = cfg.surface.model_copy(
+            update={"map": cfg.surface.map.model_copy(update={"synthetic": syn})})
     if cfg.surface.map is not None and cfg.surface.map.file is not None:
         path = fix(cfg.surface.map.file)
         if not path.is_file():

@@ -31,12 +31,13 @@ from __future__ import annotations
 
 import json
 import time
+from dataclasses import replace
 
 import numpy as np
 import xarray as xr
 
 from ..config import MAP_DEFAULT_MODELS, RunConfig
-from ..errors import ConvergenceError
+from ..errors import ConvergenceError, InputError
 from ..inputs import MapInput, build_material
 
 #: Result variables of a map run: (units, long name).
@@ -60,12 +61,50 @@ def build_map(spec: MapInput):
         from ..roughness import self_affine_map
 
         s = spec.synthetic
+        if s.kind == "from-profiles":
+            return profiles_map(s)
         return self_affine_map((s.points, s.points), s.size, s.hurst,
                                rms_gradient=s.rms_gradient, seed=s.seed)
     from ..io.mapload import load_map
 
     return load_map(spec.file, fmt=spec.format, unit=spec.unit, dx=spec.dx, nan=spec.nan,
                     detrend=spec.detrend, periodize=spec.periodize)[1]
+
+
+def profiles_map(spec):
+    """The periodic map of a ``kind = "from-profiles"`` synthetic table: the line scans'
+    pooled periodogram (:meth:`~rubbercontact.meanfield.PSD.from_profiles`) made an
+    isotropic 2D spectrum (:func:`~rubbercontact.roughness.isotropic_from_line_psd`, which
+    assumes no lay), its rings outside ``lower_cutoff``–``upper_cutoff`` dropped (after
+    the inversion: a scan's spectrum holds the shorter waves' projections), realized on the
+    ``points``² lattice of side ``size`` with random phases."""
+    import numpy as np
+
+    from ..io.profiles import read_profiles
+    from ..meanfield.psd import PSD
+    from ..roughness import isotropic_from_line_psd, synthetic_map
+
+    p = spec.profiles
+    scans = read_profiles(p.files, format=p.format, unit=p.unit, dx=p.dx,
+                          window=p.window or 16.0, despike=p.despike)
+    if len({z.size for z in scans.profiles}) > 1:   # one periodogram needs equal lengths
+        scans = scans.windows(min(z.size for z in scans.profiles) * scans.dx)
+    ring = isotropic_from_line_psd(PSD.from_profiles(scans))
+    q = ring.wavenumbers
+    keep = np.ones(q.size, bool)
+    if p.lower_cutoff is not None:
+        keep &= q <= 2 * np.pi / p.lower_cutoff
+    if p.upper_cutoff is not None:
+        keep &= q >= 2 * np.pi / p.upper_cutoff
+    if not keep.any():
+        raise InputError("surface.map.synthetic.profiles: no wavelength of the scans lies "
+                         "between lower_cutoff and upper_cutoff")
+    ring = PSD(q[keep], ring.variances[keep], 2, source=ring.source)
+    hmap = synthetic_map(ring, (spec.points, spec.points), spec.size, seed=spec.seed)
+    return replace(hmap, source={**hmap.source, "files": [str(f) for f in p.files],
+                                 "n_scans": len(scans.profiles),
+                                 "isotropy": "2D spectrum from the line scans', assuming "
+                                             "isotropy (no lay)"})
 
 
 def map_models(cfg: RunConfig) -> list[str]:
