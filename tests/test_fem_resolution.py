@@ -191,6 +191,33 @@ def test_a_refinement_that_fails_keeps_the_first_answer_and_tries_no_finer_mesh(
     assert any(t.startswith("refine 60x") and "failed" in t for t in auto.stats.tried)
 
 
+def test_a_point_sheared_as_a_whole_is_not_refined(monkeypatch):
+    # a narrow patch on a cell sheared as a whole beyond the limit (the steep CAPTIF cell at
+    # 3 MPa / 30 mm/s: 2.7 columns, sheared by 1.5): outside the cell's range whatever the
+    # mesh, so it is not re-solved finer; it stands flagged, and says why
+    from dataclasses import replace
+
+    import rubbercontact.fem.sliding as sliding
+    from rubbercontact.fem.result import BULK_SHEAR_LIMIT
+
+    surf, mat, pbar, _ = _westergaard(0.0157)
+    meshes, steady = [], sliding._steady
+
+    def sheared(surface, material, p, v, opts, start):
+        meshes.append(opts.mesh[0])
+        res = steady(surface, material, p, v, opts, start)
+        return replace(res, stats=replace(res.stats, bulk_shear=1.5 * BULK_SHEAR_LIMIT))
+
+    monkeypatch.setattr(sliding, "_steady", sheared)
+    with pytest.warns(RuntimeWarning, match="under-resolved"):
+        auto = rc.fem.sliding_test(surf, mat, pbar, 0.0, mesh="auto", columns_per_wave=40,
+                                   patch_columns=4)
+    assert meshes == [40] and auto.mesh[0] == 40
+    assert auto.stats.under_resolved and not auto.stats.refined
+    assert any(t.startswith("not refined: the cell sheared as a whole")
+               for t in auto.stats.tried)
+
+
 def test_config_mesh_is_auto_by_default_and_explicit_still_works():
     base = {"surface": {"preset": "section3"}, "velocities": [10.0],
             "loads": {"pressures": [0.2]}}

@@ -5,7 +5,8 @@ surface's shortest wave, rows at the face about as tall as a column is wide, and
 them geometrically up to rows of a small fraction of the cell width at the plate. After a
 test, :func:`narrowest_patch` measures its contact patches in columns; a test on an
 automatic mesh whose narrowest patch is below ``patch_columns`` is re-solved on a finer
-mesh (:func:`refine_factor`: 1.5x or 2x the columns, :mod:`.sliding`). N and the patch
+mesh (:func:`refine_factor`: 1.5x or 2x the columns, :mod:`.sliding`), unless its cell
+sheared as a whole beyond the limit (flagged whatever the mesh). N and the patch
 width come from the convergence study ``studies/mesh_resolution.py``
 (docs/validation/mesh_resolution.md).
 """
