@@ -14,7 +14,8 @@ to the profiles' sampling, the automatic mesh, no transient fallback) at the law
 CPU seconds per point (``time.process_time``) and the 1-minute load at the end of each.
 ``--baseline REV`` runs each pressure's path with the library of commit ``REV`` first (its
 ``src`` exported to a temporary directory, in a child process), so old and new stand side
-by side in one run, interleaved pressure by pressure. Run single-threaded::
+by side in one run, interleaved pressure by pressure (``--baseline-pressures``: only at
+those). Run single-threaded::
 
     OMP_NUM_THREADS=1 .venv/bin/python benchmarks/bench_steep_grid.py \\
         --output benchmarks/steep_grid.md
@@ -82,9 +83,11 @@ def _row(mode: str, p: float, v: float, res, err, cpu: float) -> dict:
     row = {"mode": mode, "pressure": p, "velocity": v, "cpu_s": cpu,
            "load": os.getloadavg()[0]}
     if res is None:
-        return {**row, "status": str(err).split(";")[0][:90]}
+        why = str(err).split("): ", 1)[-1] if str(err).startswith("FEM sliding test") else err
+        return {**row, "status": str(why).split(";")[0][:110]}
     return {**row, "status": "ok", "friction": res.friction,
             "contact_fraction": res.contact_fraction, "newton": res.stats.newton_iterations,
+            "shear": res.stats.bulk_shear, "mesh": "x".join(map(str, res.mesh)),
             "neighbour": "neighbour" in " ".join(res.stats.tried[:1])}
 
 
@@ -100,14 +103,15 @@ def baseline_path(src: Path, rev: str, p: float) -> list[dict]:
 
 
 def table(rows: list[dict]) -> list[str]:
-    out = ["| mode | p̄ [MPa] | v [mm/s] | CPU [s] | Newton | μ | A | status | load |",
-           "|---|---|---|---|---|---|---|---|---|"]
+    out = ["| mode | p̄ [MPa] | v [mm/s] | CPU [s] | Newton | μ | A | shear | mesh | status "
+           "| load |", "|---|---|---|---|---|---|---|---|---|---|---|"]
     for r in rows:
         mu = f"{r['friction']:.4f}" if "friction" in r else ""
         area = f"{r['contact_fraction']:.4f}" if "friction" in r else ""
+        shear = f"{r['shear']:.2f}" if "shear" in r else ""
         out.append(f"| {r['mode']} | {r['pressure']:g} | {r['velocity']:g} | "
-                   f"{r['cpu_s']:.1f} | {r.get('newton', '')} | {mu} | {area} | "
-                   f"{r['status']} | {r['load']:.1f} |")
+                   f"{r['cpu_s']:.1f} | {r.get('newton', '')} | {mu} | {area} | {shear} | "
+                   f"{r.get('mesh', '')} | {r['status']} | {r['load']:.1f} |")
     return out
 
 
@@ -119,7 +123,10 @@ def summary(rows: list[dict]) -> list[str]:
             continue
         cpu = np.array([r["cpu_s"] for r in sel])
         ok = sum(r["status"] == "ok" for r in sel)
-        lines.append(f"- {mode}: {len(sel)} points, {ok} steady; CPU total {cpu.sum():.0f} s, "
+        out = sum(r["status"].startswith("outside") for r in sel)
+        refused = f", {out} refused as outside the cell's range" if out else ""
+        lines.append(f"- {mode}: {len(sel)} points, {ok} steady{refused}; CPU total "
+                     f"{cpu.sum():.0f} s, "
                      f"median point {np.median(cpu):.1f} s (bar: {BAR_TOTAL:.0f} s for the "
                      f"25 points, median {BAR_MEDIAN:.0f} s)")
         both = sorted({r["pressure"] for r in rows if r["mode"] == "fresh"})
@@ -137,6 +144,8 @@ def main(argv: list[str] | None = None) -> int:
     ap.add_argument("--output", type=Path, default=None)
     ap.add_argument("--baseline", default=None, metavar="REV",
                     help="run each path with the library of commit REV first")
+    ap.add_argument("--baseline-pressures", type=float, nargs="*", default=None,
+                    help="the pressures --baseline runs (default: all of --pressures)")
     ap.add_argument("--json", type=Path, default=None, help=argparse.SUPPRESS)
     args = ap.parse_args(argv)
     surface = cells()["station 1"]
@@ -147,8 +156,9 @@ def main(argv: list[str] | None = None) -> int:
         if args.baseline:
             subprocess.run(f"git -C {ROOT} archive {args.baseline} src | tar -x -C {tmp}",
                            shell=True, check=True)
+        old = args.pressures if args.baseline_pressures is None else args.baseline_pressures
         for p in args.pressures:
-            if args.baseline:
+            if args.baseline and p in old:
                 rows += baseline_path(Path(tmp) / "src", args.baseline, p)
             rows += run_path(surface, options, p)
             print("\n".join(table(rows)[-2 * len(VELOCITIES):]), flush=True)
