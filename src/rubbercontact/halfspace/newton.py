@@ -193,6 +193,8 @@ def newton_law(prob: Problem, law: InteractionLaw, tol: float, max_iter: int,
         free = ~stiff
         dsig[free] = f[free] - sigma[free]  # k ≈ 0: explicit update
         total = prob.sigma0 * n - sigma.sum() - dsig[free].sum()
+        if _exact_load(prob) and abs(total) <= _LOAD_ROUNDOFF * prob.sigma0 * n:
+            total = 0.0     # the load's round-off, not a correction (options.exact_load_2d)
         if idx.size:
             c = 1.0 / k_inv[idx]
             w_free = prob.displacement(dsig) if np.any(dsig[free]) else np.zeros(n)
@@ -244,6 +246,18 @@ def newton_law(prob: Problem, law: InteractionLaw, tol: float, max_iter: int,
     res = rnorm / snorm
     return Solution(sigma, u, w, ubar, it, res, res <= tol,
                     {"linear_iterations": lin_its, "history": history, "steps": steps})
+
+
+#: ``options.exact_load_2d``: a Newton step's load correction ``σ0 n − Σσ − Σ δσ_free`` of at
+#: most this fraction of the load ``σ0 n`` is its round-off (an ulp of ``σ0 n`` is 1.1e-16
+#: of it) and is dropped.
+_LOAD_ROUNDOFF = 1e-13
+
+
+def _exact_load(prob: Problem) -> bool:
+    """Whether a Newton step drops a load correction at the load's round-off (maps,
+    options)."""
+    return len(prob.shape) == 2 and prob.options.exact_load_2d
 
 
 def _target(prob: Problem) -> bool:

@@ -172,6 +172,17 @@ class SolverOptions:
         Maps: the GMRES tolerance of a Newton step is at least ``0.01 tol/res`` (a step need
         not solve its linear system further than the tolerance asks); ``False``: at least
         ``tol`` (:func:`~rubbercontact.halfspace.newton._newton_rtol`).
+    exact_load_2d : bool, default True
+        Maps: a Newton step whose load correction ``σ0 n − Σσ − Σ δσ_free`` is at most
+        1e-13 of the load ``σ0 n`` (its round-off: an ulp of ``σ0 n``) solves its system
+        with none. The contact-set solve spreads the correction uniformly over the set
+        and measures its GMRES tolerance against the residual of that start; on the rows
+        with a large local compliance (the Lennard-Jones wall's tail, ``c`` up to 1e8
+        ``m_d``) an ulp of the load became a residual 400 times the Newton residual near
+        ``tol``, so the step's tolerance (``newton_forcing_target_2d``) asked for nothing
+        and the Newton stalled at 1.5e-8 (``tol`` 1e-8; the 512² map of
+        ``benchmarks/maps.md`` with the Lennard-Jones wall alone at 1 mm/s, 214 steps).
+        ``False``: the correction as computed.
     tight_krylov32_2d : bool, default True
         With ``single_krylov_2d``: the single-precision cycles tighter than 1e-3 (the last
         Newton steps) keep a float32 Krylov basis too, down to the cycles' floor 1e-5;
@@ -231,6 +242,7 @@ class SolverOptions:
     reuse_response_2d: bool = True
     wall_soft_coarse_min_side_2d: int | None = 64
     tight_krylov32_2d: bool = True
+    exact_load_2d: bool = True
     krylov_workspace_2d: bool = True
     wall_soft_skip_level_2d: bool = True
 
