@@ -227,6 +227,11 @@ def command(
         results = [solve_sliding(surf, kw["period"], mat, v, p0, law=the_law, n=kw["n"],
                                  nu=kw["nu"]) for v in sweep_list]
     rows = [_summary(r) for r in results]
+    from ..validity.halfspace import resolution_note
+
+    notes = [resolution_note(r) for r in results]
+    for row, note in zip(rows, notes, strict=True):
+        row["validity"] = "" if note is None else note.text
     if as_json:
         typer.echo(json.dumps(rows[0] if len(rows) == 1 and sweep is None else rows, indent=2))
     else:
@@ -236,6 +241,9 @@ def command(
             typer.echo(f"{r['velocity']:12.4g} {r['mean_pressure']:12.4g} {r['friction']:10.5f} "
                        f"{r['contact_fraction']:8.4f} {r['mean_separation']:12.4e} "
                        f"{r['iterations']:5d}")
+        for note in notes:
+            if note is not None:
+                typer.echo(f"note: {note.text}")
     if plot is not None:
         if len(results) > 1:
             _plot_sweep(rows, plot)
