@@ -153,12 +153,15 @@ def _hybrid(model: str, cfg: RunConfig, hmap, material, laws: dict):
 def _solver(model: str, cfg: RunConfig, hmap, material, laws: dict | None = None,
             keep: dict | None = None):
     """``solve(v, σ0) -> (μ, A_c/A_0, ū)`` of one model on the map; the VHS puts its last
-    solution in ``keep["result"]``."""
+    solution in ``keep["result"]`` and the note of each solve whose grid does not resolve
+    the contact in ``keep["notes"]``
+    (:func:`~rubbercontact.validity.halfspace.resolution_note`)."""
     if model in ("hybrid", "hybrid-windowed"):
         return _hybrid(model, cfg, hmap, material, {} if laws is None else laws)
     if model == "vhs":
         from ..halfspace import LennardJonesRepulsion
         from ..hybrid.maps import solve_map
+        from ..validity.halfspace import resolution_note
 
         law = LennardJonesRepulsion() if cfg.halfspace.law == "lennard-jones" else None
         kept = {} if keep is None else keep
@@ -166,6 +169,9 @@ def _solver(model: str, cfg: RunConfig, hmap, material, laws: dict | None = None
         def vhs(v: float, p: float) -> tuple[float, float, float]:
             r = solve_map(hmap, material, v, p, law, nu=cfg.material.nu, tol=cfg.halfspace.tol)
             kept["result"] = r
+            note = resolution_note(r)
+            if note is not None:
+                kept.setdefault("notes", []).append(note)
             return r.friction, r.contact_fraction, r.mean_separation
         return vhs
     from ..meanfield import solve
@@ -214,18 +220,20 @@ def run_map(cfg: RunConfig) -> xr.Dataset:
                     contact = keep["result"]
     ds = _dataset(cfg, hmap, material, models, speeds, pressures, data, status,
                   time.perf_counter() - t_start)
-    ds = _with_validity(ds, hmap, material, cfg.surface.m2_threshold)
+    ds = _with_validity(ds, hmap, material, cfg.surface.m2_threshold, keep.get("notes", ()))
     return _with_fields(ds, hmap, contact)
 
 
-def _with_validity(ds: xr.Dataset, hmap, material, threshold: float) -> xr.Dataset:
+def _with_validity(ds: xr.Dataset, hmap, material, threshold: float,
+                   solved: tuple | list = ()) -> xr.Dataset:
     """Each model's notes where the run leaves its validated class, one line each, in
     ``attrs["validity_<model>"]`` as a 1D run has them (:mod:`rubbercontact.validity.maps`:
-    every model's class was measured in 1D, so each has at least that note)."""
+    every model's class was measured in 1D, so each has at least that note), with the
+    notes of the solves themselves (``solved``: the VHS's unresolved contacts)."""
     from ..validity import as_attrs
     from ..validity.maps import assess_map_run
 
-    notes = assess_map_run(ds, hmap, material, threshold)
+    notes = (*assess_map_run(ds, hmap, material, threshold), *solved)
     for m in ds["model"].values:
         ds.attrs.update(as_attrs(str(m), notes))
     return ds
