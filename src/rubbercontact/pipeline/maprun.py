@@ -231,9 +231,10 @@ def _with_validity(ds: xr.Dataset, hmap, material, threshold: float,
     every model's class was measured in 1D, so each has at least that note), with the
     notes of the solves themselves (``solved``: the VHS's unresolved contacts)."""
     from ..validity import as_attrs
+    from ..validity.halfspace import worst_per_speed
     from ..validity.maps import assess_map_run
 
-    notes = (*assess_map_run(ds, hmap, material, threshold), *solved)
+    notes = (*assess_map_run(ds, hmap, material, threshold), *worst_per_speed(solved))
     for m in ds["model"].values:
         ds.attrs.update(as_attrs(str(m), notes))
     return ds

@@ -26,7 +26,7 @@ import numpy as np
 
 from .assess import Note
 
-__all__ = ["RESOLUTION_TOLERANCE", "dissipation_friction", "resolution_note"]
+__all__ = ["RESOLUTION_TOLERANCE", "dissipation_friction", "resolution_note", "worst_per_speed"]
 
 #: The slope and dissipation forms of μ may differ by this fraction of the larger one.
 RESOLUTION_TOLERANCE = 0.5
@@ -90,8 +90,19 @@ def resolution_note(result, model: str = "vhs") -> Note | None:
                                    RESOLUTION_FLOOR):
         return None
     what = "negative" if negative else "off"
-    reason = (f"μ from the slopes <σ ∂z/∂x> = {mu:.3g} is {what}: the rubber's dissipation "
+    reason = (f"σ0 = {result.mean_pressure:.3g} MPa, μ from the slopes <σ ∂z/∂x> = {mu:.3g} "
+              f"is {what}: the rubber's dissipation "
               f"<σ ∂w/∂x> gives {mu_w:.3g} (>= 0); the grid does not resolve the contact "
               f"(slopes at the grid scale): refine the grid or drop the shortest waves")
     excess = gap / max(RESOLUTION_TOLERANCE * max(abs(mu), abs(mu_w)), RESOLUTION_FLOOR)
     return Note(model, "resolution", reason, result.velocity, None, excess, reason)
+
+
+def worst_per_speed(notes) -> tuple[Note, ...]:
+    """The worst of ``notes`` at each speed (a run's loads share a speed's note: the
+    run's summary folds notes over speeds, and counts each)."""
+    worst: dict = {}
+    for n in notes:
+        if n.velocity not in worst or n.excess > worst[n.velocity].excess:
+            worst[n.velocity] = n
+    return tuple(worst.values())
