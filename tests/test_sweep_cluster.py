@@ -3,6 +3,8 @@
 
 from __future__ import annotations
 
+import warnings
+
 import pytest
 import xarray as xr
 
@@ -33,8 +35,12 @@ def _assert_same(a, b):
 def tcp_cluster():
     from distributed import LocalCluster
 
-    cluster = LocalCluster(n_workers=2, threads_per_worker=1, processes=True, host="127.0.0.1",
-                           dashboard_address=None, silence_logs=40)
+    with warnings.catch_warnings():
+        # its HTTP (metrics) server takes a free port when another cluster holds 8787, as
+        # the library's own cluster does (sweep/executor.py)
+        warnings.filterwarnings("ignore", message="Port .* is already in use")
+        cluster = LocalCluster(n_workers=2, threads_per_worker=1, processes=True,
+                               host="127.0.0.1", dashboard_address=None, silence_logs=40)
     try:
         yield cluster
     finally:
