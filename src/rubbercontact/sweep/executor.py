@@ -17,8 +17,12 @@ Execution modes (:class:`ExecutorConfig`):
 
 BLAS/OpenMP threads are pinned to 1 in worker processes (environment variables
 set by the nanny before the worker imports numpy), so two tasks do not fight
-over one core; ``threadpoolctl`` is also used when installed, which covers
-workers started by hand without the variables.
+over one core; ``threadpoolctl`` (a dependency; without it the variables alone)
+also limits the pools already loaded, once per task function in each worker
+process, which covers workers started by hand without the variables. Tasks run
+in this process (synchronous, or a local cluster of threads) run under one
+thread too, for the sweep: a half-space solve's last bits differ with the
+thread count, and a run on one worker computes what a run on two would.
 
 Results are written to the cache by the *client* as each future completes
 (``as_completed``), so the cache directory only has to be visible to the client
@@ -136,11 +140,37 @@ class ExecutorConfig:
 
 # -- worker side ------------------------------------------------------------------------
 def _limit_threads() -> contextlib.AbstractContextManager[Any]:
+    """One BLAS/OpenMP thread in every thread pool loaded, inside the context
+    (``threadpoolctl``; without it, a context that does nothing). Entering costs a scan
+    of the process's libraries, several ms: once per sweep, not per task."""
     try:
         from threadpoolctl import threadpool_limits
     except ImportError:
         return contextlib.nullcontext()
     return threadpool_limits(1)
+
+
+#: The task functions this worker process has limited the threads for (each may load
+#: libraries of its own).
+_LIMITED_FOR: set[str] = set()
+
+
+def _limit_worker_threads(function: str) -> None:
+    """In a worker process, once per task function: :data:`THREAD_ENV` for libraries
+    loaded later and one thread in the pools already loaded, for the process's life (the
+    nanny's environment does the same for a local cluster's workers; this covers workers
+    started by hand). Without ``threadpoolctl`` the environment only."""
+    if function in _LIMITED_FOR:
+        return
+    for name, value in THREAD_ENV.items():
+        os.environ.setdefault(name, value)
+    try:
+        from threadpoolctl import threadpool_limits
+    except ImportError:
+        pass
+    else:
+        threadpool_limits(1)               # kept: not used as a context
+    _LIMITED_FOR.add(function)
 
 
 def _execute(function: str, kwargs: dict[str, Any], limit_threads: bool = False,
@@ -170,9 +200,10 @@ def _run(function: str, kwargs: dict[str, Any],
          limit_threads: bool) -> tuple[str, xr.Dataset | TaskFailure, float]:
     t0 = time.perf_counter()
     try:
-        func = resolve_function(function)
-        with _limit_threads() if limit_threads else contextlib.nullcontext():
-            out = func(**kwargs)
+        func = resolve_function(function)         # imports its libraries first
+        if limit_threads:
+            _limit_worker_threads(function)
+        out = func(**kwargs)
         if not isinstance(out, xr.Dataset):
             raise TypeError(f"task function {function} returned {type(out).__name__}, "
                             f"expected xarray.Dataset")
@@ -364,17 +395,25 @@ def run_sweep(tasks: Sequence[Task], cache: ResultCache | None = None,
     try:
         if todo:
             if mode == "sync":
-                for i in todo:
-                    finish(i, *_execute(tasks[i].function, dict(tasks[i].kwargs)))
+                # in this process on one thread, as on a worker: the same last bits (a
+                # half-space solve's differ with the BLAS thread count, and results that
+                # reach other tasks' keys would give them other keys)
+                with _limit_threads():
+                    for i in todo:
+                        finish(i, *_execute(tasks[i].function, dict(tasks[i].kwargs)))
             else:
                 from distributed import as_completed
 
-                with _dask_client(mode, address, min(workers, len(todo)), config) as client:
+                # worker processes limit their own threads; threads of this process (a
+                # local cluster without processes) run under this process's limit
+                in_here = mode == "local" and not config.processes
+                with _limit_threads() if in_here else contextlib.nullcontext(), \
+                        _dask_client(mode, address, min(workers, len(todo)), config) as client:
                     # One batched submission: client.submit in a loop costs ~1 ms per task.
                     shared = cache is not None and cache.shared
                     submitted = client.map(_execute, [tasks[i].function for i in todo],
                                            [dict(tasks[i].kwargs) for i in todo],
-                                           [True] * len(todo),
+                                           [not in_here] * len(todo),
                                            [(str(cache.directory), keys[i], tasks[i])
                                             if shared else None for i in todo],
                                            key=[_dask_key(tasks[i], keys[i]) for i in todo],
