@@ -86,23 +86,24 @@ def solve_times(results_nc: Path) -> str:
     return "; ".join(parts)
 
 
-def quasi_static_times(cache: Path) -> str:
-    """The law cell's quasi-static points by their own clocks, read from the run's cache
-    entries (results.nc keeps their friction, not their time): how many, their sum, the
-    slowest."""
+def cached_task_times(cache: Path) -> str:
+    """The law cell's quasi-static points and the law tables by their own clocks, read
+    from the run's cache entries (results.nc keeps the check's friction, not its time, and
+    nothing of the tables): how many, their sum, the slowest."""
     import xarray as xr
 
     from rubbercontact.pipeline.lawcheck import QS_LABEL
 
-    wall = []
+    kinds = {QS_LABEL: "law quasi-static check", "law table": "law tables"}
+    wall: dict[str, list[float]] = {k: [] for k in kinds}
     for entry in cache.rglob("*.nc"):
         with xr.open_dataset(entry) as ds:
-            if str(ds.attrs.get("rc_cache_label", "")).startswith(QS_LABEL):
-                wall.append(float(ds.attrs.get("rc_cache_wall_time_s", float("nan"))))
-    if not wall:
-        return ""
-    return (f"law quasi-static check {len(wall)} points, {sum(wall):.0f} s "
-            f"(slowest {max(wall):.0f} s)")
+            label = str(ds.attrs.get("rc_cache_label", ""))
+            for prefix, times in wall.items():
+                if label.startswith(prefix):
+                    times.append(float(ds.attrs.get("rc_cache_wall_time_s", float("nan"))))
+    return "; ".join(f"{kinds[k]} {len(w)} points, {sum(w):.0f} s (slowest {max(w):.0f} s)"
+                     for k, w in wall.items() if w)
 
 
 def run(example: Path, workers: int) -> Timing:
@@ -118,7 +119,7 @@ def run(example: Path, workers: int) -> Timing:
         wall = time.perf_counter() - t0
         cpu1 = resource.getrusage(resource.RUSAGE_CHILDREN)
         solves = "; ".join(x for x in (solve_times(Path(tmp) / "out" / "results.nc"),
-                                       quasi_static_times(Path(tmp) / "cache")) if x)
+                                       cached_task_times(Path(tmp) / "cache")) if x)
     if proc.returncode != 0:
         raise SystemExit(f"{example.name}: run failed ({proc.returncode}): "
                          f"{proc.stderr.strip().splitlines()[-1:]}")

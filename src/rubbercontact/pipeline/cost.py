@@ -16,7 +16,7 @@ measured. The model, kept simple:
   (:mod:`rubbercontact.fem`), budgeted as ``AUTO_REFINED_SHARE`` of the points;
 - a half-space solve ``HALFSPACE_SOLVE_S`` at ``HALFSPACE_POINTS``, as ``n log n``;
 - the law's tables, continued past the top FEM pressure with the linear law's shape,
-  ``LAW_TABLE_SPEED_S`` per computed speed, serial in the run's own process;
+  ``LAW_TABLE_SPEED_S`` per computed speed, one task each on the workers;
 - mean-field points per model, ``MEANFIELD_POINT_S``;
 - the law cell's quasi-static check, one point per law pressure, ``QS_POINT_FACTOR``
   times a law point, ``QS_GRADED_FACTOR`` on an explicit mesh graded toward its face;
@@ -125,12 +125,14 @@ HALFSPACE_SOLVE_S = 0.03
 HALFSPACE_POINTS = 16384
 #: The law's table at one computed speed [s]: its continuation past the top FEM pressure
 #: with the linear law's shape (hybrid.linearlaw.continue_with_linear_shape: up to 41 VHS
-#: solves of the high-slope waves at 2048 points), serial in the run's own process, at every
-#: speed. On the quiet machine (2026-12-04 05:21 UTC, benchmarks/examples.md) the runs' CPU
-#: beyond their FEM and half-space solves' own clocks, per computed speed: speed_sweep 3.3 s
-#: (45 speeds), dma_compound 5 s (33), both with the process's start and figures in it; at
-#: load 5-11 the loop had taken 3.6-10 s a speed.
-LAW_TABLE_SPEED_S = 3.5
+#: solves of the high-slope waves at 2048 points), one cached task per speed on the
+#: workers, one BLAS thread (hybrid/lawtask.py, since 3286531). 0.6 s on one thread
+#: (asphalt's cell, 2026-12-06); examples/speed_sweep.toml from an empty cache (2026-12-06
+#: 15:45 UTC, e45e668, load 4.4-5 with two workers on 2 cores): 69 tables, 124 s by their
+#: own clocks, 1.8 s each, about 0.7 s of CPU at the core share the load left them. The
+#: 3.5 s it had been was read off the runs' own-process CPU when the tables ran there on
+#: every BLAS thread beside the workers (25 s a table had been seen there under load).
+LAW_TABLE_SPEED_S = 1.0
 #: Per-point cost of each mean-field model [s] (CPU time of the tasks of the default's
 #: three loads at 10 and 50 mm/s on the section 3 and asphalt AC8 presets, 2026-12-03,
 #: load 2.5; the strips: BENCHMARKS.md, "strip cascade"); a model not listed is priced as
@@ -423,9 +425,9 @@ def estimate_cost(setup: RunSetup) -> CostEstimate:
                          "minutes a point")
             notes.append(f"law FEM points at {', '.join(f'{p:g}' for p in above)} MPa, "
                          f"above the rubber's E∞ ({e_inf:.3g} MPa), {fate}")
-        stages.append(Stage("law tables past the top FEM pressure (linear-law shape, in "
-                            "the run's own process)", speeds, LAW_TABLE_SPEED_S,
-                            (speeds * LAW_TABLE_SPEED_S,)))
+        # one task per computed speed on the workers (.lawstage.law_tables)
+        stages.append(Stage("law tables past the top FEM pressure (linear-law shape, one "
+                            "task per speed)", speeds, LAW_TABLE_SPEED_S))
         stages.append(Stage("half-space solves of the high-slope waves (Fig. 7)",
                             len(pressures) * speeds,
                             halfspace_solve_seconds(min(cfg.halfspace.n, 4096))))

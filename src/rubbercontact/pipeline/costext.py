@@ -62,8 +62,7 @@ def extension_stages(setup: RunSetup, top: float, loads: int) -> list[Stage]:
         qs = tuple(quasi_static_seconds(opts, setup.hs0, p, e_inf) for p in rungs[::-1])
         out.append(Stage("law extension: quasi-static check", len(qs), sum(qs) / len(qs),
                          qs, same_sweep=True))
-    out.append(Stage("law extension: law tables again", speeds, LAW_TABLE_SPEED_S,
-                     (speeds * LAW_TABLE_SPEED_S,)))
+    out.append(Stage("law extension: law tables again", speeds, LAW_TABLE_SPEED_S))
     solves = [(speeds * len(setup.realizations) * loads,
                halfspace_solve_seconds(cfg.halfspace.n)) if planning(m).per == PER_REALIZATION
               else (speeds * loads, meanfield_point_seconds(m))

@@ -26,7 +26,7 @@ from ..hybrid.law import (
 from ..materials import GeneralizedMaxwell
 from ..roughness import SineSeries
 from .batch import Batch, run_batches
-from .cost import halfspace_solve_seconds, law_task_seconds
+from .cost import LAW_TABLE_SPEED_S, halfspace_solve_seconds, law_task_seconds
 from .lawcheck import QuasiStaticCheck, quasi_static_batch
 from .lawcover import NOT_NEEDED, merge_points
 from .setup import task_material
@@ -186,7 +186,7 @@ def law_tables(speeds, readings: dict, hs0: SineSeries, material: GeneralizedMax
                   kwargs={"reading": readings[v], "surface": hs0.as_dict(),
                           "material": task_material(material), "velocity": v,
                           "nu": float(cfg.material.nu)},
-                  label=f"law table v={v:g} mm/s")
+                  label=f"law table v={v:g} mm/s", cost=LAW_TABLE_SPEED_S)
              for v in speeds]
     if runner is None:                       # no sweep: in this process, not cached
         from ..sweep import run_sweep
