@@ -157,8 +157,46 @@ def test_the_check_sends_the_highest_pressure_first_and_reads_each_answer_at_its
     sent = [t.kwargs["mean_pressure"] for t in batch.tasks]
     assert sent == [2.0, 0.5, 0.1]
     assert [t.cost for t in batch.tasks] == sorted(t.cost for t in batch.tasks)[::-1]
-    answers = [xr.Dataset({"friction": p / 100}) if p != 0.5 else None for p in sent]
+    # each task a path: the quasi-static speed, then the speed it is continued from
+    speeds = batch.tasks[0].kwargs["velocities"]
+    assert speeds == [check_speed := quasi_static_speed(rc.materials.sbr(), 0.0625), 10.0]
+    assert check_speed < speeds[1]
+    answers = [xr.Dataset({"friction": ("velocity", [p / 100, 9.0]),
+                           "status": ("velocity", ["ok", "ok"])}) if p != 0.5 else None
+               for p in sent]
     check = batch.collect(answers)
     assert check.pressure.tolist() == [0.1, 0.5, 2.0]
     assert check.friction[[0, 2]].tolist() == [0.001, 0.02] and np.isnan(check.friction[1])
     assert check.status[0] == check.status[2] == "ok" and check.status[1] != "ok"
+
+
+def test_the_continued_point_answers_what_a_fresh_press_at_the_quasi_static_speed_does(
+        steep_cell):
+    # old and new: the check's point continued down from TAIL_FROM against the press at
+    # the quasi-static speed it replaced, on the same options (no transient fallback)
+    from rubbercontact.hybrid.tasks import fem_task
+    from rubbercontact.pipeline.setup import task_material
+
+    sbr = rc.materials.sbr()
+    options = make_options(mesh="auto")
+    check = check_quasi_static(options, steep_cell, sbr, [0.1], _runner)
+    fresh = fem_task(steep_cell.as_dict(), task_material(sbr), check.speed, 0.1,
+                     options.with_(steady={"fallback": False}).to_dict())
+    # within the check's tolerance of each other, so the same verdict (the steep cell's
+    # relaxed contact settles 8e-4 apart by the two routes; asphalt's and captif_road's
+    # cells to 2e-8, benchmarks/qs_tail.md)
+    assert check.status == ("ok",)
+    assert abs(check.friction[0] - float(fresh["friction"])) < QS_TOL
+    assert abs(float(fresh["friction"])) <= QS_TOL and not check.failing.any()
+
+
+def test_a_continued_point_that_stops_is_recorded_as_stopped():
+    import xarray as xr
+
+    from rubbercontact.pipeline.lawcheck import quasi_static_batch
+
+    batch = quasi_static_batch(make_options(mesh=(32, 8)), rc.roughness.high_slope_wave(),
+                               rc.materials.sbr(), [0.1])
+    check = batch.collect([xr.Dataset({"friction": ("velocity", [np.nan, 0.2]),
+                                       "status": ("velocity", ["ConvergenceError: x", "ok"])})])
+    assert check.stopped.all() and check.status == ("ConvergenceError: x",)

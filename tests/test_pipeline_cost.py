@@ -76,13 +76,14 @@ def test_the_law_cells_quasi_static_check_is_one_point_per_law_pressure():
 ])
 def test_a_quasi_static_point_on_an_explicitly_graded_cell_costs_more(fem, factor):
     # measured: 272-970 Newton iterations on the 120 x 23 cell graded 8 against 22-92 for
-    # its law points; 34 iterations graded 1 (pipeline/cost.py, QS_GRADED_FACTOR)
+    # its law points fresh, 84-1035 continued down from 10 mm/s; 34 iterations graded 1
+    # (pipeline/cost.py, QS_GRADED_FACTOR)
     setup = resolve(parse_config({**CONFIG, "fem": {**CONFIG["fem"], **fem}}))
     check = {s.name.split(" (")[0]: s for s in estimate_cost(setup).stages}[
         "law cell quasi-static check"]
     fresh = [law_point_seconds(setup, p) for p in CONFIG["law"]["pressures"]]
     assert check.total_s == pytest.approx(factor * sum(fresh))
-    assert QS_GRADED_FACTOR >= 4 * QS_POINT_FACTOR
+    assert QS_GRADED_FACTOR > 2 * QS_POINT_FACTOR
 
 
 def test_stages_sent_in_one_sweep_share_the_workers():

@@ -74,8 +74,13 @@ QS_POINT_FACTOR = 3.0
 #: at the same pressure); in process at 0.1 MPa (load 2): 23.5 s of CPU against 1.7 s,
 #: 14x. The same cell at 0.1 MPa graded 1, 2, 4 and 8: 34, 57, 331 and 272 iterations
 #: (a law point 24-33), so the grading does it, not the cell's size; the automatic mesh's
-#: grading (its face rows sized by the rule) does not (captif_road above). Taken as 15.
-QS_GRADED_FACTOR = 15.0
+#: grading (its face rows sized by the rule) does not (captif_road above). That was the
+#: fresh press; since the point is continued down from one pressed at 10 mm/s
+#: (lawcheck.TAIL_FROM), asphalt's five took 91 s of CPU against 198 s fresh (one
+#: thread, load 1.5-2.4, benchmarks/qs_tail.md): 8.4x the prices of their law points
+#: (4-5x up to 1 MPa, 16x at 2 MPa, where the continuation gains nothing);
+#: captif_road's automatic cell 2.7x (QS_POINT_FACTOR stands). Taken as 8.5.
+QS_GRADED_FACTOR = 8.5
 QS_GRADING = 2.0
 
 #: The reference mesh (nx, ny): the law cell of examples/asphalt.toml and section3.toml.

@@ -7,7 +7,9 @@ keeps a friction of the lattice instead — contacts one or two columns wide tha
 catches on — so the friction left at that speed measures the cell's under-resolution at
 that pressure (issue 41; docs/validation/steep_cells.md, part ``qs``). The check runs one
 steady FEM point per law pressure on the law's own options and mesh, without the transient
-fallback; a point that does not converge is recorded, not counted as a pass.
+fallback, continued down from a point pressed at :data:`TAIL_FROM` (cheaper than a press
+at the quasi-static speed); a point that does not converge is recorded, not counted as a
+pass.
 """
 
 from __future__ import annotations
@@ -38,6 +40,16 @@ QS_LABEL = "law cell quasi-static"
 
 #: Slowest speed tried for the quasi-static point [mm/s] (decades down from 1 mm/s).
 SLOWEST = 1e-12
+
+#: Speed [mm/s] the quasi-static point is continued from: a steady point pressed there (the
+#: middle of the speed range, where a press is cheapest), then the quasi-static speed from
+#: its steady state (:func:`~rubbercontact.hybrid.tasks.fem_speed_path_task`). Measured
+#: against a fresh press at the quasi-static speed (benchmarks/qs_tail.md, 2026-12-06, one
+#: thread, load 1.5-2.4): examples/asphalt.toml's graded cell 0.1-1 MPa 361-842 Newton
+#: iterations and 25-54 s of CPU fresh, 84-155 and 6-12 s by the path (its 10 mm/s press
+#: included), 2 MPa 926 and 1035 (52 and 57 s), 198 s against 91 s over its five pressures;
+#: captif_road's automatic cell 26 s against 20 s over three; μ_hs the same to 2e-8.
+TAIL_FROM = 10.0
 
 
 def quasi_static_speed(material: GeneralizedMaxwell, wavelength: float,
@@ -164,9 +176,12 @@ def quasi_static_batch(options: FemOptions, hs0: SineSeries, material: Generaliz
     p = np.sort(np.asarray(pressures, float))
     speed = quasi_static_speed(material, float(hs0.wavelengths.min()))
     opts = options.with_(steady={"fallback": False}).to_dict()
-    tasks = [Task(function="rubbercontact.hybrid.tasks:fem_task",
+    # pressed at TAIL_FROM, then continued down to the quasi-static speed (in the path's
+    # order: the faster speed, the middle of two, is pressed)
+    tasks = [Task(function="rubbercontact.hybrid.tasks:fem_speed_path_task",
                   kwargs={"surface": hs0.as_dict(), "material": task_material(material),
-                          "velocity": speed, "mean_pressure": float(pj), "options": opts},
+                          "velocities": [speed, TAIL_FROM], "mean_pressure": float(pj),
+                          "options": opts},
                   label=f"{QS_LABEL} p={pj:g} MPa",
                   cost=quasi_static_seconds(options, hs0, float(pj),
                                             material.equilibrium_modulus))
@@ -180,7 +195,11 @@ def quasi_static_batch(options: FemOptions, hs0: SineSeries, material: Generaliz
         friction, status = [], []
         for res in answers[::-1]:                   # back to increasing pressure
             why = failure_message(res)
-            friction.append(float(res["friction"]) if why is None else np.nan)
+            if why is None:                         # the path's quasi-static point
+                point = res.isel(velocity=0)
+                why = None if str(point["status"].values) == "ok" else str(
+                    point["status"].values)
+            friction.append(float(point["friction"]) if why is None else np.nan)
             status.append("ok" if why is None else why)
         return QuasiStaticCheck(speed, p, np.array(friction), tuple(status))
 
