@@ -202,17 +202,16 @@ def _resolved_steady(surface, material, p, v, opts: FemOptions, start) -> Slidin
     if res.stats.under_resolved and res.stats.bulk_shear > BULK_SHEAR_LIMIT:
         # sheared as a whole, its contact area is flagged whatever the mesh (the area may
         # stop growing with the load: bulk_shear_message) and a law's extension stops short
-        # of such loads; on the steep station 1 cell (3 MPa / 30 mm/s, sheared by ~1.5) the
-        # refinement cost 200 s failing, or 340 s more carried from the coarse solution
+        # of such loads: refining it costs minutes for an answer outside the cell's range
+        # (benchmarks/steep_grid.md)
         tried, factors = (f"not refined: the cell sheared as a whole by "
                           f"{res.stats.bulk_shear:.2f} > {BULK_SHEAR_LIMIT:g}",), []
     for factor in factors if res.stats.under_resolved else ():
         fine = _refined(surface, opts, factor)
         try:
             # afresh, nested from the first mesh's columns: carrying the first solution over
-            # onto the finer rows cost 4x more on the steep CAPTIF cell (mesh_resolution.md);
-            # again on station 1 at 1 MPa / 1 mm/s (2026-12-06): its repair stopped and the
-            # press after it made the point 252 s against 154 s (steep_grid.md)
+            # onto the finer rows cost more on the steep CAPTIF cells (mesh_resolution.md,
+            # steep_grid.md)
             again = _steady(surface, material, p, v, fine.with_(steady={"fallback": False}),
                             None)
         except ConvergenceError as exc:

@@ -2,8 +2,7 @@
 
 The table continues the FEM law past its highest pressure with the linear law's shape
 (:func:`~.linearlaw.continue_with_linear_shape`): half-space solves whose last bits depend
-on the BLAS thread count of the process that runs them (OpenBLAS: 0.005785292773578285 mm
-on two threads, ...315 on one, at the asphalt cell's 3 MPa). The tables are in the hybrid
+on the BLAS thread count of the process that runs them. The tables are in the hybrid
 tasks' keys, so a table computed again in another thread setting (a run from the cache
 against the run that computed the FEM) gave the hybrid tasks other keys, and a repeat
 re-ran them. As a task the table is cached under its reading: a repeat reads the table the

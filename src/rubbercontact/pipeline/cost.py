@@ -66,20 +66,11 @@ FEM_POINT_S = 1.3
 #: automatic cell (128 x 16, graded 9.9 by the rule), in process at 0.3 MPa (2026-12-06,
 #: load 2, the FEM of 632bec3): 7.9 s of CPU against 3.1 s, 2.5x.
 QS_POINT_FACTOR = 3.0
-#: The same on an explicit mesh graded toward the face by more than ``QS_GRADING``: the
-#: section 3 law cell (120 x 23, ``fem.grading = 8``; examples/asphalt.toml, dma_compound,
-#: section3). examples/asphalt.toml from an empty cache (2026-12-06 12:09 UTC, 632bec3's FEM,
-#: load 4-6): its 5 quasi-static points took 272-970 Newton iterations and 553 s of wall
-#: together, against 22-92 iterations and 52 s for its 10 law points (10-17x the iterations
-#: at the same pressure); in process at 0.1 MPa (load 2): 23.5 s of CPU against 1.7 s,
-#: 14x. The same cell at 0.1 MPa graded 1, 2, 4 and 8: 34, 57, 331 and 272 iterations
-#: (a law point 24-33), so the grading does it, not the cell's size; the automatic mesh's
-#: grading (its face rows sized by the rule) does not (captif_road above). That was the
-#: fresh press; since the point is continued down from one pressed at 10 mm/s
-#: (lawcheck.TAIL_FROM), asphalt's five took 91 s of CPU against 198 s fresh (one
-#: thread, load 1.5-2.4, benchmarks/qs_tail.md): 8.4x the prices of their law points
-#: (4-5x up to 1 MPa, 16x at 2 MPa, where the continuation gains nothing);
-#: captif_road's automatic cell 2.7x (QS_POINT_FACTOR stands). Taken as 8.5.
+#: The same on an explicit mesh graded toward the face by more than ``QS_GRADING`` (the
+#: section 3 law cell, 120 x 23, ``fem.grading = 8``): the grading, not the cell's size,
+#: multiplies the relaxed press's iterations; the automatic mesh's grading does not.
+#: Calibrated on examples/asphalt.toml's check continued from ``lawcheck.TAIL_FROM``
+#: (benchmarks/qs_tail.md, benchmarks/examples.md).
 QS_GRADED_FACTOR = 8.5
 QS_GRADING = 2.0
 

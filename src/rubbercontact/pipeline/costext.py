@@ -36,10 +36,8 @@ def extension_stages(setup: RunSetup, top: float, loads: int) -> list[Stage]:
     of :func:`extension_rungs` at every computed speed, their quasi-static points (in the
     same sweep), the law's tables and the law models once more. A run whose local pressures
     stay inside the law, or whose cell would shear as a whole at the rung, does none of it
-    (examples/asphalt.toml), and one that needs it pays it all: dma_compound (2026-12-06,
-    632bec3's FEM) added 3.16 MPa at 23 of its 33 speeds, 175 s for the path and 199 s for its
-    quasi-static point by their clocks at load 3-4, then its tables and models again; with
-    the extension unpriced its CPU was 2.8x the estimate."""
+    (examples/asphalt.toml), and one that needs it pays it all (examples/dma_compound.toml,
+    benchmarks/examples.md)."""
     from .lawstage import uses_continuation
 
     rungs = extension_rungs(setup, top)

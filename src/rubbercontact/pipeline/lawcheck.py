@@ -43,12 +43,8 @@ SLOWEST = 1e-12
 
 #: Speed [mm/s] the quasi-static point is continued from: a steady point pressed there (the
 #: middle of the speed range, where a press is cheapest), then the quasi-static speed from
-#: its steady state (:func:`~rubbercontact.hybrid.tasks.fem_speed_path_task`). Measured
-#: against a fresh press at the quasi-static speed (benchmarks/qs_tail.md, 2026-12-06, one
-#: thread, load 1.5-2.4): examples/asphalt.toml's graded cell 0.1-1 MPa 361-842 Newton
-#: iterations and 25-54 s of CPU fresh, 84-155 and 6-12 s by the path (its 10 mm/s press
-#: included), 2 MPa 926 and 1035 (52 and 57 s), 198 s against 91 s over its five pressures;
-#: captif_road's automatic cell 26 s against 20 s over three; μ_hs the same to 2e-8.
+#: its steady state (:func:`~rubbercontact.hybrid.tasks.fem_speed_path_task`); cheaper than
+#: a fresh press at the quasi-static speed, with the same μ_hs (benchmarks/qs_tail.md).
 TAIL_FROM = 10.0
 
 
@@ -199,8 +195,8 @@ def quasi_static_batch(options: FemOptions, hs0: SineSeries, material: Generaliz
                 point = res.isel(velocity=0)
                 why = None if str(point["status"].values) == "ok" else str(
                     point["status"].values)
-            friction.append(float(point["friction"]) if why is None else np.nan)
-            status.append("ok" if why is None else why)
+            friction.append(np.nan if why else float(point["friction"]))
+            status.append(why or "ok")
         return QuasiStaticCheck(speed, p, np.array(friction), tuple(status))
 
     return Batch(tasks, collect)
