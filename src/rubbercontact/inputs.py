@@ -261,6 +261,15 @@ class SurfaceInput:
     profiles: Any = None
 
 
+def read_profile_input(p: ProfileInput):
+    """The scans a ``[surface.profiles]`` table names (:class:`rubbercontact.io.Profiles`):
+    read, cut into gap-free windows (``window``, default 16 mm) and despiked if asked."""
+    from .io.profiles import read_profiles
+
+    return read_profiles(p.files, format=p.format, unit=p.unit, dx=p.dx,
+                         window=p.window or 16.0, despike=p.despike)
+
+
 def build_surface(spec: SurfaceSpec) -> SurfaceInput:
     """The sine series a ``[surface]`` table describes (profiles are read and fitted)."""
     from .roughness import SineSeries
@@ -271,12 +280,10 @@ def build_surface(spec: SurfaceSpec) -> SurfaceInput:
     if spec.wavelengths is not None:
         return SurfaceInput(SineSeries(spec.wavelengths, spec.amplitudes),
                             {"source": "sine table"})
-    from .io.profiles import read_profiles
     from .roughness.fit import default_wavelengths, fit_hdc_details
 
     p = spec.profiles
-    profiles = read_profiles(p.files, format=p.format, unit=p.unit, dx=p.dx,
-                             window=p.window or 16.0, despike=p.despike)
+    profiles = read_profile_input(p)
     shortest = min(z.size for z in profiles.profiles) * profiles.dx
     wavelengths = default_wavelengths(profiles.dx, shortest, n_waves=p.waves,
                                       lower_cutoff=p.lower_cutoff, upper_cutoff=p.upper_cutoff)

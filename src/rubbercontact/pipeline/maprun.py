@@ -80,13 +80,12 @@ def profiles_map(spec):
     ``points``² lattice of side ``size`` with random phases."""
     import numpy as np
 
-    from ..io.profiles import read_profiles
+    from ..inputs import read_profile_input
     from ..meanfield.psd import PSD
     from ..roughness import isotropic_from_line_psd, synthetic_map
 
     p = spec.profiles
-    scans = read_profiles(p.files, format=p.format, unit=p.unit, dx=p.dx,
-                          window=p.window or 16.0, despike=p.despike)
+    scans = read_profile_input(p)
     if len({z.size for z in scans.profiles}) > 1:   # one periodogram needs equal lengths
         scans = scans.windows(min(z.size for z in scans.profiles) * scans.dx)
     ring = isotropic_from_line_psd(PSD.from_profiles(scans))
