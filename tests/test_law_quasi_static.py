@@ -145,7 +145,7 @@ def test_the_law_and_its_check_go_to_the_workers_in_one_sweep(monkeypatch):
 
 
 def test_the_check_sends_the_highest_pressure_first_and_reads_each_answer_at_its_own():
-    # the costliest point first (pipeline/cost.py prices it so, and a graded cell's top
+    # the costliest point first (pipeline/costmodel.py prices it so, and a graded cell's top
     # point takes minutes): the answers come back in the order sent, the check in p order
     import xarray as xr
 

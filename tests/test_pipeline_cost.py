@@ -9,6 +9,13 @@ import pytest
 from rubbercontact.config import parse_config
 from rubbercontact.pipeline import resolve
 from rubbercontact.pipeline.cost import (
+    Stage,
+    estimate_cost,
+    law_mesh,
+    law_point_seconds,
+    law_refined_mesh,
+)
+from rubbercontact.pipeline.costmodel import (
     AUTO_REFINED_SHARE,
     CONTINUATION_FACTOR,
     FEM_ELEMENT_EXPONENT,
@@ -22,13 +29,8 @@ from rubbercontact.pipeline.cost import (
     QS_GRADED_FACTOR,
     QS_POINT_FACTOR,
     TRANSIENT_FACTOR,
-    Stage,
-    estimate_cost,
     fem_point_seconds,
     halfspace_solve_seconds,
-    law_mesh,
-    law_point_seconds,
-    law_refined_mesh,
 )
 from rubbercontact.pipeline.lawstage import law_pressures
 from rubbercontact.pipeline.plan import model_tasks
@@ -77,7 +79,7 @@ def test_the_law_cells_quasi_static_check_is_one_point_per_law_pressure():
 def test_a_quasi_static_point_on_an_explicitly_graded_cell_costs_more(fem, factor):
     # measured: 272-970 Newton iterations on the 120 x 23 cell graded 8 against 22-92 for
     # its law points fresh, 84-1035 continued down from 10 mm/s; 34 iterations graded 1
-    # (pipeline/cost.py, QS_GRADED_FACTOR)
+    # (pipeline/costmodel.py, QS_GRADED_FACTOR)
     setup = resolve(parse_config({**CONFIG, "fem": {**CONFIG["fem"], **fem}}))
     check = {s.name.split(" (")[0]: s for s in estimate_cost(setup).stages}[
         "law cell quasi-static check"]
@@ -224,7 +226,7 @@ def test_a_reused_law_costs_no_fem(tmp_path):
 
 def test_each_mean_field_model_has_its_own_price():
     # Persson's theory takes milliseconds a point, the strip cascade a tenth of a second
-    from rubbercontact.pipeline.cost import MEANFIELD_POINT_S
+    from rubbercontact.pipeline.costmodel import MEANFIELD_POINT_S
 
     cfg = {**CONFIG, "models": ["meanfield", "meanfield-strips", "meanfield-hybrid"]}
     cfg.pop("fem")
@@ -251,7 +253,7 @@ def test_law_points_above_the_relaxed_modulus_are_said_not_budgeted():
 
 
 def test_the_law_tables_cost_each_computed_speed_as_a_task_of_the_workers():
-    from rubbercontact.pipeline.cost import LAW_TABLE_SPEED_S
+    from rubbercontact.pipeline.costmodel import LAW_TABLE_SPEED_S
 
     def tables(cfg):
         return next(s for s in estimate_cost(resolve(parse_config(cfg))).stages

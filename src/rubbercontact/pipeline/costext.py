@@ -1,5 +1,5 @@
 """The law's extension in ``run --check``'s estimate (:mod:`.cost`): one round priced at
-its worst, from the per-task costs of :mod:`.cost`."""
+its worst, from the per-task costs of :mod:`.costmodel`."""
 
 from __future__ import annotations
 
@@ -7,9 +7,9 @@ import math
 
 from ..models.planning import PER_REALIZATION
 from ..models.registry import needs_law, planning
-from .cost import (
+from .cost import Stage
+from .costmodel import (
     LAW_TABLE_SPEED_S,
-    Stage,
     halfspace_solve_seconds,
     law_task_seconds,
     meanfield_point_seconds,

@@ -23,7 +23,7 @@ from ..fem.options import FemOptions
 from ..materials import GeneralizedMaxwell
 from ..roughness import SineSeries
 from .batch import Batch
-from .cost import quasi_static_seconds
+from .costmodel import quasi_static_seconds
 from .setup import task_material
 
 #: |μ_hs| at the quasi-static speed within which a law pressure passes (issue 41's

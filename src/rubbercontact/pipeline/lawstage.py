@@ -26,7 +26,7 @@ from ..hybrid.law import (
 from ..materials import GeneralizedMaxwell
 from ..roughness import SineSeries
 from .batch import Batch, run_batches
-from .cost import LAW_TABLE_SPEED_S, halfspace_solve_seconds, law_task_seconds
+from .costmodel import LAW_TABLE_SPEED_S, halfspace_solve_seconds, law_task_seconds
 from .lawcheck import QuasiStaticCheck, quasi_static_batch
 from .lawcover import NOT_NEEDED, merge_points
 from .setup import task_material

@@ -198,7 +198,7 @@ class Task:
         Expected seconds of the task, or None: a hint for the progress ETA
         (:mod:`.progress`), which weighs the tasks done and left by it; not in the key,
         not stored with the result (a hint changes no answer). The pipeline takes it from
-        the per-task estimates of ``run --check`` (:mod:`rubbercontact.pipeline.cost`).
+        the per-task estimates of ``run --check`` (:mod:`rubbercontact.pipeline.costmodel`).
 
     Raises
     ------
