@@ -135,7 +135,12 @@ def single(kernel: np.ndarray) -> np.ndarray:
 def apply_kernel(kernel: np.ndarray, field: np.ndarray, split: bool = False) -> np.ndarray:
     """Real-space convolution ``irfftn(kernel · rfftn(field))``; ``split``: see
     :func:`inverse`."""
-    return inverse(kernel * forward(field), field.shape, split=split, scratch=True)
+    spec = forward(field)
+    if np.result_type(spec, kernel) == spec.dtype:
+        spec *= kernel   # in place: one spectrum-sized temporary less (the same products)
+    else:
+        spec = kernel * spec
+    return inverse(spec, field.shape, split=split, scratch=True)
 
 
 def derivative_x(field: np.ndarray, length: float) -> np.ndarray:

@@ -91,7 +91,7 @@ def gmres(matvec: Callable[[np.ndarray], np.ndarray], psolve: Callable[[np.ndarr
                 break
         kk = k + 1
         y = np.linalg.solve(np.triu(h[:kk, :kk]), g[:kk]) if kk else np.zeros(0)
-        x += y @ z[:kk]
+        _add_combination(x, y, z[:kk])
         if not true_residual and (abs(g[kk]) <= rtol * bnorm or its >= maxiter):
             return GmresResult(x, its, abs(g[kk]) / bnorm)
         r = b - matvec(x)
@@ -99,6 +99,22 @@ def gmres(matvec: Callable[[np.ndarray], np.ndarray], psolve: Callable[[np.ndarr
         if abs(g[kk]) <= rtol * bnorm and beta > 10 * rtol * bnorm and its >= maxiter:
             break
     return GmresResult(x, its, beta / bnorm)
+
+
+#: Columns of a single-precision basis converted to double precision at a time.
+_BLOCK = 16384
+
+
+def _add_combination(x: np.ndarray, y: np.ndarray, z: np.ndarray) -> None:
+    """``x += y @ z`` (``x``, ``y`` float64). A float32 ``z`` is converted a block of
+    columns at a time: ``y @ z`` would convert all of it, a fresh array of tens of MB per
+    restart cycle on a 1024² map's contact set (its page faults and copy cost more than
+    the product; ``benchmarks/maps.md``). The same products, block by block."""
+    if z.dtype == x.dtype or x.size <= _BLOCK:
+        x += y @ z
+        return
+    for start in range(0, x.size, _BLOCK):
+        x[start:start + _BLOCK] += y @ z[:, start:start + _BLOCK]
 
 
 def _bases(workspace: dict | None, m: int, n: int, dtype: type) -> tuple[np.ndarray, np.ndarray]:
