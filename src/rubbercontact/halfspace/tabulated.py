@@ -25,6 +25,60 @@ def _pchip_with_slopes(x: np.ndarray, y: np.ndarray) -> PchipInterpolator:
     return PchipInterpolator(x, y, extrapolate=False)
 
 
+#: Largest lookup grid of :class:`_Pieces` (cells); a table with breakpoints closer than
+#: its span over this many halves is searched by bisection instead.
+_MAX_CELLS = 4096
+
+
+class _Pieces:
+    """The piece of a PCHIP holding each point: ``j`` with ``x_j <= u < x_{j+1}`` (the last
+    piece at the last breakpoint, the end pieces outside), as ``np.searchsorted`` finds it.
+
+    A uniform grid of cells at most half the smallest breakpoint spacing wide, each
+    holding the piece of its left end: a point's cell, then one comparison with the
+    breakpoint on either side (a rounded cell is off by at most one breakpoint). Bisection
+    of unsorted points costs ~5× that on the 1024² map's contact zone
+    (``benchmarks/maps.md``).
+    """
+
+    def __init__(self, x: np.ndarray) -> None:
+        self.x = x
+        span = float(x[-1] - x[0])
+        cells = int(np.ceil(2.0 * span / float(np.diff(x).min())))
+        self.lut = None
+        if cells <= _MAX_CELLS:
+            self.scale = cells / span
+            left = x[0] + np.arange(cells + 1) / self.scale
+            self.lut = np.clip(np.searchsorted(x, left, side="right") - 1, 0, x.size - 2)
+
+    def __call__(self, u: np.ndarray) -> np.ndarray:
+        x, last = self.x, self.x.size - 2
+        if self.lut is None:
+            return np.clip(np.searchsorted(x, u, side="right") - 1, 0, last)
+        cell = np.clip((u - x[0]) * self.scale, 0, self.lut.size - 1).astype(np.intp)
+        j = self.lut.take(cell)
+        j += u >= x.take(np.minimum(j + 1, x.size - 1))
+        j -= u < x.take(j)
+        return np.clip(j, 0, last)
+
+
+def _ppoly(pp: PchipInterpolator, u: np.ndarray, j: np.ndarray) -> np.ndarray:
+    """``pp(u)`` on the pieces ``j``, with scipy's own operations in its order (the local
+    power series ``c_k + c_{k-1} s + c_{k-2} s² + …``, ``s = u − x_j``, powers by repeated
+    products): the same numbers as ``pp(u)`` inside its range, vectorised. ``PPoly``'s
+    scalar loop searches the interval of each point anew, ~3× the cost on the 1024² map's
+    contact zone (``benchmarks/maps.md``)."""
+    coef = pp.c
+    s = u - pp.x.take(j)
+    res = coef[-1].take(j)
+    power = s
+    for kp in range(1, coef.shape[0]):
+        res = res + coef[-1 - kp].take(j) * power
+        if kp < coef.shape[0] - 1:
+            power = power * s
+    return res
+
+
 @dataclass(frozen=True, eq=False)
 class TabulatedLaw(InteractionLaw):
     """Law interpolated from monotone samples ``(u_j, σ_j)`` (e.g. the FEM high-slope law).
@@ -120,6 +174,7 @@ class TabulatedLaw(InteractionLaw):
             logp = None
             d0 = d1 = 0.0
         c["logp"] = logp
+        c["pieces"] = None if logp is None else _Pieces(logp.x)
         # derivatives built once: PPoly.derivative() builds a new polynomial on every call
         c["dlogp"] = None if logp is None else logp.derivative()
         # stiff continuation below the table: never flatter than the first secant nor than
@@ -154,7 +209,7 @@ class TabulatedLaw(InteractionLaw):
             idx = np.flatnonzero(flat < c["u_zero"])
             if idx.size == 0:
                 return sig, k
-            s_in, k_in = self._eval_flat(flat[idx], stiffness)
+            s_in, k_in = self._eval_flat(flat.take(idx), stiffness)
             sig.reshape(-1)[idx] = s_in
             k.reshape(-1)[idx] = k_in
             return sig, k
@@ -181,10 +236,16 @@ class TabulatedLaw(InteractionLaw):
         upos = tab_u[npos - 1]
         mid = (u >= u0) & (u <= upos)
         if np.any(mid) and c["logp"] is not None:
-            um = u[mid]
-            sig[mid] = np.exp(c["logp"](um))
+            # the log-PCHIP on every point (those outside its range are overwritten below):
+            # one interval search for the value and the slope, no masked gathers
+            if c.get("pieces") is None:   # a law pickled before the lookup existed
+                c["pieces"] = _Pieces(c["logp"].x)
+            j = c["pieces"](u)
+            with np.errstate(over="ignore"):
+                s_all = np.exp(_ppoly(c["logp"], u, j))
+            sig = np.where(mid, s_all, sig)
             if stiffness:
-                k[mid] = -c["dlogp"](um) * sig[mid]
+                k = np.where(mid, -_ppoly(c["dlogp"], u, j) * s_all, k)
         elif np.any(mid):  # single positive sample: only u == u0 can land here
             sig[mid] = s0
         if c["tail"] is not None:
