@@ -189,15 +189,15 @@ def newton_law(prob: Problem, law: InteractionLaw, tol: float, max_iter: int,
         if inv is not None:
             stiff |= inv
         idx = np.flatnonzero(stiff)
-        dsig = np.zeros(n)
         free = ~stiff
-        dsig[free] = f[free] - sigma[free]  # k ≈ 0: explicit update
-        total = prob.sigma0 * n - sigma.sum() - dsig[free].sum()
+        # k ≈ 0: explicit update (whole-grid passes, the same values and sums as masked ones)
+        dsig = np.where(free, f - sigma, 0.0)
+        total = prob.sigma0 * n - sigma.sum() - np.compress(free, dsig).sum()
         if _exact_load(prob) and abs(total) <= _LOAD_ROUNDOFF * prob.sigma0 * n:
             total = 0.0     # the load's round-off, not a correction (options.exact_load_2d)
         if idx.size:
             c = 1.0 / k_inv[idx]
-            w_free = prob.displacement(dsig) if np.any(dsig[free]) else np.zeros(n)
+            w_free = prob.displacement(dsig) if np.any(dsig) else np.zeros(n)  # 0 off free
             rhs = c * (f[idx] - sigma[idx])
             if inv is not None:
                 # inverse rows: u + δu = g(σ) − c δσ  →  (M + c) δσ + δū = g(σ) − u

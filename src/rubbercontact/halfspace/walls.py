@@ -111,14 +111,15 @@ def wall_soft_active_set(prob: Problem, soft: InteractionLaw, tol: float, max_it
         stiff = active | (k * m_diag > 1e-8)
         idx = np.flatnonzero(stiff)
         free = ~stiff
-        dsig = np.zeros(n)
-        dsig[free] = f[free] - sigma[free]
-        total = prob.sigma0 * n - sigma.sum() - dsig[free].sum()
+        # whole-grid passes, not masked ones (a masked gather or scatter of the ~80 % free
+        # points of a map costs ~5 whole-grid passes); the same values and sums
+        dsig = np.where(free, f - sigma, 0.0)
+        total = prob.sigma0 * n - sigma.sum() - np.compress(free, dsig).sum()
         on_a = active[idx]
         c = np.zeros(idx.size)
         kk = k[idx]
         c[~on_a] = 1.0 / kk[~on_a]
-        w_free = prob.displacement(dsig) if np.any(dsig[free]) else np.zeros(n)
+        w_free = prob.displacement(dsig) if np.any(dsig) else np.zeros(n)   # 0 off free
         rhs = np.where(on_a, -u[idx], c * (f[idx] - sigma[idx])) - w_free[idx]
         contact = c < m_diag
         precond = partial(shifted_preconditioner, prob, c, contact)   # if used
