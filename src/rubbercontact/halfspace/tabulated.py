@@ -241,11 +241,13 @@ class TabulatedLaw(InteractionLaw):
             if c.get("pieces") is None:   # a law pickled before the lookup existed
                 c["pieces"] = _Pieces(c["logp"].x)
             j = c["pieces"](u)
-            with np.errstate(over="ignore"):
+            # the cubic extrapolated far outside may overflow there: discarded below
+            with np.errstate(over="ignore", invalid="ignore"):
                 s_all = np.exp(_ppoly(c["logp"], u, j))
+                k_all = -_ppoly(c["dlogp"], u, j) * s_all if stiffness else None
             sig = np.where(mid, s_all, sig)
             if stiffness:
-                k = np.where(mid, -_ppoly(c["dlogp"], u, j) * s_all, k)
+                k = np.where(mid, k_all, k)
         elif np.any(mid):  # single positive sample: only u == u0 can land here
             sig[mid] = s0
         if c["tail"] is not None:
