@@ -137,7 +137,11 @@ def apply_kernel(kernel: np.ndarray, field: np.ndarray, split: bool = False) -> 
     :func:`inverse`."""
     spec = forward(field)
     if np.result_type(spec, kernel) == spec.dtype:
-        spec *= kernel   # in place: one spectrum-sized temporary less (the same products)
+        # in place: one spectrum-sized temporary less. ``kernel * forward(field)`` was the
+        # same product wherever numpy elided the temporary (spectra of 256 KiB and more:
+        # maps from 256²); on smaller grids the operands' order differs, and numpy's complex
+        # product rounds by it (FMA): the answers move by ~1e-16 (``benchmarks/maps.md``)
+        spec *= kernel
     else:
         spec = kernel * spec
     return inverse(spec, field.shape, split=split, scratch=True)
