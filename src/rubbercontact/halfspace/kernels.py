@@ -135,16 +135,7 @@ def single(kernel: np.ndarray) -> np.ndarray:
 def apply_kernel(kernel: np.ndarray, field: np.ndarray, split: bool = False) -> np.ndarray:
     """Real-space convolution ``irfftn(kernel · rfftn(field))``; ``split``: see
     :func:`inverse`."""
-    spec = forward(field)
-    if np.result_type(spec, kernel) == spec.dtype:
-        # in place: one spectrum-sized temporary less. ``kernel * forward(field)`` was the
-        # same product wherever numpy elided the temporary (spectra of 256 KiB and more:
-        # maps from 256²); on smaller grids the operands' order differs, and numpy's complex
-        # product rounds by it (FMA): the answers move by ~1e-16 (``benchmarks/maps.md``)
-        spec *= kernel
-    else:
-        spec = kernel * spec
-    return inverse(spec, field.shape, split=split, scratch=True)
+    return inverse(kernel * forward(field), field.shape, split=split, scratch=True)
 
 
 def derivative_x(field: np.ndarray, length: float) -> np.ndarray:
