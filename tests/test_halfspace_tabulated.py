@@ -62,3 +62,13 @@ def test_add_combination_single_basis():
         x = x0.copy()
         _add_combination(x, y, z)
         np.testing.assert_allclose(x, x0 + y @ z, rtol=1e-14, atol=1e-14)
+
+
+def test_tabulated_law_non_finite_separations():
+    # NaN carries no pressure (not below any sample), ±inf the table's limits
+    u = np.linspace(1e-3, 1e-2, 13)
+    for law in (TabulatedLaw(u, 2.0 * np.exp(-u / 2e-3)),
+                TabulatedLaw(u, np.r_[2.0 * np.exp(-u[:-1] / 2e-3), 0.0])):
+        sig, k = law.pressure_and_stiffness(np.array([np.nan, np.inf, -np.inf, 5e-3]))
+        assert sig[0] == 0.0 and k[0] == 0.0
+        assert sig[1] == 0.0 and sig[2] > sig[3] > 0.0

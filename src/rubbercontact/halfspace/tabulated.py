@@ -55,10 +55,12 @@ class _Pieces:
         x, last = self.x, self.x.size - 2
         if self.lut is None:
             return np.clip(np.searchsorted(x, u, side="right") - 1, 0, last)
-        cell = np.clip((u - x[0]) * self.scale, 0, self.lut.size - 1).astype(np.intp)
-        j = self.lut.take(cell)
-        j += u >= x.take(np.minimum(j + 1, x.size - 1))
-        j -= u < x.take(j)
+        # a NaN has no cell (its piece is arbitrary, its value unused): mode "clip"
+        with np.errstate(invalid="ignore"):
+            cell = np.clip((u - x[0]) * self.scale, 0, self.lut.size - 1).astype(np.intp)
+        j = self.lut.take(cell, mode="clip")
+        j += u >= x.take(j + 1, mode="clip")
+        j -= u < x.take(j, mode="clip")
         return np.clip(j, 0, last)
 
 
