@@ -271,7 +271,8 @@ def test_the_law_tables_cost_each_computed_speed_as_a_task_of_the_workers():
 
 def test_a_full_fem_test_is_priced_as_the_full_factor_times_a_point_of_its_mesh_and_load():
     # the full cell (several waves) needs more Newton iterations than a law point at the
-    # same mesh and load (FULL_FEM_FACTOR); its loads are the config's mean pressure
+    # same mesh and load (FULL_FEM_FACTOR); each test at its own load, and the price is
+    # linear in the load, so the mean test costs a test at the mean pressure
     setup = resolve(parse_config(CONFIG))
     cost = {s.name.split(" (")[0]: s for s in estimate_cost(setup).stages}
     mesh = setup.config.fem.full_mesh_or_default
@@ -298,3 +299,28 @@ def test_the_laws_extension_is_priced_as_one_round_at_its_worst():
     for law in ({**CONFIG["law"], "extend": False}, {"pressures": [0.1, 2.0, 8.0]}):
         stages = estimate_cost(resolve(parse_config({**CONFIG, "law": law}))).stages
         assert not [s for s in stages if s.name.startswith("law extension")]
+
+
+def test_the_full_fem_is_priced_at_the_runs_own_loads_and_names_those_above_e_inf():
+    """Each full FEM test priced at its own pressure; for target contact areas those are
+    the VHS grid the run sweeps (pipeline.loads.run_pressures), so the count is the run's;
+    a load above E∞ (outside the FEM cell's range, fem.loadrange) is named as unbudgeted:
+    the steady solve may stop there and run the transient fallback."""
+    from rubbercontact.pipeline.cost import full_fem_seconds
+    from rubbercontact.pipeline.loads import run_pressures
+
+    setup = resolve(parse_config(CONFIG))
+    e_inf = setup.material.equilibrium_modulus
+    full = {s.name.split(" (")[0]: s for s in estimate_cost(setup).stages}["full FEM tests"]
+    prices = [full_fem_seconds(setup, p) for p in CONFIG["loads"]["pressures"]]
+    assert full.total_s == pytest.approx(2 * 2 * sum(prices))      # 2 speeds, 2 FEM reals
+    assert not [n for n in estimate_cost(setup).notes if "full FEM" in n]
+    high = resolve(parse_config({**CONFIG, "loads": {"pressures": [0.2, 1.2 * e_inf]}}))
+    note, = [n for n in estimate_cost(high).notes if "full FEM" in n]
+    assert f"{1.2 * e_inf:.3g} MPa" in note and "transient fallback" in note
+    areas = resolve(parse_config({**CONFIG, "loads": {"contact_areas": [0.02, 0.05]}}))
+    grid = run_pressures(areas)
+    full = {s.name.split(" (")[0]: s for s in estimate_cost(areas).stages}["full FEM tests"]
+    assert full.count == 2 * 2 * grid.size
+    assert full.total_s == pytest.approx(2 * 2 * sum(full_fem_seconds(areas, p)
+                                                     for p in grid))

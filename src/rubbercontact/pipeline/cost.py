@@ -241,13 +241,9 @@ def estimate_cost(setup: RunSetup) -> CostEstimate:
                             halfspace_solve_seconds(min(cfg.halfspace.n, 4096))))
         stages += extension_stages(setup, float(pressures.max()), loads)
     if "fem" in setup.models:
-        mesh = cfg.fem.full_mesh_or_default
-        # loads given as contact areas: priced at E∞/4, about 1 MPa for the SBR, inside
-        # the 0.03-2.3 MPa of the section 3 areas 0.01-0.1's load grid
-        load = (float(np.mean(cfg.loads.pressures)) if cfg.loads.pressures is not None
-                else e_inf / 4)
-        stages.append(Stage(f"full FEM tests ({mesh[0]} x {mesh[1]})",
-                            speeds * setup.n_fem * loads, full_fem_seconds(setup, load)))
+        stage, note = full_fem_stage(setup)
+        stages.append(stage)
+        notes += [note] if note else []
     hs_models = [m for m in setup.models if planning(m).per == PER_REALIZATION]
     if hs_models:
         stages.append(Stage(f"half-space solves ({', '.join(hs_models)}; "
@@ -260,6 +256,29 @@ def estimate_cost(setup: RunSetup) -> CostEstimate:
     if cfg.friction.flash_temperature.enabled:
         stages += flash_stages(setup, loads)
     return CostEstimate(tuple(stages), cfg.execution.workers, tuple(notes))
+
+
+def full_fem_stage(setup: RunSetup) -> tuple[Stage, str | None]:
+    """The full FEM's tests at the run's own loads (:func:`~.loads.run_pressures`: for
+    target contact areas the VHS grid the run will sweep), each priced at its pressure,
+    and the note for those above the rubber's E∞, where the steady solve may stop and run
+    the transient fallback (:mod:`rubbercontact.fem.loadrange`)."""
+    from .loads import run_pressures
+
+    cfg = setup.config
+    mesh = cfg.fem.full_mesh_or_default
+    pressures = run_pressures(setup)
+    runs = setup.speeds.computed.size * setup.n_fem
+    each = [full_fem_seconds(setup, float(p)) for p in pressures]
+    stage = Stage(f"full FEM tests ({mesh[0]} x {mesh[1]})", runs * len(pressures),
+                  sum(each) / len(pressures))
+    e_inf = setup.material.equilibrium_modulus
+    above = pressures[pressures > e_inf]
+    if not above.size:
+        return stage, None
+    return stage, (f"full FEM tests at {', '.join(f'{p:.3g}' for p in above)} MPa, above the "
+                   f"rubber's E∞ ({e_inf:.3g} MPa), may stop and run the transient "
+                   f"fallback, which can outlast the whole estimate (benchmarks/examples.md)")
 
 
 def flash_stages(setup: RunSetup, loads: int) -> list[Stage]:

@@ -30,9 +30,9 @@ from .flash import add_flash, plan_flash
 from .lawcheck import add_quasi_static
 from .lawcover import MAX_ROUNDS, coverage, describe, plan_extension
 from .lawstage import LawStage, add_vhs, build_law, extend_law
-from .loads import at_areas, pressure_grid_for_areas
+from .loads import at_areas, run_pressures
 from .plan import model_tasks
-from .setup import RunSetup, pressure_array, resolve, task_material
+from .setup import RunSetup, resolve, task_material
 from .statistics import add_errors, add_phase_means, add_realization_statistics
 from .temperature import spread_over_temperatures
 
@@ -104,10 +104,7 @@ def run(config: RunConfig | dict | str | Path, *, runner: Runner | None = None,
     runner = runner or make_runner(cfg, progress, retry_failed)
     material = GeneralizedMaxwell(**task_material(setup.material))   # the series at T_ref
     speeds = setup.speeds.computed
-    if cfg.loads.pressures is not None:
-        pressures = pressure_array(cfg.loads.pressures)
-    else:
-        pressures = pressure_grid_for_areas(cfg, setup.realizations, material, speeds)
+    pressures = run_pressures(setup)
 
     stage = None
     if setup.needs_law:

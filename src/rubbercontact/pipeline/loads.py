@@ -52,6 +52,22 @@ def pressure_grid_for_areas(cfg: RunConfig, surfaces: list[SineSeries],
     return np.geomspace(np.exp(p_lo) / 2, np.exp(p_hi) * 2, n_p)
 
 
+def run_pressures(setup) -> np.ndarray:
+    """The mean pressures a run sweeps [MPa]: ``loads.pressures`` sorted, or the grid that
+    brackets ``loads.contact_areas`` (:func:`pressure_grid_for_areas`, a few VHS solves).
+
+    ``setup`` is the run's :class:`~.setup.RunSetup`; the same grid serves the run and
+    ``run --check``'s estimate of it.
+    """
+    from .setup import pressure_array, task_material
+
+    cfg = setup.config
+    if cfg.loads.pressures is not None:
+        return pressure_array(cfg.loads.pressures)
+    material = GeneralizedMaxwell(**task_material(setup.material))   # the series at T_ref
+    return pressure_grid_for_areas(cfg, setup.realizations, material, setup.speeds.computed)
+
+
 def at_areas(ds: xr.Dataset, targets: np.ndarray, stacklevel: int = 2) -> xr.Dataset:
     """Friction at the target contact areas, per realization, by load-sweep interpolation.
 
