@@ -12,18 +12,16 @@ sliding distance and load, ``≥ 0`` for a passive material whatever the grid. O
 does not resolve the contact (slopes at the grid scale: every pixel of a white-noise map is
 its own asperity) the discrete ``<σ ∂u/∂x>`` is of the order of ``μ`` itself and ``μ`` may
 even be negative, though the solver converged. :func:`resolution_note` says so in one
-line when the two forms disagree.
-
-Measured (SBR, 0.3 MPa, the Lennard-Jones wall or the hard wall): on self-affine maps of 64²
-to 256² points (H = 0.8, rms gradient 0.5–5) at 10–1000 mm/s the forms differ by 11–33 % of
-``μ``; on a 1D sine series by < 0.5 %; on white-noise maps (rms gradient 18–20) by 1.4–60
-times ``μ_w``, with ``μ`` of either sign. Hence the tolerance: half the larger of the two.
+line when the two forms disagree by more than :data:`RESOLUTION_TOLERANCE`, which sits
+between the gaps measured on resolved and on white-noise grids (``benchmarks/maps.md``,
+"The resolution note's tolerance").
 """
 
 from __future__ import annotations
 
 import numpy as np
 
+from ..halfspace.kernels import derivative_x
 from .assess import Note
 
 __all__ = ["RESOLUTION_TOLERANCE", "dissipation_friction", "resolution_note", "worst_per_speed"]
@@ -33,15 +31,6 @@ RESOLUTION_TOLERANCE = 0.5
 #: Below this difference (absolute, in μ) the two forms agree whatever their ratio: an
 #: elastic rubber's μ is solver noise around 0.
 RESOLUTION_FLOOR = 1e-6
-
-
-def _derivative_x(field: np.ndarray, dx: float) -> np.ndarray:
-    """Spectral ``∂/∂x`` of a periodic field along its last axis (grid step ``dx``)."""
-    nx = field.shape[-1]
-    q = 2.0 * np.pi * np.fft.rfftfreq(nx, dx)
-    if nx % 2 == 0:
-        q[-1] = 0.0      # the Nyquist wave has no odd part to differentiate
-    return np.fft.irfft(np.fft.rfft(field, axis=-1) * (1j * q), nx, axis=-1)
 
 
 def dissipation_friction(result) -> float:
@@ -60,8 +49,8 @@ def dissipation_friction(result) -> float:
         ``≥ 0`` for a passive rubber on any grid.
     """
     x = np.asarray(result.x, float)
-    dx = float(x[1] - x[0])
-    dw = _derivative_x(np.asarray(result.displacement, float), dx)
+    w = np.asarray(result.displacement, float)
+    dw = derivative_x(w, float(x[1] - x[0]) * w.shape[-1])
     return float(np.mean(np.asarray(result.pressure, float) * dw)) / result.mean_pressure
 
 
