@@ -329,15 +329,15 @@ def _restricted_operator(prob: Problem, idx: np.ndarray, c: np.ndarray | None,
 
 def _scatter(grid: np.ndarray, idx: np.ndarray, values: np.ndarray) -> None:
     """``grid[idx] = values``, ``values`` converted to the grid's dtype first: the same
-    rounding, but a scatter that converts as it goes costs 2.5× a plain one (a float64
-    vector into a float32 grid, ``benchmarks/maps.md``)."""
+    rounding, but a scatter that converts as it goes (a float64 vector into a float32
+    grid) costs more than the conversion and a plain scatter (``benchmarks/maps.md``)."""
     grid[idx] = values.astype(grid.dtype, copy=False)
 
 
 def _clear(grid: np.ndarray, idx: np.ndarray) -> None:
     """``grid[idx] = 0`` for a grid that is zero off ``idx``: a whole-grid fill where the
-    set is more than a sixteenth of the grid (a contiguous write, ~3× faster than the
-    scatter there)."""
+    set is more than a sixteenth of the grid (a contiguous write, faster than the scatter
+    there: ``benchmarks/maps.md``)."""
     if idx.size * 16 > grid.size:
         grid.fill(0.0)
     else:

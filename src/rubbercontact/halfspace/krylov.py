@@ -107,9 +107,9 @@ _BLOCK = 16384
 
 def _add_combination(x: np.ndarray, y: np.ndarray, z: np.ndarray) -> None:
     """``x += y @ z`` (``x``, ``y`` float64). A float32 ``z`` is converted a block of
-    columns at a time: ``y @ z`` would convert all of it, a fresh array of tens of MB per
-    restart cycle on a 1024² map's contact set (its page faults and copy cost more than
-    the product; ``benchmarks/maps.md``). The same products, block by block."""
+    columns at a time: ``y @ z`` would convert all of it, a fresh array the size of the
+    basis per restart cycle (on a map's contact set its page faults and copy cost more
+    than the product; ``benchmarks/maps.md``). The same products, block by block."""
     if z.dtype == x.dtype or x.size <= _BLOCK:
         x += y @ z
         return

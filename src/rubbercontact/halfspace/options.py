@@ -173,16 +173,14 @@ class SolverOptions:
         not solve its linear system further than the tolerance asks); ``False``: at least
         ``tol`` (:func:`~rubbercontact.halfspace.newton._newton_rtol`).
     exact_load_2d : bool, default True
-        Maps: a Newton step whose load correction ``σ0 n − Σσ − Σ δσ_free`` is at most
-        1e-13 of the load ``σ0 n`` (its round-off: an ulp of ``σ0 n``) solves its system
-        with none. The contact-set solve spreads the correction uniformly over the set
+        Maps: a Newton step whose load correction ``σ0 n − Σσ − Σ δσ_free`` is at the
+        load's round-off (``halfspace.newton._LOAD_ROUNDOFF`` of ``σ0 n``) solves its
+        system with none. The contact-set solve spreads the correction uniformly over the set
         and measures its GMRES tolerance against the residual of that start; on the rows
-        with a large local compliance (the Lennard-Jones wall's tail, ``c`` up to 1e8
-        ``m_d``) an ulp of the load became a residual 400 times the Newton residual near
-        ``tol``, so the step's tolerance (``newton_forcing_target_2d``) asked for nothing
-        and the Newton stalled at 1.5e-8 (``tol`` 1e-8; the 512² map of
-        ``benchmarks/maps.md`` with the Lennard-Jones wall alone at 1 mm/s, 214 steps).
-        ``False``: the correction as computed.
+        with a large local compliance (the Lennard-Jones wall's tail) an ulp of the load
+        became a residual far above the Newton residual near ``tol``, so the step's
+        tolerance (``newton_forcing_target_2d``) asked for nothing and the Newton stalled
+        (``benchmarks/maps.md``). ``False``: the correction as computed.
     tight_krylov32_2d : bool, default True
         With ``single_krylov_2d``: the single-precision cycles tighter than 1e-3 (the last
         Newton steps) keep a float32 Krylov basis too, down to the cycles' floor 1e-5;

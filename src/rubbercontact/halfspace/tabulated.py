@@ -36,9 +36,8 @@ class _Pieces:
 
     A uniform grid of cells at most half the smallest breakpoint spacing wide, each
     holding the piece of its left end: a point's cell, then one comparison with the
-    breakpoint on either side (a rounded cell is off by at most one breakpoint). Bisection
-    of unsorted points costs ~5× that on the 1024² map's contact zone
-    (``benchmarks/maps.md``).
+    breakpoint on either side (a rounded cell is off by at most one breakpoint), cheaper
+    than bisection of unsorted points (``benchmarks/maps.md``).
     """
 
     def __init__(self, x: np.ndarray) -> None:
@@ -67,9 +66,9 @@ class _Pieces:
 def _ppoly(pp: PchipInterpolator, u: np.ndarray, j: np.ndarray) -> np.ndarray:
     """``pp(u)`` on the pieces ``j``, with scipy's own operations in its order (the local
     power series ``c_k + c_{k-1} s + c_{k-2} s² + …``, ``s = u − x_j``, powers by repeated
-    products): the same numbers as ``pp(u)`` inside its range, vectorised. ``PPoly``'s
-    scalar loop searches the interval of each point anew, ~3× the cost on the 1024² map's
-    contact zone (``benchmarks/maps.md``)."""
+    products): the same numbers as ``pp(u)`` inside its range, vectorised, where
+    ``PPoly``'s scalar loop searches the interval of each point anew
+    (``benchmarks/maps.md``)."""
     coef = pp.c
     s = u - pp.x.take(j)
     res = coef[-1].take(j)

@@ -108,15 +108,15 @@ def wall_soft_active_set(prob: Problem, soft: InteractionLaw, tol: float, max_it
 
     moving = True    # the set changed by more than _MOVING_SET of its points at the last update
     # the merit's weights and value at the current state, carried from the last update's
-    # test (the same numbers; a dozen whole-grid passes less per update)
+    # test (the same numbers, not computed twice)
     wgt = 1.0 / (k + 1.0 / m_diag)
     phi0 = float(np.linalg.norm(merit(sigma, u, f, wgt)))
     for it in range(1, max_iter + 1):
         stiff = active | (k * m_diag > 1e-8)
         idx = np.flatnonzero(stiff)
         free = ~stiff
-        # whole-grid passes, not masked ones (a masked gather or scatter of the ~80 % free
-        # points of a map costs ~5 whole-grid passes); the same values and sums
+        # whole-grid passes, not masked ones (a masked gather or scatter of most of a map's
+        # points costs several whole-grid passes); the same values and sums
         dsig = np.where(free, f - sigma, 0.0)
         total = prob.sigma0 * n - sigma.sum() - np.compress(free, dsig).sum()
         on_a = active[idx]
