@@ -195,11 +195,11 @@ def estimate_cost(setup: RunSetup) -> CostEstimate:
 
     from .costext import extension_stages
     from .lawstage import law_pressures, uses_continuation
+    from .loads import load_count
 
     cfg = setup.config
     speeds = setup.speeds.computed.size
-    loads = (len(cfg.loads.pressures) if cfg.loads.pressures is not None
-             else cfg.loads.sweep_points or max(6, len(cfg.loads.contact_areas) + 2))
+    loads = load_count(cfg)
     n_real = len(setup.realizations)
     e_inf = setup.material.equilibrium_modulus
     stages, notes = [], []

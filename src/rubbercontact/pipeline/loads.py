@@ -14,6 +14,14 @@ from ..materials import GeneralizedMaxwell
 from ..roughness import SineSeries
 
 
+def load_count(cfg: RunConfig) -> int:
+    """How many mean pressures a run sweeps: those of ``loads.pressures``, or for target
+    contact areas ``loads.sweep_points`` (default two more than the targets, at least 6)."""
+    if cfg.loads.pressures is not None:
+        return len(cfg.loads.pressures)
+    return cfg.loads.sweep_points or max(6, len(cfg.loads.contact_areas) + 2)
+
+
 def pressure_grid_for_areas(cfg: RunConfig, surfaces: list[SineSeries],
                             material: GeneralizedMaxwell, velocities) -> np.ndarray:
     """Pressures spanning the target contact areas at every speed, estimated with the VHS.
@@ -48,8 +56,7 @@ def pressure_grid_for_areas(cfg: RunConfig, surfaces: list[SineSeries],
     for v in sorted(set(float(x) for x in velocities)):
         p_lo = min(p_lo, brentq(lambda lp, v=v: area(lp, v) - targets.min(), lo, hi, xtol=1e-3))
         p_hi = max(p_hi, brentq(lambda lp, v=v: area(lp, v) - targets.max(), lo, hi, xtol=1e-3))
-    n_p = cfg.loads.sweep_points or max(6, targets.size + 2)
-    return np.geomspace(np.exp(p_lo) / 2, np.exp(p_hi) * 2, n_p)
+    return np.geomspace(np.exp(p_lo) / 2, np.exp(p_hi) * 2, load_count(cfg))
 
 
 def run_pressures(setup) -> np.ndarray:
