@@ -85,3 +85,44 @@ def test_the_budget_is_an_option_checked_and_carried():
         make_options(newton_budget=0)
     opts = make_options(newton_budget=77)
     assert rc.fem.FemOptions.from_dict(opts.to_dict()).steady.newton_budget == 77
+
+
+# -- the transient fallback's budget (steady.fallback_budget) --------------------------------
+#: One Newton iteration per continuation step stops the penalty press at once; without the
+#: rescue the steady solve falls back to the transient test (~1.7 s on this mesh).
+FAILING = {"mesh": MESH, "newton_per_step": 1, "rescue": "none"}
+
+
+@pytest.fixture(scope="module")
+def fallback(cell):
+    with pytest.warns(RuntimeWarning, match="running the transient test instead"):
+        return rc.fem.steady_sliding(*cell, *ARGS, fallback_budget=None, **FAILING)
+
+
+def test_a_fallback_budget_that_does_not_bind_changes_nothing(cell, fallback):
+    assert fallback.stats.solver == "transient (fallback)"
+    n = fallback.stats.newton_iterations
+    with pytest.warns(RuntimeWarning, match=f"at most {n} Newton iterations"):
+        exact = rc.fem.steady_sliding(*cell, *ARGS, fallback_budget=n, **FAILING)
+    assert exact.friction == fallback.friction
+    assert exact.stats.newton_iterations == n
+
+
+def test_a_spent_fallback_budget_stops_it_within_one_step_and_says_how_far_it_slid(
+        cell, fallback):
+    budget = fallback.stats.newton_iterations // 2
+    with pytest.warns(RuntimeWarning), pytest.raises(ConvergenceError) as info:
+        rc.fem.steady_sliding(*cell, *ARGS, fallback_budget=budget, **FAILING)
+    msg, spent = str(info.value), info.value.diagnostics["fallback"]["newton_iterations"]
+    # checked before each step: it overshoots by at most the last step's attempt
+    assert budget <= spent <= budget + make_options().max_newton
+    assert "steady FEM solve failed: frictionless press" in msg
+    assert f"steady.fallback_budget): transient test stopped: its budget of {budget}" in msg
+    assert "periods slid" in msg and info.value.last_state["sliding_distance"] > 0
+
+
+def test_the_fallback_budget_is_checked_and_kept_out_of_the_keys_at_its_default():
+    with pytest.raises(InputError, match="steady.fallback_budget"):
+        make_options(fallback_budget=0)
+    assert "fallback_budget" not in make_options().to_dict()["steady"]
+    assert make_options(fallback_budget=None).to_dict()["steady"]["fallback_budget"] is None

@@ -101,6 +101,11 @@ class SteadyOptions:
         included; past them it stops and says so (a stop then costs a bounded, machine-
         independent amount of work). The default is 1.5× the most any converged point of
         the steep-cell study needed (docs/validation/steep_cells.md).
+    fallback_budget
+        Newton iterations the transient fallback may spend, press and settle included;
+        past them it stops and says how far it slid (None: no bound beyond its periods).
+        The default is twice ``newton_budget``: a test that stops costs at most about three
+        steady budgets of Newton iterations, so a run's cost stays bounded.
     """
 
     krylov_rtol: float = 1e-2
@@ -115,6 +120,7 @@ class SteadyOptions:
     rescue: str = "barrier"
     fallback: bool = True
     newton_budget: int = 1200
+    fallback_budget: int | None = 2400
 
     def validate(self) -> SteadyOptions:
         positive_scalar("steady.krylov_rtol", self.krylov_rtol)
@@ -127,6 +133,8 @@ class SteadyOptions:
         _integer("steady.coarse_elements", self.coarse_elements, 0)
         _integer("steady.coarse_columns", self.coarse_columns, 3)
         _integer("steady.newton_budget", self.newton_budget, 1)
+        if self.fallback_budget is not None:
+            _integer("steady.fallback_budget", self.fallback_budget, 1)
         if self.rescue not in RESCUES:
             raise InputError(f"steady.rescue: one of {', '.join(RESCUES)}, got {self.rescue!r}")
         for name in ("first_step", "min_step"):
@@ -362,10 +370,11 @@ class FemOptions:
         for name in ("columns_per_wave", "patch_columns"):
             if not self.auto and out[name] == _DEFAULTS[name]:
                 del out[name]
-        # and the steady solve's rescue at its default (the code digest still tells apart
-        # the results computed before it existed)
-        if out["steady"]["rescue"] == SteadyOptions.rescue:
-            del out["steady"]["rescue"]
+        # and the steady solve's rescue and fallback budget at their defaults (the code
+        # digest still tells apart the results computed before they existed)
+        for name in ("rescue", "fallback_budget"):
+            if out["steady"][name] == getattr(SteadyOptions, name):
+                del out["steady"][name]
         # and the surface as given (crests not rounded)
         if out["crest_radius"] is None:
             del out["crest_radius"]

@@ -336,9 +336,19 @@ def _after_failure(surface, material, p, v, opts: FemOptions,
         raise ConvergenceError(f"steady FEM solve failed: {reason}",
                                diagnostics={"tried": tried, "reason": reason}) from None
     warnings.warn(f"steady FEM solve failed (p̄ = {p:g} MPa, v = {v:g} mm/s: "
-                  f"{reason}); running the transient test instead",
+                  f"{reason}); running the transient test instead"
+                  + ("" if opts.steady.fallback_budget is None else
+                     f" (at most {opts.steady.fallback_budget} Newton iterations)"),
                   RuntimeWarning, stacklevel=4)
-    res = TransientTest(surface, material, p, v, opts.with_(solver="transient")).run()
+    try:
+        res = TransientTest(surface, material, p, v, opts.with_(solver="transient"),
+                            newton_budget=opts.steady.fallback_budget).run()
+    except ConvergenceError as exc:
+        raise ConvergenceError(f"steady FEM solve failed: {reason}; transient fallback "
+                               f"(steady.fallback_budget): {exc}",
+                               diagnostics={"tried": tried, "reason": reason,
+                                            "fallback": exc.diagnostics},
+                               last_state=exc.last_state) from None
     stats = replace(res.stats, solver="transient (fallback)",
                     status=f"steady failed: {reason} (tried: {'; '.join(tried)})")
     return replace(res, stats=stats)

@@ -69,11 +69,17 @@ class TransientTest:
         Cell, numerics and the transient controls (``options.transient``).
     progress
         Optional callable ``progress(phase, step, time, friction)``.
+    newton_budget
+        Newton iterations the whole test may spend (None: no bound beyond its periods);
+        past them it stops with a :class:`~rubbercontact.errors.ConvergenceError` that
+        says how far it slid (the steady solve's fallback, ``steady.fallback_budget``).
     """
 
     def __init__(self, surface, material, mean_pressure: float, velocity: float,
-                 options: FemOptions, progress=None) -> None:
+                 options: FemOptions, progress=None, newton_budget: int | None = None
+                 ) -> None:
         self.wall0 = time.perf_counter()
+        self.newton_budget = newton_budget
         self.surface, self.material = surface, material
         self.p, self.v = float(mean_pressure), float(velocity)
         self.options, self.opts = options, options.transient
@@ -212,6 +218,7 @@ class TransientTest:
     def _advance(self, st: _State, dt: float, ds: float, dload: float, depth: int,
                  predictor_shift: bool) -> tuple[_State, int]:
         U0 = self._predict(st, ds, depth) if (predictor_shift and ds != 0) else st.U
+        self._check_budget(st)
 
         def res(U, tangent):
             return self.model.evaluate(U, st.visc, dt, st.s + ds, st.load + dload, tangent)
@@ -235,6 +242,24 @@ class TransientTest:
             return end, n1 + n2
         return (_State(U, ev.elements.state, st.t + dt, st.s + ds, st.load + dload, ev),
                 len(h) - 1)
+
+    def _check_budget(self, st: _State) -> None:
+        """Stop, keeping the last state, once the Newton budget is spent."""
+        spent = self.counters.newton_iterations
+        if self.newton_budget is None or spent < self.newton_budget:
+            return
+        slid = st.s - self.opts.surface_offset
+        if slid > 0:
+            where = f"after {slid / self.surface.period:.2f} of {self.periods} periods slid"
+        else:
+            where = "while settling" if st.load >= self.setup.load * (1 - 1e-12) else (
+                "while pressing")
+        raise ConvergenceError(
+            f"transient test stopped: its budget of {self.newton_budget} Newton iterations "
+            f"is spent {where}",
+            diagnostics={"newton_iterations": spent, "time": st.t, "sliding_distance": st.s,
+                         "periods_slid": self.n_periods, "cutbacks": self.info["cutbacks"]},
+            last_state=self._snapshot(st))
 
     def _snapshot(self, st: _State) -> dict:
         return {"U": st.U.copy(), "time": st.t, "sliding_distance": st.s, "load": st.load,

@@ -11,6 +11,7 @@ import warnings
 import numpy as np
 import xarray as xr
 
+from ..fem.loadrange import LOAD_RANGE_STUDY, held
 from ..hybrid.law import (
     STEADINESS_UNITS,
     STEADINESS_VARIABLES,
@@ -71,6 +72,8 @@ def assemble(models: list[str], velocities: np.ndarray, n_real: int, pressures: 
     status = np.full(shape, "ok", dtype=object)
     if "fem" in models and n_fem < n_real:
         status[models.index("fem"), :, n_fem:] = f"{NOT_RUN} (fem.realizations = {n_fem})"
+    if "fem" in models:
+        fem_above_range(status[models.index("fem")], pressures, material)
     # full-FEM steadiness (1/0; NaN where failed or not recorded)
     fem_diag = {k: np.full(shape[1:], np.nan) for k in STEADINESS_VARIABLES}
     for slot, res in zip(slots, results, strict=True):
@@ -113,6 +116,22 @@ def assemble(models: list[str], velocities: np.ndarray, n_real: int, pressures: 
     if "fem" in models:
         ds = add_fem_steadiness(ds, fem_diag, material, stacklevel=4)
     return ds
+
+
+def fem_above_range(status: np.ndarray, pressures: np.ndarray,
+                    material: GeneralizedMaxwell) -> None:
+    """Mark the full FEM's loads above the rubber's E∞ as not run (``status`` the model's,
+    by velocity, realization, pressure) and say so in one line: the run does not try them
+    (:func:`~.plan.run_loads`, :mod:`rubbercontact.fem.loadrange`)."""
+    e_inf = float(material.equilibrium_modulus)
+    above = ~held(pressures, e_inf)
+    if not above.any():
+        return
+    status[..., above] = f"{NOT_RUN} (above E∞ = {e_inf:.3g} MPa)"
+    loads = ", ".join(f"{p:.3g}" for p in np.asarray(pressures)[above])
+    warnings.warn(f"full FEM not run at {loads} MPa: above the rubber's E∞ ({e_inf:.3g} MPa), "
+                  f"outside the FEM cell's range ({LOAD_RANGE_STUDY})", RuntimeWarning,
+                  stacklevel=4)
 
 
 def _store_loads(data: dict, status: np.ndarray, at: tuple, res: xr.Dataset,

@@ -9,7 +9,8 @@ pressures go past its FEM points (:mod:`.lawcover`) is priced as one round at it
 every speed at every pressure it may add (:mod:`.costext`).
 
 Not foreseen: further rounds of the extension (up to three), a steady solve that stops and
-runs the barrier rescue or the transient fallback (minutes a point), the steepness of a law
+runs the barrier rescue or the transient fallback (minutes a point, the fallback at most
+``steady.fallback_budget`` Newton iterations), the steepness of a law
 cell (docs/validation/steep_cells.md), a steady point that needs many more Newton
 iterations than its neighbours, and a loaded machine (the wall time then grows with the
 load, the CPU time much less). The FEM's cost varies by up to 10× with speed and load: the
@@ -261,24 +262,25 @@ def estimate_cost(setup: RunSetup) -> CostEstimate:
 def full_fem_stage(setup: RunSetup) -> tuple[Stage, str | None]:
     """The full FEM's tests at the run's own loads (:func:`~.loads.run_pressures`: for
     target contact areas the VHS grid the run will sweep), each priced at its pressure,
-    and the note for those above the rubber's E∞, where the steady solve may stop and run
-    the transient fallback (:mod:`rubbercontact.fem.loadrange`)."""
+    and the note for the loads above the rubber's E∞, which the run does not try
+    (:func:`~.plan.run_loads`, :mod:`rubbercontact.fem.loadrange`)."""
+    from ..fem.loadrange import held
     from .loads import run_pressures
 
     cfg = setup.config
     mesh = cfg.fem.full_mesh_or_default
     pressures = run_pressures(setup)
-    runs = setup.speeds.computed.size * setup.n_fem
-    each = [full_fem_seconds(setup, float(p)) for p in pressures]
-    stage = Stage(f"full FEM tests ({mesh[0]} x {mesh[1]})", runs * len(pressures),
-                  sum(each) / len(pressures))
     e_inf = setup.material.equilibrium_modulus
-    above = pressures[pressures > e_inf]
+    inside = pressures[held(pressures, e_inf)]
+    runs = setup.speeds.computed.size * setup.n_fem
+    each = [full_fem_seconds(setup, float(p)) for p in inside]
+    stage = Stage(f"full FEM tests ({mesh[0]} x {mesh[1]})", runs * inside.size,
+                  sum(each) / max(inside.size, 1))
+    above = pressures[~held(pressures, e_inf)]
     if not above.size:
         return stage, None
-    return stage, (f"full FEM tests at {', '.join(f'{p:.3g}' for p in above)} MPa, above the "
-                   f"rubber's E∞ ({e_inf:.3g} MPa), may stop and run the transient "
-                   f"fallback, which can outlast the whole estimate (benchmarks/examples.md)")
+    return stage, (f"full FEM not run at {', '.join(f'{p:.3g}' for p in above)} MPa: above "
+                   f"the rubber's E∞ ({e_inf:.3g} MPa), outside the FEM cell's range")
 
 
 def flash_stages(setup: RunSetup, loads: int) -> list[Stage]:

@@ -17,11 +17,12 @@ from typing import TYPE_CHECKING, NamedTuple
 import numpy as np
 
 from ..config import RunConfig
+from ..fem.loadrange import held
 from ..materials import GeneralizedMaxwell
 from ..models import registry
 from ..models.fem import FEM_TASK, config_kwargs
 from ..models.meanfield import config_call
-from ..models.planning import PER_LOAD, PER_REALIZATION, RunPoint
+from ..models.planning import PER_LOAD, PER_REALIZATION, PER_REALIZATION_LOAD, RunPoint
 from ..roughness import SineSeries
 from .cost import model_task_seconds
 from .setup import RunSetup
@@ -67,7 +68,8 @@ def model_tasks(setup: RunSetup, material: GeneralizedMaxwell, pressures: np.nda
         shared = cls.run_data(m, setup)
         for iv, v in enumerate(setup.speeds.computed):
             table = tables.get(float(v))
-            for ir, ip in places(per, len(setup.realizations), setup.n_fem, len(pressures)):
+            for ir, ip in places(per, len(setup.realizations), setup.n_fem,
+                                 run_loads(per, pressures, material)):
                 p = pressures if ip is None else pressures[ip:ip + 1]
                 fn, kw = cls.run_task(m, RunPoint(setup, material, float(v), p, table, ir,
                                                   shared))
@@ -77,16 +79,27 @@ def model_tasks(setup: RunSetup, material: GeneralizedMaxwell, pressures: np.nda
     return slots, tasks
 
 
-def places(per: str, realizations: int, n_fem: int, loads: int
+def run_loads(per: str, pressures: np.ndarray, material: GeneralizedMaxwell) -> list[int]:
+    """The indices of the loads a model planned ``per`` runs tasks at: every one, except
+    that the full FEM (per realization and load) skips those above the rubber's ``E∞``,
+    outside its cell's range (:mod:`rubbercontact.fem.loadrange`; the results say so,
+    :func:`~.assemble.assemble`)."""
+    if per != PER_REALIZATION_LOAD:
+        return list(range(len(pressures)))
+    return [int(i) for i in np.flatnonzero(held(pressures, material.equilibrium_modulus))]
+
+
+def places(per: str, realizations: int, n_fem: int, loads: list[int]
            ) -> Iterator[tuple[int | None, int | None]]:
     """``(realization, load)`` index of each task of one model at one speed (``None``:
-    every one), in the order of its tasks."""
+    every one), in the order of its tasks; ``loads`` the indices of the loads it runs
+    (:func:`run_loads`)."""
     if per == PER_REALIZATION:
         yield from ((ir, None) for ir in range(realizations))
     elif per == PER_LOAD:
-        yield from ((None, ip) for ip in range(loads))
+        yield from ((None, ip) for ip in loads)
     else:
-        yield from ((ir, ip) for ip in range(loads) for ir in range(n_fem))
+        yield from ((ir, ip) for ip in loads for ir in range(n_fem))
 
 
 def _label(model: str, v: float, ir: int | None, p: np.ndarray, ip: int | None) -> str:
