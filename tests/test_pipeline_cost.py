@@ -243,7 +243,7 @@ def test_law_points_above_the_relaxed_modulus_are_said_not_budgeted():
     assert "above the rubber" not in said
     high = {**CONFIG, "law": {"pressures": [0.1, 2.0, 8.0, 16.0]}}
     said = estimate_cost(resolve(parse_config(high))).describe()
-    assert "law FEM points at 8, 16 MPa, above the rubber's E∞" in said
+    assert "cost: not budgeted: law FEM points at 8, 16 MPa, above the rubber's E∞" in said
     # the automatic mesh does not try them (fem.loadrange): said so, and priced at nothing
     auto = {**high, "fem": {**CONFIG["fem"], "mesh": "auto"}}
     setup = resolve(parse_config(auto))

@@ -94,7 +94,8 @@ class CostEstimate:
     workers
         Parallel workers the solves share (``execution.workers``).
     notes
-        What the run may cost beyond the estimate, as ``run --check`` prints it.
+        What the estimate leaves out (a cost it cannot price, a test the run does not
+        try), one line each as ``run --check`` prints it.
     """
 
     stages: tuple[Stage, ...]
@@ -131,7 +132,7 @@ class CostEstimate:
                      f"from an empty cache, {_duration(self.cpu_s)} of CPU (to a factor of "
                      f"2 on a quiet machine; per-point costs measured on one core, "
                      f"rubbercontact.pipeline.costmodel)")
-        lines += [f"cost: not budgeted: {note}" for note in self.notes]
+        lines += [f"cost: {note}" for note in self.notes]
         return "\n".join(lines)
 
 
@@ -232,7 +233,8 @@ def estimate_cost(setup: RunSetup) -> CostEstimate:
             fate = ("not tried on the automatic mesh: outside the cell's range" if opts.auto
                     else "may stop and run the barrier rescue or the transient fallback, "
                          "minutes a point")
-            notes.append(f"law FEM points at {', '.join(f'{p:g}' for p in above)} MPa, "
+            notes.append(f"not budgeted: law FEM points at "
+                         f"{', '.join(f'{p:g}' for p in above)} MPa, "
                          f"above the rubber's E∞ ({e_inf:.3g} MPa), {fate}")
         # one task per computed speed on the workers (.lawstage.law_tables)
         stages.append(Stage("law tables past the top FEM pressure (linear-law shape, one "
