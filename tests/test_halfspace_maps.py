@@ -32,7 +32,7 @@ from rubbercontact.halfspace.contact_set import contact_solve, step_displacement
 from rubbercontact.halfspace.krylov import gmres
 from rubbercontact.halfspace.laws import InteractionLaw
 from rubbercontact.halfspace.newton import _newton_rtol
-from rubbercontact.halfspace.precond import SCALE_BETA, scaled_kernel
+from rubbercontact.halfspace.precond import scaled_kernel
 from rubbercontact.halfspace.problem import Problem
 from rubbercontact.materials import GeneralizedMaxwell, sbr
 from rubbercontact.roughness import SineSeries
@@ -295,7 +295,7 @@ def test_scaled_kernel_is_the_shifted_stiffness_and_the_row_scaling(rough):
     assert weights is None and len(kernels) == 1
     np.testing.assert_array_equal(kernels[0], kn.stiffness_kernel(prob.compliance, s,
                                                                   hermitian=False))
-    b = SCALE_BETA * m_d
+    b = prob.options.soft_law_scale_beta_2d * m_d
     np.testing.assert_allclose(scale, [(b + s) / b, 1.0, (b + s) / (b + 10.0 * m_d)],
                                rtol=1e-15)
 

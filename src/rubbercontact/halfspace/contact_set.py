@@ -52,6 +52,7 @@ from .krylov import gmres
 from .options import SINGLE_MIN_POINTS_2D
 from .precond import shift_weights, shifted_preconditioner, soft_law_kernels
 from .problem import Problem
+from .twolevel import coarse_correction
 
 __all__ = ["LinearSolve", "contact_solve", "mixed_precision_solve", "refined_solve",
            "shifted_preconditioner", "step_displacement"]
@@ -228,8 +229,10 @@ def contact_solve(prob: Problem, idx: np.ndarray, rhs: np.ndarray, total: float,
     soft = soft_law_kernels(prob, c, complex_kernel, soft_shifts)
     if soft is None and callable(precond):
         precond = precond()
+    two_level = None
     if soft is not None:
         extra_diag = None   # every row on the variable-coefficient kernel
+        two_level = coarse_correction(prob, idx, c)
     if extra_diag is not None and extra_diag.any():
         cont = ~extra_diag
         dinv = 1.0 / (c[extra_diag] + m_diag)
@@ -272,6 +275,8 @@ def contact_solve(prob: Problem, idx: np.ndarray, rhs: np.ndarray, total: float,
         _clear(work, idc)
         if scale is not None:
             pc = pc * scale
+        if two_level is not None:
+            pc = two_level.apply(v, pc)
         if cont is None:
             out = pc
         else:

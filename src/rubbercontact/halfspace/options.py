@@ -22,6 +22,8 @@ COARSE_FACTOR = 4
 #: ``benchmarks/maps.md``), and the round-off of a single-precision solve breaks
 #: symmetries that small test maps pin (μ = 0 to 1e-12 on an elastic map).
 SINGLE_MIN_POINTS_2D = 256 * 256
+#: Float options that may exceed 1 (any positive value); the others lie in (0, 1).
+_POSITIVE = ("soft_law_scale_beta_2d",)
 
 
 @dataclass(frozen=True)
@@ -200,6 +202,25 @@ class SolverOptions:
         coarser per axis (the level between is skipped; coarser levels keep halving):
         that level's updates cost more than the one finest update they spare
         (:func:`~rubbercontact.halfspace.walls._start_grid`). ``False``: every level.
+    coarse_space_2d : int or None, default 16
+        Maps: the soft-law preconditioner (``soft_law_preconditioner_2d``) adds a coarse
+        space, piecewise constant on the set's points in each of ``k × k`` blocks of the grid
+        (``k`` this value; :mod:`~rubbercontact.halfspace.twolevel`): the one-level output
+        keeps its part of zero mean per block, a dense coarse system supplies the means.
+        Fewer GMRES iterations in every such system, at two sums over the set per
+        iteration (``benchmarks/maps.md``). ``None``, or sides not divisible into blocks of
+        at least two points: the one-level preconditioner.
+    coarse_space_min_side_2d : int, default 512
+        The coarse space of ``coarse_space_2d`` on maps whose sides are at least this:
+        the smooth modes it treats are the worse conditioned the finer the grid (the
+        ratio of ``M`` at the lowest wavenumber to ``m_d`` grows with the side), and at
+        256² the one-level iterations were as few (``benchmarks/maps.md``).
+    soft_law_scale_beta_2d : float, default 2.0
+        ``β`` of the row scaling ``(β m_d + s)/(β m_d + c)`` of the soft-law
+        preconditioner (:func:`~rubbercontact.halfspace.precond.scaled_kernel`). 2 with the
+        coarse space of ``coarse_space_2d``; 4 was the one-level choice (with the coarse
+        space it took 15–20 % more GMRES iterations on the 1024² linear-law case of
+        ``benchmarks/maps.md``).
     single_precision_2d : bool, default True
         Maps of at least 256² points: the GMRES iterations of the contact-set systems apply
         the operator and the
@@ -243,6 +264,9 @@ class SolverOptions:
     exact_load_2d: bool = True
     krylov_workspace_2d: bool = True
     wall_soft_skip_level_2d: bool = True
+    coarse_space_2d: int | None = 16
+    coarse_space_min_side_2d: int = 512
+    soft_law_scale_beta_2d: float = 2.0
 
     def __post_init__(self) -> None:
         for f in fields(self):
@@ -251,6 +275,10 @@ class SolverOptions:
             if f.type == "bool":
                 if not isinstance(value, bool):
                     raise InputError(f"{name}: expected True or False, got {value!r}")
+            elif f.name in _POSITIVE:
+                if isinstance(value, bool) or not isinstance(value, numbers.Real) \
+                        or not 0.0 < value < float("inf"):
+                    raise InputError(f"{name}: expected a number > 0, got {value!r}")
             elif f.type.startswith("float"):
                 if value is None and "None" in f.type:
                     continue

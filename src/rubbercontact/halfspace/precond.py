@@ -21,8 +21,6 @@ __all__ = ["shift_weights", "shifted_preconditioner", "soft_law_kernels"]
 #: Maps: the soft-law preconditioner is used when at least this fraction of the set's rows
 #: has a local compliance ``c`` above the diagonal ``m_d`` of ``M`` (a soft law's rows).
 SOFT_MIN_FRACTION = 0.1
-#: ``β`` of the row scaling ``(β m_d + s)/(β m_d + c)`` of :func:`scaled_kernel`.
-SCALE_BETA = 4.0
 
 
 def shifted_preconditioner(prob: Problem, c: np.ndarray, contact: np.ndarray) -> np.ndarray:
@@ -94,12 +92,12 @@ def scaled_kernel(prob: Problem, c: np.ndarray, shift: float, complex_kernel: bo
     """The soft-law preconditioner as one stiffness kernel and a row scaling.
 
     ``1/(M(q) + s)`` at the lowest shift ``s``, its output on row ``i`` multiplied by
-    ``(β m_d + s)/(β m_d + c_i)`` (``β = SCALE_BETA``): where ``c_i`` exceeds ``s`` the
-    row's local stiffness is lowered towards ``1/(m_d + c_i)`` (the high-``q`` end, where
-    ``M`` is near its diagonal ``m_d``) while the long-range coupling of ``M`` stays in the
-    kernel. One inverse FFT per application instead of one per interpolated shift, and
-    no more GMRES iterations than two shifts on the maps of ``benchmarks/maps.md``
-    (measured there, with the ``β`` and ``s`` tried).
+    ``(β m_d + s)/(β m_d + c_i)`` (``β = options.soft_law_scale_beta_2d``): where ``c_i``
+    exceeds ``s`` the row's local stiffness is lowered towards ``1/(m_d + c_i)`` (the
+    high-``q`` end, where ``M`` is near its diagonal ``m_d``) while the long-range coupling
+    of ``M`` stays in the kernel. One inverse FFT per application instead of one per
+    interpolated shift, and no more GMRES iterations than two shifts on the maps of
+    ``benchmarks/maps.md`` (measured there, with the ``β`` and ``s`` tried).
 
     Parameters
     ----------
@@ -119,5 +117,5 @@ def scaled_kernel(prob: Problem, c: np.ndarray, shift: float, complex_kernel: bo
     """
     m_diag = prob.compliance_diagonal
     kernel = kn.stiffness_kernel(prob.compliance, shift, hermitian=not complex_kernel)
-    beta = SCALE_BETA * m_diag
+    beta = prob.options.soft_law_scale_beta_2d * m_diag
     return [kernel], None, (beta + shift) / (beta + c)

@@ -104,6 +104,7 @@ class Problem:
     _dense_lu: tuple | None = None
     _compliance32: np.ndarray | None = None
     _krylov: dict | None = None
+    _cache: dict | None = None
 
     @property
     def size(self) -> int:
@@ -140,6 +141,12 @@ class Problem:
         if self._krylov is None:
             self._krylov = {}
         return self._krylov
+
+    def cache(self) -> dict:
+        """A dict for quantities derived from the kernel alone (kept with the problem)."""
+        if self._cache is None:
+            self._cache = {}
+        return self._cache
 
     def displacement(self, sigma: np.ndarray) -> np.ndarray:
         return self.apply(self.compliance, sigma)
