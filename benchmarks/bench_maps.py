@@ -129,10 +129,12 @@ PREVIOUS = SolverOptions(coarse_min_side_2d=None, single_precision_2d=False, mul
 #: The defaults of commit 1fba2c7 (the start of the 2026-12-06 09:00 UTC round): the
 #: single-precision cycles tighter than 1e-3 on a float64 Krylov basis, the GMRES bases
 #: allocated per restart cycle, the finest hard wall + soft law started from the next
-#: grid (the round's change without a switch, a law's pressure and stiffness in one pass,
-#: runs in both columns: bitwise the same answers).
+#: grid, the one-level soft-law preconditioner with its row scaling at β = 4 (the round's
+#: change without a switch, a law's pressure and stiffness in one pass, runs in both
+#: columns: bitwise the same answers).
 ROUND_BEFORE = SolverOptions(tight_krylov32_2d=False, krylov_workspace_2d=False,
-                             wall_soft_skip_level_2d=False)
+                             wall_soft_skip_level_2d=False, coarse_space_2d=None,
+                             soft_law_scale_beta_2d=4.0)
 #: The three solvers of ``--bem``, interleaved in one run.
 BEM_VARIANTS = {"previous": PREVIOUS, "before": ROUND_BEFORE, "current": None}
 BEM_HEADING = "## 2D BEM: the previous solver against the current one"
@@ -256,7 +258,8 @@ def bem_markdown(visco: list[dict], elastic: dict | None, info: str) -> str:
              "2D speed-ups (`PREVIOUS` options), `before` the defaults "
              "of commit 1fba2c7 (`ROUND_BEFORE`: the single-precision cycles tighter than "
              "1e-3 on a float64 Krylov basis, the GMRES bases allocated per restart cycle, "
-             "the finest hard wall + soft law started from the next grid; the round's "
+             "the finest hard wall + soft law started from the next grid, the one-level "
+             "soft-law preconditioner at β = 4; the round's "
              "change without a switch, a law's pressure and stiffness in one pass, in both), "
              "`current` the defaults. CPU time "
              "of the process (the machine is shared: the steadier figure), wall time in "
