@@ -229,10 +229,10 @@ def contact_solve(prob: Problem, idx: np.ndarray, rhs: np.ndarray, total: float,
     soft = soft_law_kernels(prob, c, complex_kernel, soft_shifts)
     if soft is None and callable(precond):
         precond = precond()
-    two_level = None
     if soft is not None:
         extra_diag = None   # every row on the variable-coefficient kernel
-        two_level = coarse_correction(prob, idx, c)
+    # the coarse space (maps): for the soft-law preconditioner and the hard wall's kernel
+    two_level = coarse_correction(prob, idx, c) if soft is not None or c is None else None
     if extra_diag is not None and extra_diag.any():
         cont = ~extra_diag
         dinv = 1.0 / (c[extra_diag] + m_diag)

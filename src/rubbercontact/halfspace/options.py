@@ -203,13 +203,15 @@ class SolverOptions:
         that level's updates cost more than the one finest update they spare
         (:func:`~rubbercontact.halfspace.walls._start_grid`). ``False``: every level.
     coarse_space_2d : int or None, default 16
-        Maps: the soft-law preconditioner (``soft_law_preconditioner_2d``) adds a coarse
-        space, piecewise constant on the set's points in each of ``k × k`` blocks of the grid
-        (``k`` this value; :mod:`~rubbercontact.halfspace.twolevel`): the one-level output
-        keeps its part of zero mean per block, a dense coarse system supplies the means.
-        Fewer GMRES iterations in every such system, at two sums over the set per
-        iteration (``benchmarks/maps.md``). ``None``, or sides not divisible into blocks of
-        at least two points: the one-level preconditioner.
+        Maps: the soft-law preconditioner (``soft_law_preconditioner_2d``) and the hard
+        wall's add a coarse space, piecewise constant on the set's points in each of
+        ``k × k`` blocks of the grid (``k`` this value;
+        :mod:`~rubbercontact.halfspace.twolevel`): the one-level output keeps its part of
+        zero mean per block, a dense coarse system supplies the means. Fewer GMRES
+        iterations in every such system, at two sums over the set per iteration
+        (``benchmarks/maps.md``). ``None``, or sides not divisible into blocks of at least
+        two points: the one-level preconditioners. The Lennard-Jones wall's Newton systems
+        (the shifted kernel and a diagonal) keep theirs.
     coarse_space_min_side_2d : int, default 512
         The coarse space of ``coarse_space_2d`` on maps whose sides are at least this:
         the smooth modes it treats are the worse conditioned the finer the grid (the

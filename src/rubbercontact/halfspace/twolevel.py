@@ -1,12 +1,14 @@
-r"""Two-level correction of the soft-law preconditioner on maps (``options.coarse_space_2d``).
+r"""Two-level correction of the contact-set preconditioner on maps (``options.coarse_space_2d``).
 
-The contact-set systems ``(M x)_B + c x + λ = b``, ``Σ x = S`` of a soft law on a map
-(:mod:`~rubbercontact.halfspace.contact_set`) are preconditioned by one stiffness kernel and a
-row scaling (:func:`~rubbercontact.halfspace.precond.scaled_kernel`). That one-level operator
-leaves the smoothest modes of the set badly scaled: the set is a perforated fraction of the
-grid, and its long-range coupling through ``M(q) ~ 1/|q|`` is not what the kernel applied to
-the zero-extended vector restores. The correction adds a coarse space of piecewise-constant
-vectors on aggregates (the set's points in each of ``k × k`` blocks of the grid):
+The contact-set systems ``(M x)_B + c x + λ = b``, ``Σ x = S`` on a map
+(:mod:`~rubbercontact.halfspace.contact_set`) are preconditioned by one stiffness kernel
+applied to the zero-extended vector (for a soft law with a row scaling,
+:func:`~rubbercontact.halfspace.precond.scaled_kernel`; for the hard wall, ``c = 0``, the
+kernel ``1/M``). That one-level operator leaves the smoothest modes of the set badly
+scaled: the set is a perforated fraction of the grid, and its long-range coupling through
+``M(q) ~ 1/|q|`` is not what the kernel applied to the zero-extended vector restores. The
+correction adds a coarse space of piecewise-constant vectors on aggregates (the set's
+points in each of ``k × k`` blocks of the grid):
 
 .. math:: P_2 v = R^T A_c^{-1} R v + (I - R^T D^{-1} R)\,P v
 
