@@ -201,7 +201,7 @@ def test_departure_of_vanishing_friction_is_noise():
 
 def test_law_coverage_and_summary_fold_the_speeds():
     """Local pressures past the law's FEM points are a note per speed; the summary folds
-    them into one line naming the speeds and the worst."""
+    them into the model's line, naming the speeds and the worst."""
     stats = va.SurfaceStats.from_series(rc.roughness.section3())
     points = [_point(v, local=p, top=1.0) for v, p in ((10.0, 3.0), (20.0, 1.9e3),
                                                        (50.0, 0.5))]
@@ -209,7 +209,8 @@ def test_law_coverage_and_summary_fold_the_speeds():
              if n.condition == "law_pressure"]
     assert [n.velocity for n in notes] == [10.0, 20.0]
     (line,) = [x for x in va.summarize(notes)]
-    assert line.startswith("hybrid-windowed at 2 speeds (10 … 20 mm/s), worst at 20 mm/s")
+    assert line.startswith("hybrid-windowed: outside its validated class (")
+    assert "): at 2 speeds (10 … 20 mm/s), worst at 20 mm/s: local pressures reach" in line
     assert "1.9e+03 MPa" in line
     attrs = va.as_attrs("hybrid-windowed", notes)
     assert attrs == {"validity_hybrid-windowed": line}

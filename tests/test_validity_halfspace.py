@@ -99,7 +99,7 @@ def test_halfspace_command_says_so_in_one_line(capsys, tmp_path):
 
 
 def test_a_map_run_on_white_noise_notes_the_vhs(tmp_path):
-    # the run's VHS solves carry the same check: one line in validity_vhs (the worst load
+    # the run's VHS solves carry the same check: in validity_vhs's one line (the worst load
     # per speed, folded over the speeds); the mean-field solves no grid
     from rubbercontact.config import load_config
     from rubbercontact.pipeline import run
@@ -112,5 +112,6 @@ def test_a_map_run_on_white_noise_notes_the_vhs(tmp_path):
                     'periodize = "none"\n')
     ds = run(load_config(path))
     lines = [x for x in ds.attrs["validity_vhs"].split("\n") if "resolve the contact" in x]
-    assert len(lines) == 1 and lines[0].startswith("vhs at 2 speeds")
+    assert len(lines) == 1 and lines[0].startswith("vhs: outside its")
+    assert "; at 2 speeds (1 … 10 mm/s), worst at 10 mm/s: σ0 = " in lines[0], lines[0]
     assert "resolve the contact" not in ds.attrs["validity_meanfield"]

@@ -251,7 +251,7 @@ def _assemble(setup: RunSetup, material: GeneralizedMaxwell, pressures: np.ndarr
 
 
 def _with_validity(ds: xr.Dataset, setup: RunSetup) -> xr.Dataset:
-    """Each model's notes where the run leaves its validated class, one line each, in
+    """Each model's notes where the run leaves its validated class, one line a model, in
     ``attrs["validity_<model>"]`` ("" inside; :mod:`rubbercontact.validity`)."""
     from ..validity import as_attrs, assess_run
 

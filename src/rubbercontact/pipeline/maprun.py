@@ -225,7 +225,7 @@ def run_map(cfg: RunConfig) -> xr.Dataset:
 
 def _with_validity(ds: xr.Dataset, hmap, material, threshold: float,
                    solved: tuple | list = ()) -> xr.Dataset:
-    """Each model's notes where the run leaves its validated class, one line each, in
+    """Each model's notes where the run leaves its validated class, one line a model, in
     ``attrs["validity_<model>"]`` as a 1D run has them (:mod:`rubbercontact.validity.maps`:
     every model's class was measured in 1D, so each has at least that note), with the
     notes of the solves themselves (``solved``: the VHS's unresolved contacts)."""

@@ -52,7 +52,8 @@ def summary_table(ds: xr.Dataset) -> str:
 
 
 def _validity(ds: xr.Dataset) -> list[str]:
-    """The run's notes where a model left the class it was validated on (one line each)."""
+    """The run's notes where a model left the class it was validated on (one line a
+    model)."""
     notes = [line for k, v in ds.attrs.items() if k.startswith("validity_")
              for line in str(v).splitlines() if line]
     if not notes:

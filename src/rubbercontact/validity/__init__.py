@@ -4,7 +4,8 @@ Every model was validated against a reference (the full FEM for the VHS and the 
 VHS BEM, which solves the linear problem exactly, for the hybrids and the mean-field
 models) on a class of surfaces, contacts and speeds: :mod:`.classes` states each class as
 data, every bound with the report that measured it; :mod:`.assess` returns, for a model and
-what a run has, one line per condition outside the class; :mod:`.run` reads those inputs
+what a run has, one note per condition outside the class (:func:`summarize`: one line a
+model); :mod:`.run` reads those inputs
 from a run's results. The guide's table is docs/guide/models.md ("Where each model was
 validated").
 """

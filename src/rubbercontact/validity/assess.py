@@ -2,7 +2,8 @@
 
 :func:`assess` takes what a run has (the waves, the contact fractions, the speeds, the local
 pressures against the law's range, the friction beside the VHS's) and returns the notes;
-:func:`summarize` folds the notes of many speeds into one line per model and condition.
+:func:`summarize` folds them into one line per model, each condition once and the speeds
+folded.
 
 Speeds enter as frequencies: a class bounds ``q v`` of the waves it concerns on the scale of
 the SBR of Table 1 (every study's rubber), and a run's rubber is compared on its own loss
@@ -172,7 +173,11 @@ class Note:
         How far outside: the worst value over its bound (or the departure over the
         tolerance); 1 at the bound.
     detail
-        The condition alone (values, bound, report), for a departure note to quote.
+        The condition alone (values, bound, report), for a departure note to quote and for
+        :func:`summarize`'s line.
+    class_name
+        The validated class the note is about ("" for the run's own notes, such as an
+        under-resolved FEM).
     """
 
     model: str
@@ -182,6 +187,7 @@ class Note:
     temperature: float | None = None
     excess: float = 1.0
     detail: str = ""
+    class_name: str = ""
 
     @property
     def text(self) -> str:
@@ -314,7 +320,7 @@ def _check(cls: ValidatedClass, c: Condition, values: np.ndarray, surface: Surfa
     detail = f"{_what(c, values, surface, p, scale)} ({c.report})"
     return [Note(cls.model, c.quantity, f"outside its validated class ({cls.name}): {detail}",
                  None if p is None else p.velocity, None if p is None else p.temperature,
-                 excess, detail)]
+                 excess, detail, cls.name)]
 
 
 def _what(c: Condition, values: np.ndarray, surface: SurfaceStats, p: SpeedPoint | None,
@@ -355,30 +361,53 @@ def _departure(cls: ValidatedClass, p: SpeedPoint, found: tuple[float, float, fl
         where = f"and the run lies outside its validated class ({cls.name}): {worst.detail}{more}"
     else:
         where = f"inside its validated class ({cls.name}): check the run ({cls.report})"
-    reason = (f"μ {mu:.3g} departs from the VHS's {ref:.3g} beyond the {cls.tolerance:.0%} "
-              f"measured against {cls.reference}, {where}")
-    return Note(cls.model, "vhs", reason, p.velocity, p.temperature, excess)
+    detail = (f"μ {mu:.3g} departs from the VHS's {ref:.3g} beyond the {cls.tolerance:.0%} "
+              f"measured against {cls.reference}")
+    return Note(cls.model, "vhs", f"{detail}, {where}", p.velocity, p.temperature, excess,
+                detail, cls.name)
 
 
 def summarize(notes: Sequence[Note]) -> tuple[str, ...]:
-    """One line per model and condition: the surface's notes as they are, the notes of many
-    speeds folded into the speeds they hold at and the worst of them."""
-    groups: dict[tuple[str, str, bool], list[Note]] = {}
+    """One line per model: where it leaves its validated class, each condition once (the
+    notes of many speeds folded into the speeds they hold at and the worst of them); a model
+    inside its class whose μ departs from the VHS gets that note's line, folded likewise."""
+    by_model: dict[str, list[Note]] = {}
     for n in notes:
-        groups.setdefault((n.model, n.condition, n.velocity is None), []).append(n)
-    lines = []
-    for (model, _, on_surface), group in groups.items():
+        by_model.setdefault(n.model, []).append(n)
+    return tuple(_model_line(model, group) for model, group in by_model.items())
+
+
+def _model_line(model: str, notes: list[Note]) -> str:
+    groups: dict[tuple[str, bool], list[Note]] = {}
+    for n in notes:
+        groups.setdefault((n.condition, n.velocity is None), []).append(n)
+    if all(condition == "vhs" for condition, _ in groups):
+        (group,) = groups.values()
         worst = max(group, key=lambda n: n.excess)
-        if on_surface or len(group) == 1:
-            lines.append(worst.text)
-            continue
-        v = sorted(n.velocity for n in group)
-        t = sorted({n.temperature for n in group if n.temperature is not None})
-        what = "speeds" if not t else "(speed, temperature) points"
-        span = _span(v, "mm/s", ".3g") + (", " + _span(t, "°C", "g") if t else "")
-        worst_at = Note(model, "", "", worst.velocity, worst.temperature).text[len(model):]
-        lines.append(f"{model} at {len(group)} {what} ({span}), worst{worst_at}{worst.reason}")
-    return tuple(lines)
+        return f"{model}{_where(group, worst)}: {worst.reason}"
+    names = [n.class_name for n in notes if n.class_name]
+    head = f"outside its validated class ({names[0]})" if names else "outside its class"
+    parts = []
+    for group in groups.values():
+        worst = max(group, key=lambda n: n.excess)
+        where = _where(group, worst).strip()
+        parts.append(f"{where}: {worst.detail or worst.reason}" if where
+                     else worst.detail or worst.reason)
+    return f"{model}: {head}: " + "; ".join(parts)
+
+
+def _where(group: list[Note], worst: Note) -> str:
+    """Where a condition holds: nothing on the surface, the speed, or the speeds folded."""
+    if worst.velocity is None:
+        return ""
+    at = Note("", "", "", worst.velocity, worst.temperature).text[:-2]
+    if len(group) == 1:
+        return at
+    v = sorted(n.velocity for n in group)
+    t = sorted({n.temperature for n in group if n.temperature is not None})
+    what = "speeds" if not t else "(speed, temperature) points"
+    span = _span(v, "mm/s", ".3g") + (", " + _span(t, "°C", "g") if t else "")
+    return f" at {len(group)} {what} ({span}), worst{at}"
 
 
 def _span(values: list[float], unit: str, fmt: str) -> str:
@@ -387,6 +416,6 @@ def _span(values: list[float], unit: str, fmt: str) -> str:
 
 
 def as_attrs(model: str, notes: Sequence[Note]) -> dict[str, str]:
-    """``{"validity_<model>": lines}`` for a results file's attrs: the :func:`summarize`
-    lines of ``model``'s notes, newline-joined (empty: inside its class)."""
+    """``{"validity_<model>": line}`` for a results file's attrs: the :func:`summarize`
+    line of ``model``'s notes (empty: inside its class)."""
     return {f"validity_{model}": "\n".join(summarize([n for n in notes if n.model == model]))}
