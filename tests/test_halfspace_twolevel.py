@@ -136,6 +136,14 @@ def test_coarse_correction_needs_divisible_sides_and_the_option():
     assert coarse_correction(_problem((64, 32), options=ONE_LEVEL), np.arange(10), None) is None
 
 
+def test_a_singular_coarse_system_leaves_the_one_level_preconditioner(monkeypatch):
+    def singular(a):
+        raise np.linalg.LinAlgError("singular matrix")
+
+    monkeypatch.setattr(np.linalg, "inv", singular)
+    assert coarse_correction(_problem((64, 32)), np.arange(10), None) is None
+
+
 @pytest.mark.parametrize("bad", [0, -1, True, float("inf")])
 def test_beta_option_is_a_positive_number(bad):
     assert SolverOptions(soft_law_scale_beta_2d=4.0).soft_law_scale_beta_2d == 4.0

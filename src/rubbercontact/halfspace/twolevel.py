@@ -168,4 +168,8 @@ def coarse_correction(prob: Problem, idx: np.ndarray,
         return None
     if any(n % blocks or n // blocks < 2 for n in prob.shape):
         return None
-    return CoarseCorrection(prob, idx, c, blocks)
+    try:
+        corr = CoarseCorrection(prob, idx, c, blocks)
+    except np.linalg.LinAlgError:
+        return None     # a singular coarse system: the one-level preconditioner
+    return corr if np.all(np.isfinite(corr.inverse)) else None
