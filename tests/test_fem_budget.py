@@ -99,6 +99,9 @@ def fallback(cell):
         return rc.fem.steady_sliding(*cell, *ARGS, fallback_budget=None, **FAILING)
 
 
+# the coarse cell's transient test is still 1.1 % from steady after its 6 periods: said by
+# a warning, and beside the point here (the budget's bookkeeping)
+@pytest.mark.filterwarnings("ignore:FEM sliding test. period averages still change")
 def test_a_fallback_budget_that_does_not_bind_changes_nothing(cell, fallback):
     assert fallback.stats.solver == "transient (fallback)"
     n = fallback.stats.newton_iterations
