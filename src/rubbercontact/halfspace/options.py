@@ -220,9 +220,8 @@ class SolverOptions:
     soft_law_scale_beta_2d : float, default 2.0
         ``β`` of the row scaling ``(β m_d + s)/(β m_d + c)`` of the soft-law
         preconditioner (:func:`~rubbercontact.halfspace.precond.scaled_kernel`). 2 with the
-        coarse space of ``coarse_space_2d``; 4 was the one-level choice (with the coarse
-        space it took 15–20 % more GMRES iterations on the 1024² linear-law case of
-        ``benchmarks/maps.md``).
+        coarse space of ``coarse_space_2d``; 4 was the one-level choice, and with the
+        coarse space takes more GMRES iterations (``benchmarks/maps.md``).
     single_precision_2d : bool, default True
         Maps of at least 256² points: the GMRES iterations of the contact-set systems apply
         the operator and the
