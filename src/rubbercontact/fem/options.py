@@ -104,8 +104,9 @@ class SteadyOptions:
     fallback_budget
         Newton iterations the transient fallback may spend, press and settle included;
         past them it stops and says how far it slid (None: no bound beyond its periods).
-        The default is twice ``newton_budget``: a test that stops costs at most about three
-        steady budgets of Newton iterations, so a run's cost stays bounded.
+        The default, 2400, is twice ``newton_budget``'s (it does not follow a changed
+        ``newton_budget``): a test that stops then costs at most about three steady budgets
+        of Newton iterations, so a run's cost stays bounded.
     """
 
     krylov_rtol: float = 1e-2
